@@ -1,0 +1,33 @@
+#include "cli.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+namespace vgd::cli {
+
+void add_command(CLI::App& app, Runner& selected, CLI::App* sub, Runner run) {
+  sub->callback([&selected, run = std::move(run)] { selected = run; });
+}
+
+void print_diagnostics(const Diagnostics& d, bool quiet) {
+  for (const auto& item : d.items()) {
+    if (quiet && item.severity == Severity::info) continue;
+    std::fprintf(stderr, "vgd: %s: %s\n", to_string(item.severity), item.format().c_str());
+  }
+}
+
+nlohmann::json to_json(const Diagnostics& d) {
+  auto arr = nlohmann::json::array();
+  for (const auto& item : d.items()) {
+    nlohmann::json j{{"severity", to_string(item.severity)}, {"message", item.message}};
+    if (!item.file.empty()) j["file"] = item.file;
+    if (item.line > 0) j["line"] = item.line;
+    if (!item.entity.empty()) j["entity"] = item.entity;
+    arr.push_back(std::move(j));
+  }
+  return arr;
+}
+
+void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
+
+}  // namespace vgd::cli

@@ -1,0 +1,24 @@
+#pragma once
+// Small string helpers used by the file readers.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vgd {
+
+std::string_view trim(std::string_view s);
+std::string to_lower(std::string_view s);
+bool iequals(std::string_view a, std::string_view b);
+bool istarts_with(std::string_view s, std::string_view prefix);
+std::vector<std::string> split(std::string_view s, char sep);
+
+// Strict number parsing: the whole (trimmed) text must be a finite number.
+// Accepts forms like ".25", "-1.", "1e-3". Locale-independent.
+std::optional<double> parse_double(std::string_view s);
+std::optional<long long> parse_int(std::string_view s);
+
+// Shortest text that reads back to the same double ("%.17g" trimmed), locale-independent.
+std::string format_double(double v);
+
+}  // namespace vgd
