@@ -5,8 +5,13 @@
 
 namespace vgd::cli {
 
-void add_command(CLI::App& app, Runner& selected, CLI::App* sub, Runner run) {
-  sub->callback([&selected, run = std::move(run)] { selected = run; });
+std::vector<Entry>& registry() {
+  static std::vector<Entry> r;
+  return r;
+}
+
+Registrar::Registrar(std::string name, int order, Factory factory) {
+  registry().push_back({std::move(name), order, std::move(factory)});
 }
 
 void print_diagnostics(const Diagnostics& d, bool quiet) {
@@ -29,5 +34,9 @@ nlohmann::json to_json(const Diagnostics& d) {
 }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
+
+void say(const Common& common, const std::string& line) {
+  if (!common.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+}
 
 }  // namespace vgd::cli

@@ -1,11 +1,23 @@
 #pragma once
-// Shared plumbing of the `vgd` subcommands: exit codes, output, error handling.
-// Each subcommand lives in its own cmd_<name>.cpp and only parses options and
-// calls the library.
+// Shared plumbing of the `vgd` subcommands: exit codes, output, registration.
+//
+// Each subcommand lives in its own cmd_<name>.cpp, parses its options and calls
+// the library. A file registers its command with a static Registrar:
+//
+//   static vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common) {
+//     auto* sub = app.add_subcommand("import", "Import an AAMA/ASTM DXF pattern file");
+//     auto opts = std::make_shared<Options>();
+//     sub->add_option(...);
+//     return vgd::cli::Command{sub, [opts, &common] { ... return vgd::cli::kOk; }};
+//   }};
+//
+// main() builds the commands in `order`, parses, runs the selected one and maps
+// exceptions to exit codes (vgd::Error -> kFailed with its message).
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "vgd/core/diagnostics.hpp"
 
@@ -13,32 +25,47 @@ namespace vgd::cli {
 
 // Exit codes (docs/cli.md).
 enum Exit : int {
-  kOk = 0,          // success
-  kFailed = 1,      // the input was bad or the operation failed; the message says why
-  kUsage = 2,       // wrong command line (CLI11 prints the reason and --help)
-  kCheckFailed = 3, // a check ran and found problems (validate, compare)
-  kInternal = 4,    // an unexpected internal error (a bug: please report)
+  kOk = 0,           // success
+  kFailed = 1,       // the input was bad or the operation failed; the message says why
+  kUsage = 2,        // wrong command line (CLI11 prints the reason; see --help)
+  kCheckFailed = 3,  // a check ran and found problems (validate, compare)
+  kInternal = 4,     // an unexpected internal error (a bug: please report it)
 };
 
-// Options every subcommand shares.
+// Options every subcommand shares (set on the top-level app).
 struct Common {
   bool quiet = false;  // no progress or summaries on stderr
 };
 
-// Registers one subcommand; `run` is stored and called after parsing.
-using Runner = std::function<int()>;
-void add_command(CLI::App& app, Runner& selected, CLI::App* sub, Runner run);
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
 
-// Prints diagnostics (warnings, errors) to stderr, one line each.
+using Factory = std::function<Command(CLI::App& app, Common& common)>;
+
+// Registers a subcommand at static-initialisation time; `order` sorts --help.
+struct Registrar {
+  Registrar(std::string name, int order, Factory factory);
+};
+
+struct Entry {
+  std::string name;
+  int order;
+  Factory factory;
+};
+std::vector<Entry>& registry();
+
+// Prints diagnostics to stderr, one line each ("vgd: warning: file:line: entity: message").
 void print_diagnostics(const Diagnostics& d, bool quiet);
 
-// JSON array of diagnostics: [{severity, file, line, entity, message}].
+// JSON array of diagnostics: [{severity, message, file?, line?, entity?}].
 nlohmann::json to_json(const Diagnostics& d);
 
 // Writes JSON to stdout, pretty-printed.
 void print_json(const nlohmann::json& j);
 
-// Subcommand registration, one per file.
-void register_import(CLI::App& app, Runner& selected, Common& common);
+// Prints a summary line to stderr unless quiet.
+void say(const Common& common, const std::string& line);
 
 }  // namespace vgd::cli

@@ -1,5 +1,6 @@
-// vgd — the command-line front end. Parses the command line, runs one
-// subcommand, turns errors into messages and exit codes (docs/cli.md).
+// vgd — the command-line front end. Builds the registered subcommands, parses the
+// command line, runs one, and turns errors into messages and exit codes (docs/cli.md).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 
@@ -8,16 +9,18 @@
 
 int main(int argc, char** argv) {
   using namespace vgd::cli;
-  CLI::App app{"vgd — Virtual Garment Designer: import garment patterns, mesh, simulate, publish"};
+  CLI::App app{"vgd — Virtual Garment Designer: import garment patterns, edit, mesh, simulate, publish"};
   app.set_version_flag("--version", std::string("vgd ") + vgd::kVersion);
   app.require_subcommand(1);
-  app.footer("Run 'vgd COMMAND --help' for a command's options. Exit codes: 0 ok, 1 failed, "
-             "2 usage, 3 check failed, 4 internal error.");
+  app.footer("Run 'vgd COMMAND --help' for a command's options.\n"
+             "Exit codes: 0 ok, 1 failed (bad input), 2 usage, 3 check failed, 4 internal error.");
   Common common;
   app.add_flag("-q,--quiet", common.quiet, "No progress or summaries on stderr");
 
-  Runner selected;
-  register_import(app, selected, common);
+  auto entries = registry();
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.order < b.order; });
+  std::vector<Command> commands;
+  for (auto& e : entries) commands.push_back(e.factory(app, common));
 
   try {
     app.parse(argc, argv);
@@ -26,7 +29,9 @@ int main(int argc, char** argv) {
     return rc == 0 ? kOk : kUsage;
   }
   try {
-    return selected ? selected() : kUsage;
+    for (auto& c : commands)
+      if (c.app->parsed()) return c.run();
+    return kUsage;
   } catch (const vgd::Error& e) {
     std::fprintf(stderr, "vgd: error: %s\n", e.what());
     return kFailed;
