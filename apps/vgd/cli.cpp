@@ -14,9 +14,10 @@ Registrar::Registrar(std::string name, int order, Factory factory) {
   registry().push_back({std::move(name), order, std::move(factory)});
 }
 
-void print_diagnostics(const Diagnostics& d, bool quiet) {
+void print_diagnostics(const Diagnostics& d, const Common& common) {
   for (const auto& item : d.items()) {
-    if (quiet && item.severity == Severity::info) continue;
+    if (item.severity == Severity::info && !common.verbose) continue;
+    if (item.severity == Severity::warning && common.quiet) continue;
     std::fprintf(stderr, "vgd: %s: %s\n", to_string(item.severity), item.format().c_str());
   }
 }

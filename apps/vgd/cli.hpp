@@ -34,7 +34,8 @@ enum Exit : int {
 
 // Options every subcommand shares (set on the top-level app).
 struct Common {
-  bool quiet = false;  // no progress or summaries on stderr
+  bool quiet = false;    // no progress or summaries on stderr
+  bool verbose = false;  // also print informational diagnostics
 };
 
 struct Command {
@@ -56,8 +57,9 @@ struct Entry {
 };
 std::vector<Entry>& registry();
 
-// Prints diagnostics to stderr, one line each ("vgd: warning: file:line: entity: message").
-void print_diagnostics(const Diagnostics& d, bool quiet);
+// Prints warnings and errors to stderr, one line each
+// ("vgd: warning: file:line: entity: message"); info lines only when verbose.
+void print_diagnostics(const Diagnostics& d, const Common& common);
 
 // JSON array of diagnostics: [{severity, message, file?, line?, entity?}].
 nlohmann::json to_json(const Diagnostics& d);

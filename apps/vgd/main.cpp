@@ -12,10 +12,12 @@ int main(int argc, char** argv) {
   CLI::App app{"vgd — Virtual Garment Designer: import garment patterns, edit, mesh, simulate, publish"};
   app.set_version_flag("--version", std::string("vgd ") + vgd::kVersion);
   app.require_subcommand(1);
+  app.fallthrough();  // global options (-q) may follow the subcommand
   app.footer("Run 'vgd COMMAND --help' for a command's options.\n"
              "Exit codes: 0 ok, 1 failed (bad input), 2 usage, 3 check failed, 4 internal error.");
   Common common;
-  app.add_flag("-q,--quiet", common.quiet, "No progress or summaries on stderr");
+  app.add_flag("-q,--quiet", common.quiet, "No progress, summaries or warnings on stderr (errors still shown)");
+  app.add_flag("-v,--verbose", common.verbose, "Also show informational messages (units found, repairs made)");
 
   auto entries = registry();
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.order < b.order; });

@@ -82,4 +82,10 @@ std::string format_double(double v) {
   return std::string(buf, ec == std::errc() ? p : buf);
 }
 
+std::string format_fixed(double v, int decimals) {
+  char buf[64];
+  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
+  return std::string(buf, ec == std::errc() ? p : buf);
+}
+
 }  // namespace vgd

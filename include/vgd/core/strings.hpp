@@ -21,4 +21,7 @@ std::optional<long long> parse_int(std::string_view s);
 // Shortest text that reads back to the same double ("%.17g" trimmed), locale-independent.
 std::string format_double(double v);
 
+// Fixed-point text for messages ("3.14"), locale-independent.
+std::string format_fixed(double v, int decimals);
+
 }  // namespace vgd

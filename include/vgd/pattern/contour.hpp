@@ -1,0 +1,75 @@
+#pragma once
+// Building clean closed outlines from what CAD files contain.
+//
+// Real exports split a piece's boundary into several open polylines, repeat
+// vertices, repeat the first vertex at the end, and wind either way
+// (shared/data/dxf/README.md). These functions turn such parts into one
+// counter-clockwise outline and say what they had to do. Units: metres.
+#include <vector>
+
+#include "vgd/pattern/piece.hpp"
+
+namespace vgd::pattern {
+
+// Outcome of chaining open parts into one outline.
+struct ChainResult {
+  std::vector<Vec2> outline;  // chained vertices, first vertex not repeated at the end
+  bool closed = false;        // the chain returned to its start
+  double closing_gap_m = 0.0; // distance between the chain's ends before closing
+  int parts_used = 0;
+  int parts_duplicate = 0;    // parts identical to another part (dropped)
+  int parts_unused = 0;       // parts that could not be joined to the chain
+  int joins_bridged = 0;      // joins made across a gap larger than join_tol_m
+  double largest_bridge_m = 0.0;
+};
+
+struct ChainOptions {
+  double join_tol_m = 1e-6;     // end points closer than this are the same point (1 µm)
+  double repair_gap_m = 1e-3;   // gaps up to this are bridged (and reported); 1 mm
+};
+
+// Chains open polylines end to end, reversing parts as needed. Parts repeated
+// point for point (same direction) are dropped as duplicates. Starts with the
+// longest part so that a stray fragment cannot become the seed of the chain.
+ChainResult chain_parts(std::vector<std::vector<Vec2>> parts, const ChainOptions& opts = {});
+
+// Removes consecutive vertices closer than tol_m (and a last vertex equal to the
+// first). Kinds are merged: a turn point wins over curve over plain. Returns the
+// number of vertices removed.
+int remove_duplicate_vertices(std::vector<ContourPoint>& outline, double tol_m = 1e-6);
+
+// Removes zero-width spikes: an outline that goes out to a point and straight
+// back (a slit drawn into the boundary) cannot be meshed. Returns the number removed.
+int remove_spikes(std::vector<ContourPoint>& outline, double tol_m = 1e-6);
+
+// Reverses the outline if it winds clockwise. Returns true when it reversed.
+bool make_counter_clockwise(std::vector<ContourPoint>& outline);
+
+// Index of the vertex nearest to p, and its distance; {-1, inf} for an empty outline.
+struct Nearest {
+  int index = -1;
+  double distance = 0.0;
+};
+Nearest nearest_vertex(const std::vector<ContourPoint>& outline, const Vec2& p);
+// Nearest point on the outline's edges: edge index i (from vertex i to i+1) and distance.
+struct NearestEdge {
+  int edge = -1;
+  double t = 0.0;       // parameter along the edge in [0, 1]
+  double distance = 0.0;
+  Vec2 point = Vec2::Zero();
+};
+NearestEdge nearest_edge(const std::vector<ContourPoint>& outline, const Vec2& p);
+
+// Unfolds a half piece about its mirror (fold) line: the outline's side of the
+// line is reflected and joined, notches, internal lines, drill holes and sew
+// lines are mirrored too. Both fold-line ends must be boundary vertices (within
+// tol_m); returns false (and leaves the piece unchanged) when they are not.
+bool unfold_about_mirror_line(Piece& piece, double tol_m = 1e-4);
+
+// Removes small loops where the outline crosses itself (a typical defect of
+// graded sizes): each crossing of two edges that encloses at most
+// max_loop_fraction of the piece area is cut at the crossing point.
+// Returns the number of loops removed; the outline stays counter-clockwise.
+int remove_small_self_loops(std::vector<ContourPoint>& outline, double max_loop_fraction = 0.05);
+
+}  // namespace vgd::pattern

@@ -1,0 +1,295 @@
+#include "vgd/pattern/contour.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vgd::pattern {
+
+namespace {
+
+double poly_length(const std::vector<Vec2>& p) {
+  double l = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) l += (p[i] - p[i - 1]).norm();
+  return l;
+}
+
+// Same points in the same order. A part repeated in the opposite direction is
+// not a duplicate: real outlines go out and back along a slit (a zero-width
+// spike), which remove_spikes() deals with after chaining.
+bool same_part(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if ((a[i] - b[i]).norm() > tol) return false;
+  return true;
+}
+
+int rank(PointKind k) { return k == PointKind::turn ? 2 : k == PointKind::curve ? 1 : 0; }
+
+Vec2 reflect(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = (b - a).normalized();
+  const Vec2 v = p - a;
+  return a + 2.0 * v.dot(d) * d - v;
+}
+
+double distance_to_line(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (len == 0) return (p - a).norm();
+  return std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())) / len;
+}
+
+// Proper or touching intersection of segments p1p2 and q1q2; writes the point.
+bool intersect(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2, Vec2& x) {
+  const Vec2 r = p2 - p1, s = q2 - q1;
+  const double den = r.x() * s.y() - r.y() * s.x();
+  if (den == 0) return false;  // parallel: collinear overlaps are left to the caller's check
+  const Vec2 qp = q1 - p1;
+  const double t = (qp.x() * s.y() - qp.y() * s.x()) / den;
+  const double u = (qp.x() * r.y() - qp.y() * r.x()) / den;
+  if (t < 0 || t > 1 || u < 0 || u > 1) return false;
+  x = p1 + t * r;
+  return true;
+}
+
+}  // namespace
+
+ChainResult chain_parts(std::vector<std::vector<Vec2>> parts, const ChainOptions& opts) {
+  ChainResult res;
+  // Drop empty parts and exact duplicates (some exporters write a stretch twice).
+  std::vector<std::vector<Vec2>> kept;
+  for (auto& p : parts) {
+    if (p.size() < 2) continue;
+    bool dup = false;
+    for (const auto& k : kept)
+      if (same_part(p, k, opts.join_tol_m)) { dup = true; break; }
+    if (dup) ++res.parts_duplicate;
+    else kept.push_back(std::move(p));
+  }
+  if (kept.empty()) return res;
+
+  // Seed with the longest part.
+  std::size_t seed = 0;
+  for (std::size_t i = 1; i < kept.size(); ++i)
+    if (poly_length(kept[i]) > poly_length(kept[seed])) seed = i;
+  std::vector<bool> used(kept.size(), false);
+  used[seed] = true;
+  res.parts_used = 1;
+  std::vector<Vec2>& out = res.outline;
+  out = kept[seed];
+
+  for (;;) {
+    const Vec2 end = out.back();
+    const double d_close = (end - out.front()).norm();
+    // Nearest unused part end to the chain's end.
+    std::size_t best = kept.size();
+    bool best_reversed = false;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (used[i]) continue;
+      const double ds = (kept[i].front() - end).norm(), de = (kept[i].back() - end).norm();
+      if (ds < best_d) { best_d = ds; best = i; best_reversed = false; }
+      if (de < best_d) { best_d = de; best = i; best_reversed = true; }
+    }
+    const bool can_join = best < kept.size() &&
+                          (best_d <= opts.join_tol_m || (best_d <= opts.repair_gap_m && best_d < d_close));
+    if (!can_join) break;
+    auto part = kept[best];
+    if (best_reversed) std::reverse(part.begin(), part.end());
+    if (best_d > opts.join_tol_m) {
+      ++res.joins_bridged;
+      res.largest_bridge_m = std::max(res.largest_bridge_m, best_d);
+      out.insert(out.end(), part.begin(), part.end());  // keep both ends: the gap becomes an edge
+    } else {
+      out.insert(out.end(), part.begin() + 1, part.end());
+    }
+    used[best] = true;
+    ++res.parts_used;
+  }
+
+  res.parts_unused = static_cast<int>(kept.size()) - res.parts_used;
+  res.closing_gap_m = (out.back() - out.front()).norm();
+  if (res.closing_gap_m <= opts.join_tol_m) {
+    res.closed = true;
+    if (out.size() > 1) out.pop_back();  // the repeated first vertex
+  } else if (res.closing_gap_m <= opts.repair_gap_m) {
+    res.closed = true;  // a tiny gap: the closing edge bridges it
+  }
+  return res;
+}
+
+int remove_duplicate_vertices(std::vector<ContourPoint>& o, double tol) {
+  if (o.empty()) return 0;
+  const std::size_t before = o.size();
+  std::vector<ContourPoint> out;
+  out.reserve(o.size());
+  for (const auto& c : o) {
+    if (!out.empty() && (c.p - out.back().p).norm() <= tol) {
+      if (rank(c.kind) > rank(out.back().kind)) out.back().kind = c.kind;
+      continue;
+    }
+    out.push_back(c);
+  }
+  while (out.size() > 1 && (out.back().p - out.front().p).norm() <= tol) {
+    if (rank(out.back().kind) > rank(out.front().kind)) out.front().kind = out.back().kind;
+    out.pop_back();
+  }
+  o = std::move(out);
+  return static_cast<int>(before - o.size());
+}
+
+int remove_spikes(std::vector<ContourPoint>& o, double tol) {
+  int removed = 0;
+  bool changed = true;
+  while (changed && o.size() > 3) {
+    changed = false;
+    const std::size_t n = o.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t prev = (i + n - 1) % n, next = (i + 1) % n;
+      if ((o[prev].p - o[next].p).norm() > tol) continue;
+      // i is the tip of an out-and-back spike: drop the tip and the return vertex.
+      const std::size_t hi = std::max(i, next), lo = std::min(i, next);
+      o.erase(o.begin() + static_cast<std::ptrdiff_t>(hi));
+      o.erase(o.begin() + static_cast<std::ptrdiff_t>(lo));
+      ++removed;
+      changed = true;
+      break;
+    }
+  }
+  return removed;
+}
+
+bool make_counter_clockwise(std::vector<ContourPoint>& o) {
+  if (signed_area(o) >= 0) return false;
+  std::reverse(o.begin(), o.end());
+  return true;
+}
+
+Nearest nearest_vertex(const std::vector<ContourPoint>& o, const Vec2& p) {
+  Nearest n{-1, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < o.size(); ++i) {
+    const double d = (o[i].p - p).norm();
+    if (d < n.distance) n = {static_cast<int>(i), d};
+  }
+  return n;
+}
+
+NearestEdge nearest_edge(const std::vector<ContourPoint>& o, const Vec2& p) {
+  NearestEdge best;
+  best.distance = std::numeric_limits<double>::infinity();
+  const std::size_t n = o.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& a = o[i].p;
+    const Vec2& b = o[(i + 1) % n].p;
+    const Vec2 d = b - a;
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+    const Vec2 q = a + t * d;
+    const double dist = (p - q).norm();
+    if (dist < best.distance) best = {static_cast<int>(i), t, dist, q};
+  }
+  return best;
+}
+
+bool unfold_about_mirror_line(Piece& piece, double tol) {
+  if (!piece.mirror_line || piece.boundary.size() < 3) return false;
+  const Vec2 a = piece.mirror_line->a, b = piece.mirror_line->b;
+  if ((b - a).norm() <= tol) return false;
+  const auto na = nearest_vertex(piece.boundary, a), nb = nearest_vertex(piece.boundary, b);
+  if (na.index < 0 || nb.index < 0 || na.distance > tol || nb.distance > tol || na.index == nb.index)
+    return false;
+  const int n = static_cast<int>(piece.boundary.size());
+  // The two ways around the outline between the fold ends; the fold side is the
+  // one whose vertices all lie on the mirror line.
+  auto path = [&](int from, int to) {
+    std::vector<ContourPoint> p;
+    for (int i = from;; i = (i + 1) % n) {
+      p.push_back(piece.boundary[i]);
+      if (i == to) break;
+    }
+    return p;
+  };
+  auto off_line = [&](const std::vector<ContourPoint>& p) {
+    double m = 0;
+    for (const auto& c : p) m = std::max(m, distance_to_line(c.p, a, b));
+    return m;
+  };
+  auto p1 = path(na.index, nb.index), p2 = path(nb.index, na.index);
+  const bool first = off_line(p1) >= off_line(p2);
+  const auto& half = first ? p1 : p2;
+  if (off_line(first ? p2 : p1) > tol) return false;  // neither side is the fold itself
+
+  std::vector<ContourPoint> full = half;
+  for (int k = static_cast<int>(half.size()) - 2; k >= 1; --k)
+    full.push_back({reflect(half[k].p, a, b), half[k].kind});
+  make_counter_clockwise(full);
+  piece.boundary = std::move(full);
+
+  // Mirror the markings that lie off the fold.
+  const std::size_t nn = piece.notches.size();
+  for (std::size_t i = 0; i < nn; ++i) {
+    Notch m = piece.notches[i];
+    if (distance_to_line(m.position, a, b) <= tol) continue;
+    const Vec2 dir(std::cos(m.angle_deg * M_PI / 180), std::sin(m.angle_deg * M_PI / 180));
+    const Vec2 rdir = reflect(m.position + dir, a, b) - reflect(m.position, a, b);
+    m.position = reflect(m.position, a, b);
+    m.angle_deg = std::atan2(rdir.y(), rdir.x()) * 180 / M_PI;
+    m.boundary_index = -1;
+    piece.notches.push_back(m);
+  }
+  auto mirror_lines = [&](std::vector<Polyline>& lines) {
+    const std::size_t count = lines.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      Polyline l = lines[i];
+      double off = 0;
+      for (auto& p : l.points) off = std::max(off, distance_to_line(p, a, b));
+      if (off <= tol) continue;  // a line along the fold stays single
+      for (auto& p : l.points) p = reflect(p, a, b);
+      lines.push_back(std::move(l));
+    }
+  };
+  mirror_lines(piece.internal_lines);
+  mirror_lines(piece.sew_lines);
+  mirror_lines(piece.cutouts);
+  const std::size_t nh = piece.drill_holes.size();
+  for (std::size_t i = 0; i < nh; ++i)
+    if (distance_to_line(piece.drill_holes[i], a, b) > tol)
+      piece.drill_holes.push_back(reflect(piece.drill_holes[i], a, b));
+  piece.quantity_flipped = 0;
+  piece.mirror_line.reset();
+  return true;
+}
+
+int remove_small_self_loops(std::vector<ContourPoint>& o, double max_loop_fraction) {
+  int removed = 0;
+  const double total = std::abs(signed_area(o));
+  for (int guard = 0; guard < 1000; ++guard) {
+    const int n = static_cast<int>(o.size());
+    bool changed = false;
+    for (int i = 0; i < n && !changed; ++i) {
+      for (int j = i + 2; j < n && !changed; ++j) {
+        if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+        Vec2 x;
+        if (!intersect(o[i].p, o[(i + 1) % n].p, o[j].p, o[(j + 1) % n].p, x)) continue;
+        // Loop A: vertices i+1..j; loop B: the rest. Cut off the smaller one.
+        std::vector<ContourPoint> loop_a(o.begin() + i + 1, o.begin() + j + 1);
+        loop_a.push_back({x, PointKind::turn});
+        std::vector<ContourPoint> loop_b(o.begin() + j + 1, o.end());
+        loop_b.insert(loop_b.end(), o.begin(), o.begin() + i + 1);
+        loop_b.push_back({x, PointKind::turn});
+        const double area_a = std::abs(signed_area(loop_a)), area_b = std::abs(signed_area(loop_b));
+        const bool cut_a = area_a <= area_b;
+        if (std::min(area_a, area_b) > max_loop_fraction * total) return removed;  // not a small loop
+        o = cut_a ? loop_b : loop_a;
+        remove_duplicate_vertices(o);
+        ++removed;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  make_counter_clockwise(o);
+  return removed;
+}
+
+}  // namespace vgd::pattern

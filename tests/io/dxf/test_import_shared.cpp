@@ -1,0 +1,141 @@
+// The importer against figures computed independently (ezdxf + a raw tag reader,
+// exact arithmetic; tests/io/dxf/reference/README.md) for every block of every
+// shared real DXF file: Gerber AAMA and ASTM, CLO, Valentina AAMA and ASTM.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/test_paths.hpp"
+#include "vgd/io/dxf/import.hpp"
+
+using nlohmann::json;
+
+namespace {
+
+const json& reference() {
+  static const json j = [] {
+    std::ifstream in(vgd::test::source_dir() / "tests/io/dxf/reference/expected.json");
+    return json::parse(in);
+  }();
+  return j;
+}
+
+// "2", "1,1" -> 2; null (no quantity anywhere) -> the importer's default 1.
+int reference_quantity(const json& q) {
+  if (q.is_null()) return 1;
+  int total = 0;
+  std::string s = q.get<std::string>();
+  std::size_t pos = 0;
+  while (pos <= s.size()) {
+    const auto comma = s.find(',', pos);
+    total += std::stoi(s.substr(pos, comma - pos));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return total;
+}
+
+bool near_rel(double a, double b, double rel) { return std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b)); }
+
+class SharedDxf : public ::testing::TestWithParam<std::string> {};
+
+}  // namespace
+
+TEST_P(SharedDxf, MatchesIndependentReference) {
+  VGD_REQUIRE_SHARED();
+  const std::string file = GetParam();
+  const json& ref = reference().at("files").at(file);
+  const json& rs = ref.at("summary");
+  const auto result = vgd::dxf::import_file(vgd::test::shared_dxf(file));
+  const auto& s = result.summary;
+
+  // File level: pieces, blocks, sizes, units, flavour.
+  EXPECT_EQ(s.pieces, rs.at("pieces").get<int>());
+  EXPECT_EQ(s.blocks, rs.at("blocks").get<int>());
+  ASSERT_EQ(s.sizes.size(), rs.at("sizes").size());
+  for (std::size_t i = 0; i < s.sizes.size(); ++i) {
+    const auto want = rs.at("sizes")[i].get<std::string>();
+    EXPECT_EQ(s.sizes[i], want.empty() ? "base" : want);  // no size stated anywhere -> "base"
+  }
+  EXPECT_EQ(vgd::parse_length_unit(s.units), vgd::parse_length_unit(rs.at("units").get<std::string>()));
+  EXPECT_EQ(s.flavour, rs.at("flavour").get<std::string>());
+  if (!rs.at("sample_size").is_null() && !rs.at("sample_size").get<std::string>().empty())
+    EXPECT_EQ(s.sample_size, rs.at("sample_size").get<std::string>());
+
+  // Block level: one record per block, in file order.
+  const json& rb = ref.at("blocks");
+  ASSERT_EQ(result.blocks.size(), rb.size());
+  for (std::size_t i = 0; i < rb.size(); ++i) {
+    const auto& mine = result.blocks[i];
+    const json& want = rb[i];
+    SCOPED_TRACE(file + " block " + mine.block);
+    EXPECT_EQ(mine.block, want.at("block").get<std::string>());
+    EXPECT_EQ(mine.piece, want.at("piece").get<std::string>());
+    EXPECT_EQ(mine.quantity, reference_quantity(want.at("quantity")));
+    EXPECT_EQ(mine.boundary_vertices, want.at("boundary_vertices").get<int>());
+    EXPECT_EQ(mine.closed, want.at("closed").get<bool>());
+    EXPECT_TRUE(near_rel(mine.area_m2, want.at("area_m2").get<double>(), 2e-9))
+        << mine.area_m2 << " vs " << want.at("area_m2");
+    EXPECT_TRUE(near_rel(mine.perimeter_m, want.at("perimeter_m").get<double>(), 2e-9))
+        << mine.perimeter_m << " vs " << want.at("perimeter_m");
+    const double grain = want.at("grain_angle_deg").is_null() ? 0.0 : want.at("grain_angle_deg").get<double>();
+    EXPECT_NEAR(mine.grain_angle_deg, grain, 1e-7);
+    EXPECT_EQ(mine.notches, want.at("notches").get<int>());
+    EXPECT_EQ(mine.drill_holes, want.at("drill_holes").get<int>());
+    EXPECT_EQ(mine.internal_lines, want.at("internal_lines").at("total").get<int>());
+    EXPECT_EQ(mine.mirror_line, !want.at("mirror_line").is_null());
+    EXPECT_EQ(mine.self_intersecting, want.at("self_intersecting").get<bool>());
+    EXPECT_TRUE(mine.imported);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFiles, SharedDxf,
+                         ::testing::Values("simple.DXF", "MEN_CLASSIC_TEE.DXF", "WM_SLIM_TANK.DXF",
+                                           "GLX4802S19_AAMA.DXF", "GLX4802S19_ASTM.DXF", "ORILEGWB_AAMA.DXF",
+                                           "GMH1006F18_AAMA.DXF", "drill-holes.DXF", "mirrored.DXF", "clo-box.dxf",
+                                           "clo-pattern.dxf", "Valentina_MaleShirt_AAMA_R12.dxf",
+                                           "Valentina_Trousers_ASTM_R12.dxf"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           for (auto& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+// Hand-checked figures (tests/io/dxf/reference/README.md, "Hand checks").
+TEST(SharedDxfByHand, CloBoxIsThreeByTwoMetres) {
+  VGD_REQUIRE_SHARED();
+  const auto r = vgd::dxf::import_file(vgd::test::shared_dxf("clo-box.dxf"));
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_NEAR(r.blocks[0].area_m2, 5.999971674, 1e-9);
+  EXPECT_NEAR(r.blocks[0].perimeter_m, 9.999976831, 1e-9);
+  EXPECT_NEAR(r.blocks[0].grain_angle_deg, 90.0, 1e-9);
+}
+
+TEST(SharedDxfByHand, SimpleTrapezoid) {
+  VGD_REQUIRE_SHARED();
+  const auto r = vgd::dxf::import_file(vgd::test::shared_dxf("simple.DXF"));
+  EXPECT_NEAR(r.blocks[0].area_m2, 0.02521377486, 1e-11);
+  EXPECT_NEAR(r.blocks[0].perimeter_m, 1.427895286, 1e-9);
+}
+
+TEST(SharedDxf, MirroredFileUnfoldsEveryHalfPiece) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions o;
+  o.unfold_mirrored = true;
+  const auto r = vgd::dxf::import_file(vgd::test::shared_dxf("mirrored.DXF"), o);
+  int halves = 0;
+  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+    if (!r.blocks[i].mirror_line) continue;
+    ++halves;
+    const auto& p = r.style.pieces[i];
+    EXPECT_FALSE(p.mirror_line.has_value()) << p.block << " was not unfolded";
+    EXPECT_NEAR(std::abs(vgd::pattern::signed_area(p.boundary)), 2 * r.blocks[i].area_m2,
+                1e-9 * r.blocks[i].area_m2)
+        << p.block;
+    EXPECT_FALSE(vgd::pattern::is_self_intersecting(p.boundary)) << p.block;
+  }
+  EXPECT_EQ(halves, 195);  // 13 half pieces x 15 sizes (195 layer-6 lines)
+}
