@@ -38,7 +38,7 @@ asan:
 	@$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_ARGS="-DVGD_SANITIZE=ON -DVGD_BUILD_BENCHMARKS=OFF"
 
 fuzz: deps
-	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVGD_FUZZ=ON -DVGD_BUILD_TESTS=OFF -DVGD_BUILD_BENCHMARKS=OFF > /dev/null
+	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVGD_FUZZ=ON -DVGD_BUILD_BENCHMARKS=OFF > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target vgd_fuzz_dxf_import
 
 bench: build

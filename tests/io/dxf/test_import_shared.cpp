@@ -61,8 +61,9 @@ TEST_P(SharedDxf, MatchesIndependentReference) {
   }
   EXPECT_EQ(vgd::parse_length_unit(s.units), vgd::parse_length_unit(rs.at("units").get<std::string>()));
   EXPECT_EQ(s.flavour, rs.at("flavour").get<std::string>());
-  if (!rs.at("sample_size").is_null() && !rs.at("sample_size").get<std::string>().empty())
+  if (!rs.at("sample_size").is_null() && !rs.at("sample_size").get<std::string>().empty()) {
     EXPECT_EQ(s.sample_size, rs.at("sample_size").get<std::string>());
+  }
 
   // Block level: one record per block, in file order.
   const json& rb = ref.at("blocks");
@@ -97,8 +98,8 @@ INSTANTIATE_TEST_SUITE_P(AllFiles, SharedDxf,
                                            "GMH1006F18_AAMA.DXF", "drill-holes.DXF", "mirrored.DXF", "clo-box.dxf",
                                            "clo-pattern.dxf", "Valentina_MaleShirt_AAMA_R12.dxf",
                                            "Valentina_Trousers_ASTM_R12.dxf"),
-                         [](const auto& info) {
-                           std::string n = info.param;
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
                            for (auto& c : n)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;

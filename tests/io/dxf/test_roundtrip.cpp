@@ -146,8 +146,8 @@ INSTANTIATE_TEST_SUITE_P(AllFiles, SharedDxfRoundTrip,
                                            "GMH1006F18_AAMA.DXF", "drill-holes.DXF", "mirrored.DXF", "clo-box.dxf",
                                            "clo-pattern.dxf", "Valentina_MaleShirt_AAMA_R12.dxf",
                                            "Valentina_Trousers_ASTM_R12.dxf"),
-                         [](const auto& info) {
-                           std::string n = info.param;
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
                            for (auto& c : n)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
