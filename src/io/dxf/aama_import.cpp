@@ -493,7 +493,9 @@ bool Interpreter::import_block(const raw::Block& b, const Xform& place, Piece& p
       const int spikes = pattern::remove_spikes(repaired, opts_.join_tolerance_m);
       if (spikes > 0) what += "; removed " + std::to_string(spikes) + " zero-width spike(s) (slits)";
       const int loops = pattern::is_self_intersecting(repaired) ? pattern::remove_small_self_loops(repaired) : 0;
-      if ((spikes > 0 || loops > 0) && !pattern::is_self_intersecting(repaired)) {
+      // A repair that leaves no outline (a piece made only of slits) is no repair.
+      const bool usable = repaired.size() >= 3 && std::abs(pattern::signed_area(repaired)) > 0.0;
+      if ((spikes > 0 || loops > 0) && usable && !pattern::is_self_intersecting(repaired)) {
         const double lost = rep.area_m2 - std::abs(pattern::signed_area(repaired));
         piece.boundary = std::move(repaired);
         piece.self_intersecting = false;
