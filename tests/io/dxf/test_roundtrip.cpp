@@ -5,6 +5,7 @@
 #include "vgd/core/file.hpp"
 #include "vgd/io/dxf/export.hpp"
 #include "vgd/io/dxf/import.hpp"
+#include "vgd/pattern/draft.hpp"
 
 using namespace vgd;
 using pattern::Piece;
@@ -152,3 +153,14 @@ INSTANTIATE_TEST_SUITE_P(AllFiles, SharedDxfRoundTrip,
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+// data/garments/a-line-skirt.dxf is the project's own garment: it must be what
+// `vgd draft skirt` produces today (regenerate it with that command if the draft changes).
+TEST(DraftedSkirtData, CommittedFileMatchesTheDraft) {
+  const auto committed = dxf::import_file(test::source_dir() / "data/garments/a-line-skirt.dxf");
+  const auto fresh = dxf::import_string(dxf::export_string(pattern::draft_skirt_style()), "fresh.dxf");
+  expect_same_style(fresh.style, committed.style, 1e-12);
+  EXPECT_EQ(committed.summary.pieces, 3);
+  EXPECT_EQ(committed.summary.blocks, 15);
+  EXPECT_EQ(committed.diagnostics.count(Severity::warning), 0u);
+}
