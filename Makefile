@@ -31,8 +31,21 @@ build: configure
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The main job on bundled data: the project's own drafted skirt, imported,
+# validated, drawn and meshed. Each step is a plain vgd command.
 demo: build
-	@$(BUILD)/apps/vgd/vgd demo -o $(DEMO_OUT)
+	@mkdir -p $(DEMO_OUT)
+	@echo "== 1/5 draft: the project's A-line skirt from the size table (data/garments/a-line-skirt.dxf is the committed copy)"
+	@$(VGD) draft skirt -o $(DEMO_OUT)/a-line-skirt.dxf
+	@echo "== 2/5 import: AAMA DXF -> XVC document"
+	@$(VGD) import data/garments/a-line-skirt.dxf --report -o $(DEMO_OUT)/skirt.xvc
+	@echo "== 3/5 validate against schemas/xvc.xsd and the reference rules"
+	@$(VGD) validate $(DEMO_OUT)/skirt.xvc
+	@echo "== 4/5 draw the patterns (schemas/xvc-to-svg.xsl)"
+	@$(VGD) svg $(DEMO_OUT)/skirt.xvc -o $(DEMO_OUT)/skirt.svg
+	@echo "== 5/5 mesh the sample size (CGAL, 1 cm spacing, 25 deg) and write Triangle files"
+	@$(VGD) mesh $(DEMO_OUT)/skirt.xvc --triangle-files $(DEMO_OUT)/mesh
+	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf skirt.xvc skirt.svg mesh/"
 
 asan:
 	@$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_ARGS="-DVGD_SANITIZE=ON -DVGD_BUILD_BENCHMARKS=OFF"

@@ -37,6 +37,7 @@ nlohmann::json to_json(const Diagnostics& d) {
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
 
 void say(const Common& common, const std::string& line) {
+  std::fflush(stdout);  // keep reports and summaries in the order they were made
   if (!common.quiet) std::fprintf(stderr, "%s\n", line.c_str());
 }
 

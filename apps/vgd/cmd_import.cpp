@@ -5,9 +5,8 @@
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/io/dxf/report.hpp"
 
-#ifdef VGD_HAVE_XVC  // set by CMake once the xvc stage is built
-#include "vgd/xvc/document.hpp"
-#endif
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace {
 
@@ -63,14 +62,10 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
       throw vgd::Error(o->input, "", std::to_string(result.diagnostics.count(vgd::Severity::error)) +
                                          " block(s) could not be imported; nothing written (use --keep-going to "
                                          "write the other pieces)");
-#ifdef VGD_HAVE_XVC
     vgd::xvc::save_file(vgd::xvc::from_style(result.style), o->output);
     vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(s.pieces) + " pieces, " +
                               std::to_string(s.blocks) + " blocks");
     return vgd::cli::kOk;
-#else
-    throw vgd::Error(o->output, "", "XVC output is not built yet");
-#endif
   }};
 }};
 

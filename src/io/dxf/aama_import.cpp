@@ -110,7 +110,13 @@ std::vector<Vec2> expand(const raw::Polyline& pl, const Xform& x) {
 
 // ---- one block's entities, flattened through nested INSERTs -------------------
 
+constexpr int kMaxInsertDepth = 8;
+constexpr int kMaxExpandedInserts = 10000;
+
 struct Flat {
+  std::vector<std::string> stack;  // blocks being expanded, outermost first
+  int expanded = 0;                // nested INSERTs expanded so far
+  bool budget_warned = false;
   std::vector<std::pair<const raw::Polyline*, Xform>> polylines;
   std::vector<std::pair<const raw::Line*, Xform>> lines;
   std::vector<std::pair<const raw::Point*, Xform>> points;
@@ -156,11 +162,24 @@ void Interpreter::flatten(const raw::Block& b, const Xform& x, Flat& f, int dept
       warn("block " + b.name, "INSERT of unknown block '" + ins.block + "' ignored", ins.line);
       continue;
     }
-    if (depth >= 8) {
-      warn("block " + b.name, "INSERTs nested deeper than 8 levels (a loop?) ignored", ins.line);
+    // A block that (indirectly) inserts itself would expand forever.
+    if (std::find(f.stack.begin(), f.stack.end(), ins.block) != f.stack.end()) {
+      warn("block " + b.name, "INSERT of '" + ins.block + "' makes a cycle; ignored", ins.line);
       continue;
     }
+    // Fan-out (a block inserting another many times, nested) grows exponentially:
+    // cap the expansion so a hostile file cannot exhaust memory.
+    if (depth >= kMaxInsertDepth || f.expanded >= kMaxExpandedInserts) {
+      if (!f.budget_warned)
+        warn("block " + b.name, "nested INSERTs beyond " + std::to_string(kMaxInsertDepth) + " levels or " +
+                                    std::to_string(kMaxExpandedInserts) + " copies ignored", ins.line);
+      f.budget_warned = true;
+      continue;
+    }
+    ++f.expanded;
+    f.stack.push_back(ins.block);
     flatten(*it->second, insert_xform(ins, *it->second).then(x), f, depth + 1);
+    f.stack.pop_back();
   }
 }
 
@@ -257,6 +276,7 @@ void Interpreter::read_style_texts() {
 bool Interpreter::import_block(const raw::Block& b, const Xform& place, Piece& piece, BlockReport& rep) {
   const std::string entity = "block " + b.name;
   Flat f;
+  f.stack.push_back(b.name);
   flatten(b, place, f, 0);
 
   // ---- texts: attributes -------------------------------------------------------

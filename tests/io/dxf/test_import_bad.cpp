@@ -207,3 +207,22 @@ TEST(DxfBadInput, UnbalancedBlockIsAnError) {
 TEST(DxfBadInput, ContentAfterEofIsAnError) {
   EXPECT_NE(import_error(vgd::test::one_square_file() + "  0\nLINE\n").find("after the EOF"), std::string::npos);
 }
+
+TEST(DxfBadInput, InsertCyclesAndFanOutAreCut) {
+  // A inserts itself; B inserts C ten times, C inserts D ten times, ... : 10^8 copies if expanded.
+  DxfText d;
+  d.begin_blocks().block("A_M").text("1", "Piece Name: A").polyline("1", {{0, 0}, {10, 0}, {10, 10}}, true);
+  d.insert("A_M").endblk();
+  const char* chain[] = {"B", "C", "D", "E", "F", "G", "H", "I", "J"};
+  for (int i = 0; i < 9; ++i) {
+    d.block(chain[i]).polyline("1", {{0, 0}, {10, 0}, {10, 10}}, true);
+    if (i + 1 < 9)
+      for (int k = 0; k < 10; ++k) d.insert(chain[i + 1], k, 0);
+    d.endblk();
+  }
+  d.end_section().begin_entities().text("1", "Units: METRIC").insert("A_M").insert("B").end_section().eof();
+  const auto r = import_string(d.str(), "cycle.dxf");
+  EXPECT_TRUE(has_diag(r, vgd::Severity::warning, "A_M", "makes a cycle"));
+  EXPECT_TRUE(has_diag(r, vgd::Severity::warning, "", "copies ignored"));
+  EXPECT_LT(r.diagnostics.items().size(), 50u) << "one warning per problem, not one per copy";
+}

@@ -1,0 +1,249 @@
+#pragma once
+// Edits of an XVC document as undoable commands.
+//
+// The GUI draws its panels from the Document every frame and sends every change back
+// as a Command (Dear ImGui style: no mirrored state), so undo and the saved XML never
+// drift apart. A command changes the tree only through an Editor, which records each
+// primitive change (insert, remove, set attribute) in a Journal; undo replays the
+// journal backwards, so it restores the exact previous document, and redo replays it
+// forwards without running the command's logic again.
+//
+// A command first checks its target and throws vgd::Error naming it ("no element with
+// id ...", "pattern3 is a SEAM, not a PATTERN"); after it ran, the whole document is
+// checked (validate.hpp) and any error undoes the command and is thrown. Either way a
+// failed command leaves the document as it was.
+//
+// Deleting an element also deletes what would dangle: HEMs, SIZEs, ASSOCIATIONs and
+// POSITIONs that name a deleted id, then SEAMs left with fewer than two HEMs and
+// GRADATIONs left with no SIZE. Removing or adding a boundary C2DSEQ renumbers the
+// notch vertices (POSITION vertex) of its pattern.
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::xvc {
+
+// The primitive changes made by one command, replayable both ways.
+class Journal {
+ public:
+  struct Op {
+    enum Kind { insert, remove, set_attribute } kind = insert;
+    NodePath path;        // insert/remove: the element's own path; set: the element's path
+    Node node;            // insert: the inserted element; remove: the removed one
+    std::string name;     // set: attribute name
+    std::optional<std::string> before, after;  // set: values (nullopt = absent)
+    std::size_t position = 0;  // set: index of the attribute in the element's list
+  };
+  bool empty() const { return ops_.empty(); }
+  std::size_t size() const { return ops_.size(); }
+  void clear() { ops_.clear(); }
+  void undo(Document& doc) const;
+  void redo(Document& doc) const;
+
+ private:
+  friend class Editor;
+  std::vector<Op> ops_;
+};
+
+// The only way commands change a Document; each change is recorded.
+class Editor {
+ public:
+  Editor(Document& doc, Journal& journal) : doc_(doc), journal_(journal) {}
+  const Document& document() const { return doc_; }
+
+  // Inserts `node` as child `index` of the element at `parent` (index <= child count).
+  void insert(const NodePath& parent, std::size_t index, Node node);
+  // Removes the element at `path` (not the root) and returns it.
+  Node remove(const NodePath& path);
+  // Sets an attribute; nullopt removes it.
+  void set_attribute(const NodePath& path, std::string_view name, std::optional<std::string> value);
+  // Replaces the element at `path` (remove + insert at the same place).
+  void replace(const NodePath& path, Node node);
+
+ private:
+  Document& doc_;
+  Journal& journal_;
+};
+
+class Command {
+ public:
+  virtual ~Command() = default;
+  // Short text for an Edit menu, e.g. "Delete pattern3".
+  virtual std::string label() const = 0;
+  // Makes the change through `edit`. Returns the id of the element the command created
+  // or changed ("" if none), so the caller can select it. Throws vgd::Error.
+  virtual std::string apply(Editor& edit) = 0;
+};
+
+// Runs a command on `doc` with the checks described above; returns what apply returned.
+// `journal`, when given, must be empty and receives the recorded changes.
+std::string execute(Document& doc, Command& cmd, Journal* journal = nullptr);
+
+// Do / undo / redo over one document. Undo restores the exact previous document.
+class UndoStack {
+ public:
+  explicit UndoStack(Document& doc, std::size_t limit = 500) : doc_(doc), limit_(limit) {}
+  // Runs and records `cmd`; drops anything that could be redone. Throws like execute().
+  std::string execute(std::unique_ptr<Command> cmd);
+  bool can_undo() const { return done_ > 0; }
+  bool can_redo() const { return done_ < entries_.size(); }
+  void undo();  // no-op when nothing can be undone
+  void redo();  // no-op when nothing can be redone
+  // Labels of the command undo/redo would act on ("" when none).
+  std::string undo_label() const;
+  std::string redo_label() const;
+  const Document& document() const { return doc_; }
+
+ private:
+  struct Entry {
+    std::string label;
+    Journal journal;
+  };
+  Document& doc_;
+  std::size_t limit_;
+  std::vector<Entry> entries_;
+  std::size_t done_ = 0;  // entries_[0 .. done_) are applied
+};
+
+// ---- generic tree edits (the VIGDES tree view) ----------------------------------
+
+// A copy of the element with this id and its descendants, for a clipboard. Throws
+// vgd::Error when there is no such id.
+Node copy_node(const Document& doc, std::string_view id);
+
+// Adds `node` (with its children) under the element `parent_id`, at `index` among its
+// children, or when not given at the place the schema's order calls for (after the
+// last sibling of the same kind). Elements without an id get a fresh one; an id
+// already in the document is refused. Returns the added element's id.
+class AddNode : public Command {
+ public:
+  AddNode(std::string parent_id, Node node, std::optional<std::size_t> index = {});
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string parent_id_;
+  Node node_;
+  std::optional<std::size_t> index_;
+};
+
+// Like AddNode, but every element of `node` gets a fresh id, and references inside the
+// pasted subtree to ids of that subtree follow the new ids. Pasting twice gives two
+// independent copies. Returns the pasted element's new id.
+class PasteNode : public Command {
+ public:
+  PasteNode(std::string parent_id, Node node, std::optional<std::size_t> index = {});
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string parent_id_;
+  Node node_;
+  std::optional<std::size_t> index_;
+};
+
+// Deletes an element and what would dangle (see above). The root cannot be deleted.
+class DeleteNode : public Command {
+ public:
+  explicit DeleteNode(std::string id);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+};
+
+// Sets (or with nullopt removes) one attribute of the element with this id. The id
+// attribute itself cannot be changed (ids are stable).
+class SetAttribute : public Command {
+ public:
+  SetAttribute(std::string id, std::string name, std::optional<std::string> value);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_, name_;
+  std::optional<std::string> value_;
+};
+
+// Several commands as one: they run in order, the document is checked once at the end
+// and undo takes them back together. For edits whose steps are only valid together,
+// e.g. renaming a piece in its PATTERNs and its GRADATION. Returns the last result.
+class Batch : public Command {
+ public:
+  Batch(std::string label, std::vector<std::unique_ptr<Command>> commands);
+  std::string label() const override { return label_; }
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string label_;
+  std::vector<std::unique_ptr<Command>> commands_;
+};
+
+// ---- pattern edits ----------------------------------------------------------------
+
+// Deletes a PATTERN (and its hems, sizes, ... as DeleteNode does).
+class DeletePattern : public Command {
+ public:
+  explicit DeletePattern(std::string pattern_id);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+};
+
+// Copies a PATTERN as a new piece placed right after it: fresh ids throughout, block
+// "<block>_copy" and piece "<piece> copy" (numbered when taken), and its own GRADATION.
+// Returns the copy's id.
+class CopyPattern : public Command {
+ public:
+  explicit CopyPattern(std::string pattern_id);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+};
+
+enum class MirrorAxis {
+  automatic,   // the grain line when the pattern has one, else vertical
+  grain_line,  // the line through the grain line's two points
+  vertical,    // the vertical line through the middle of the boundary's bounding box
+};
+
+// Mirrors a PATTERN in place. The boundary order is reversed so the outline stays
+// counter-clockwise; each C2DSEQ keeps its id and still covers the same edge, so HEMs
+// still name the same edges (their from/to are swapped and direction flipped). Notch
+// angles are reflected and notch vertex indices follow the reversal.
+class MirrorPattern : public Command {
+ public:
+  explicit MirrorPattern(std::string pattern_id, MirrorAxis axis = MirrorAxis::automatic);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  MirrorAxis axis_;
+};
+
+// Sets (or adds) a GARMENT-level PARAMETER. An empty unit means the known parameter's
+// unit; unknown parameters need one. Returns the PARAMETER's id.
+class SetParameter : public Command {
+ public:
+  SetParameter(std::string name, double value, std::string unit = "");
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string name_;
+  double value_;
+  std::string unit_;
+};
+
+}  // namespace vgd::xvc

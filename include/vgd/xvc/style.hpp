@@ -1,0 +1,45 @@
+#pragma once
+// Between the 2-D pattern vocabulary (pattern::Style, pattern::Piece) and XVC.
+//
+// Style -> XVC -> Style is lossless: every field of Style and Piece has a place in the
+// document (docs/xvc.md, "Mapping from a style") and coordinates are written in metres
+// with the shortest text that reads back to the same double (vgd::format_double).
+//
+// Layout written by from_style:
+//   one PATTERN per piece in one size (a DXF block), attributes piece and size;
+//   its boundary split into C2DSEQs, a new one starting at every turn point, so that
+//   hems can name the stretches between corners;
+//   GRADATIONS: the style's size run as SIZEs, then one GRADATION per piece name whose
+//   SIZEs name the PATTERN of each size and mark the sample size.
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vgd/pattern/piece.hpp"
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::xvc {
+
+// A new document holding the style. Throws vgd::Error when the style holds something
+// XVC cannot carry (a non-finite coordinate, a negative quantity, a notch vertex index
+// beyond its boundary, a text with a character XML 1.0 cannot hold).
+Document from_style(const pattern::Style& style);
+
+// The style the document describes (materials, seams, ... are not part of a Style).
+pattern::Style to_style(const Document& doc);
+
+// One PATTERN as a piece. Throws vgd::Error when `pattern_id` names no PATTERN.
+pattern::Piece to_piece(const Document& doc, std::string_view pattern_id);
+
+// A boundary C2DSEQ of a pattern and the vertices it holds in the piece's boundary:
+// indices first .. first + count - 1. Its edge runs on to the first vertex of the next
+// stretch (cyclically), so a stretch from corner to corner holds the first corner only.
+struct Stretch {
+  std::string id;
+  std::size_t first = 0;
+  std::size_t count = 0;
+};
+std::vector<Stretch> boundary_stretches(const Node& pattern);
+
+}  // namespace vgd::xvc

@@ -1,0 +1,269 @@
+// Edits that know what a pattern is: delete, copy, mirror; and setting a parameter.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <set>
+
+#include "edit_helpers.hpp"
+#include "rules.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/xvc/commands.hpp"
+
+namespace vgd::xvc {
+
+using detail::require;
+using Vec2 = Eigen::Vector2d;
+
+// ---- DeletePattern -------------------------------------------------------------------
+
+DeletePattern::DeletePattern(std::string pattern_id) : id_(std::move(pattern_id)) {}
+
+std::string DeletePattern::label() const { return "Delete pattern " + id_; }
+
+std::string DeletePattern::apply(Editor& edit) {
+  detail::remove_with_dependents(edit, require(edit.document(), id_, "PATTERN"));
+  return "";
+}
+
+// ---- CopyPattern ---------------------------------------------------------------------
+
+namespace {
+// `base`, or `base` + 2, 3, ... : the first not in `taken`.
+std::string unique_name(const std::string& base, const std::set<std::string>& taken, const std::string& sep) {
+  if (!taken.count(base)) return base;
+  for (int n = 2;; ++n)
+    if (auto s = base + sep + std::to_string(n); !taken.count(s)) return s;
+}
+}  // namespace
+
+CopyPattern::CopyPattern(std::string pattern_id) : id_(std::move(pattern_id)) {}
+
+std::string CopyPattern::label() const { return "Copy pattern " + id_; }
+
+std::string CopyPattern::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  Node copy = doc.at(path);
+  detail::IdMaker ids(doc);
+  detail::assign_ids(copy, ids, true);
+
+  // The copy is a piece of its own: a block and a piece name nobody else uses.
+  std::set<std::string> blocks, pieces;
+  for (const Node* p : doc.patterns()) {
+    blocks.insert(std::string(p->attribute("block")));
+    pieces.insert(std::string(p->attribute("piece")));
+  }
+  const std::string block(copy.attribute("block")), piece(copy.attribute("piece"));
+  copy.set_attribute("block", unique_name((block.empty() ? id_ : block) + "_copy", blocks, ""));
+  copy.set_attribute("piece", unique_name(piece.empty() ? "copy" : piece + " copy", pieces, " "));
+  const std::string copy_id(copy.id());
+  const std::string size(copy.attribute("size"));
+  const std::string new_piece(copy.attribute("piece"));
+  edit.insert(detail::parent_of(path), path.back() + 1, std::move(copy));
+
+  // Its own GRADATION, after the one that lists the original.
+  if (const auto* grads = doc.container("GRADATIONS")) {
+    const NodePath gpath = *doc.path_of(grads->id());
+    std::size_t at = detail::canonical_index(*grads, "GRADATION");
+    for (std::size_t i = 0; i < grads->children.size(); ++i)
+      for (const auto& s : grads->children[i].children)
+        if (grads->children[i].tag == "GRADATION" && s.attribute("pattern") == id_) at = i + 1;
+    Node size_node{"SIZE", {{"id", ids.make("size")}, {"name", size}, {"pattern", copy_id}}, {}};
+    if (grads->has_attribute("sample_size") && grads->attribute("sample_size") == size)
+      size_node.set_attribute("sample", "true");
+    Node grad{"GRADATION", {{"id", ids.make("grad")}, {"piece", new_piece}}, {std::move(size_node)}};
+    edit.insert(gpath, at, std::move(grad));
+  }
+  return copy_id;
+}
+
+// ---- MirrorPattern -------------------------------------------------------------------
+
+namespace {
+Vec2 point_of(const Node& n) {
+  return {parse_double(n.attribute("x")).value_or(0.0), parse_double(n.attribute("y")).value_or(0.0)};
+}
+
+void set_point(Node& n, const Vec2& p) {
+  n.set_attribute("x", format_double(p.x()));
+  n.set_attribute("y", format_double(p.y()));
+}
+
+// Angle in degrees brought into (-180, 180].
+double normalise_deg(double a) {
+  a = std::fmod(a, 360.0);
+  if (a <= -180.0) a += 360.0;
+  if (a > 180.0) a -= 360.0;
+  return a;
+}
+
+// A reflection about a line, exact for vertical lines (x -> 2c - x) so mirroring about
+// the bounding box leaves y untouched.
+struct Reflection {
+  bool vertical = true;
+  double c = 0;        // vertical: the line x = c
+  Vec2 a = Vec2::Zero();   // otherwise: a point on the line
+  Vec2 u = Vec2::UnitY();  // and its unit direction
+  double axis_deg = 90;
+
+  Vec2 operator()(const Vec2& q) const {
+    if (vertical) return {2 * c - q.x(), q.y()};
+    const Vec2 r = q - a;
+    return a + 2 * r.dot(u) * u - r;
+  }
+  double angle(double deg) const { return normalise_deg(2 * axis_deg - deg); }
+};
+
+const Node* grain_sequence(const Node& pattern) {
+  for (const auto& c : pattern.children)
+    if (c.tag == "C2DSEQ" && c.attribute("role") == "grain") return &c;
+  return nullptr;
+}
+}  // namespace
+
+MirrorPattern::MirrorPattern(std::string pattern_id, MirrorAxis axis) : id_(std::move(pattern_id)), axis_(axis) {}
+
+std::string MirrorPattern::label() const { return "Mirror pattern " + id_; }
+
+std::string MirrorPattern::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  Node p = doc.at(path);
+
+  // ---- the axis ----
+  Reflection m;
+  const Node* grain = grain_sequence(p);
+  bool use_grain = axis_ == MirrorAxis::grain_line;
+  if (use_grain && !grain) throw Error(doc.name(), id_, id_ + " has no grain line to mirror about", p.line);
+  auto grain_length = [&] { return (point_of(grain->children.at(1)) - point_of(grain->children.at(0))).norm(); };
+  // Automatic falls back to vertical when the grain line gives no direction.
+  if (axis_ == MirrorAxis::automatic && grain && grain_length() > 0) use_grain = true;
+  if (use_grain) {
+    const Vec2 a = point_of(grain->children.at(0)), b = point_of(grain->children.at(1));
+    const double len = grain_length();
+    if (!(len > 0)) throw Error(doc.name(), id_, "the grain line of " + id_ + " has zero length", grain->line);
+    m.vertical = false;
+    m.a = a;
+    m.u = (b - a) / len;
+    m.axis_deg = std::atan2(m.u.y(), m.u.x()) * 180.0 / std::numbers::pi;
+  } else {
+    // Through the middle of the boundary's box (all points when there is no boundary).
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const bool boundary_only : {true, false}) {
+      for (const auto& c : p.children)
+        if (c.tag == "C2DSEQ" && (!boundary_only || detail::is_boundary_sequence(c)))
+          for (const auto& q : c.children) {
+            lo = std::min(lo, point_of(q).x());
+            hi = std::max(hi, point_of(q).x());
+          }
+      if (lo <= hi) break;
+    }
+    if (!(lo <= hi)) throw Error(doc.name(), id_, id_ + " has no points to mirror", p.line);
+    m.c = 0.5 * (lo + hi);
+  }
+
+  // ---- every point, notch and drill hole ----
+  std::size_t n_boundary = 0;
+  for (const auto& c : p.children)
+    if (detail::is_boundary_sequence(c)) n_boundary += detail::point_count(c);
+  for (auto& c : p.children) {
+    if (c.tag == "C2DSEQ") {
+      for (auto& q : c.children) set_point(q, m(point_of(q)));
+      // A closed loop other than the outline keeps its winding sense, like the outline.
+      if (!detail::is_boundary_sequence(c) && detail::parse_bool(c.attribute("closed")).value_or(false))
+        std::reverse(c.children.begin(), c.children.end());
+    } else if (c.tag == "POSITION") {
+      set_point(c, m(point_of(c)));
+      if (const auto ang = parse_double(c.attribute("angle")); ang && c.has_attribute("angle"))
+        c.set_attribute("angle", format_double(m.angle(*ang)));
+      if (const auto v = parse_int(c.attribute("vertex")); v && n_boundary > 0)
+        c.set_attribute("vertex", std::to_string((n_boundary - static_cast<std::size_t>(*v)) % n_boundary));
+    }
+  }
+
+  // ---- the boundary, reversed so it stays counter-clockwise ----
+  // Stretch k held [f_k .. f_{k+1}); reversed, the same edge runs f_{k+1} -> f_k, so it
+  // now holds f_{k+1} followed by its own other points backwards. The stretches then
+  // come in reverse order, and the contour still starts at the same vertex.
+  std::vector<std::size_t> slots;
+  for (std::size_t i = 0; i < p.children.size(); ++i)
+    if (detail::is_boundary_sequence(p.children[i])) slots.push_back(i);
+  std::vector<Node> reversed;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const Node& s = p.children[slots[k]];
+    const Node& next = p.children[slots[(k + 1) % slots.size()]];
+    Node r = s;
+    r.children.clear();
+    r.children.push_back(next.children.front());
+    for (auto it = s.children.rbegin(); it + 1 < s.children.rend(); ++it) r.children.push_back(*it);
+    reversed.push_back(std::move(r));
+  }
+  for (std::size_t i = 0; i < slots.size(); ++i) p.children[slots[i]] = std::move(reversed[slots.size() - 1 - i]);
+
+  // ---- hems along this pattern now run the other way ----
+  std::set<std::string> stretches;
+  for (const auto& c : p.children)
+    if (detail::is_boundary_sequence(c)) stretches.insert(std::string(c.id()));
+  std::vector<NodePath> hems;
+  if (const auto* seams = doc.container("SEAMS")) {
+    const NodePath spath = *doc.path_of(seams->id());
+    for (std::size_t i = 0; i < seams->children.size(); ++i)
+      for (std::size_t j = 0; j < seams->children[i].children.size(); ++j) {
+        const Node& h = seams->children[i].children[j];
+        if (h.tag == "HEM" && stretches.count(std::string(h.attribute("from")))) hems.push_back({spath[0], i, j});
+      }
+  }
+  edit.replace(path, std::move(p));
+  for (const auto& hp : hems) {
+    const Node& h = doc.at(hp);
+    const std::string from(h.attribute("from")), to(h.attribute("to"));
+    const bool reverse = h.attribute("direction") == "reverse";
+    edit.set_attribute(hp, "from", to);
+    edit.set_attribute(hp, "to", from);
+    edit.set_attribute(hp, "direction", reverse ? "forward" : "reverse");
+  }
+  return id_;
+}
+
+// ---- SetParameter --------------------------------------------------------------------
+
+SetParameter::SetParameter(std::string name, double value, std::string unit)
+    : name_(std::move(name)), value_(value), unit_(std::move(unit)) {}
+
+std::string SetParameter::label() const { return "Set " + name_; }
+
+std::string SetParameter::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const auto* spec = find_parameter_spec(name_);
+  std::string unit = unit_;
+  // Clear messages here; check() would refuse the same values less directly.
+  if (!std::isfinite(value_)) throw Error(doc.name(), name_, "the value must be a finite number");
+  if (unit.empty()) {
+    if (!spec) throw Error(doc.name(), name_, name_ + " is not a parameter vgd knows; give its unit");
+    unit = spec->unit;
+  }
+  if (spec && unit != spec->unit)
+    throw Error(doc.name(), name_, name_ + " is in " + std::string(spec->unit) + ", not " + unit);
+  if (spec && (value_ <= spec->min || value_ > spec->max))
+    throw Error(doc.name(), name_,
+                name_ + " must be greater than " + format_double(spec->min) + " and at most " +
+                    format_double(spec->max) + " " + std::string(spec->unit) + ", not " + format_double(value_));
+
+  const Node& root = doc.root();
+  for (std::size_t i = 0; i < root.children.size(); ++i) {
+    const Node& c = root.children[i];
+    if (c.tag != "PARAMETER" || c.attribute("name") != name_) continue;
+    edit.set_attribute({i}, "value", format_double(value_));
+    edit.set_attribute({i}, "unit", unit);
+    return std::string(c.id());
+  }
+  const std::string id = doc.fresh_id("param");
+  Node n{"PARAMETER", {{"id", id}, {"name", name_}, {"value", format_double(value_)}, {"unit", unit}}, {}};
+  edit.insert({}, detail::canonical_index(root, "PARAMETER"), std::move(n));
+  return id;
+}
+
+}  // namespace vgd::xvc

@@ -1,0 +1,250 @@
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "fixtures.hpp"
+
+using namespace vgd::xvc;
+using namespace vgd::xvc::test;
+using vgd::pattern::Piece;
+
+namespace {
+// Boundary points of each stretch plus the point its edge runs to (next stretch's first).
+std::map<std::string, std::vector<Vec2>> stretch_edges(const Document& doc, const std::string& pattern_id) {
+  const Piece pc = to_piece(doc, pattern_id);
+  const auto st = boundary_stretches(*doc.find(pattern_id));
+  std::map<std::string, std::vector<Vec2>> out;
+  for (std::size_t k = 0; k < st.size(); ++k) {
+    auto& pts = out[st[k].id];
+    for (std::size_t i = 0; i <= st[k].count; ++i) pts.push_back(pc.boundary[(st[k].first + i) % pc.boundary.size()].p);
+  }
+  return out;
+}
+
+// Same points in any order, within `tol`.
+bool same_point_set(std::vector<Vec2> a, std::vector<Vec2> b, double tol = 1e-12) {
+  if (a.size() != b.size()) return false;
+  for (const auto& p : a) {
+    const auto it = std::find_if(b.begin(), b.end(), [&](const Vec2& q) { return (p - q).norm() <= tol; });
+    if (it == b.end()) return false;
+    b.erase(it);
+  }
+  return true;
+}
+
+// A document whose pattern1 has a diagonal grain line through the origin.
+Document diagonal_grain_document() {
+  auto style = full_style();
+  style.pieces[0].grain_line = vgd::pattern::Segment{Vec2(0, 0), Vec2(0.2, 0.2)};
+  return from_style(style);
+}
+}  // namespace
+
+TEST(DeletePattern, RemovesThePatternAndEverythingNamingIt) {
+  Document doc = full_document();
+  DeletePattern del("pattern1");
+  execute(doc, del);
+  EXPECT_EQ(doc.find("pattern1"), nullptr);
+  EXPECT_EQ(doc.find("seq1"), nullptr) << "its stretches go with it";
+  EXPECT_EQ(doc.find("hem1"), nullptr) << "a hem along it goes";
+  EXPECT_EQ(doc.find("seam1"), nullptr) << "the seam, left with one hem, goes";
+  EXPECT_EQ(doc.find("hem2"), nullptr);
+  for (const auto& g : doc.container("GRADATIONS")->children)
+    for (const auto& s : g.children) EXPECT_NE(s.attribute("pattern"), "pattern1");
+  const Node& accessory = doc.container("ACCESSORIES")->children.at(0);
+  for (const auto& c : accessory.children) EXPECT_NE(c.attribute("pattern"), "pattern1") << "placement on it goes";
+  EXPECT_NE(doc.find("pattern2"), nullptr);
+  EXPECT_NE(doc.find("material1"), nullptr) << "a material it used stays";
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+}
+
+TEST(DeletePattern, LastSizeOfAPieceTakesItsGradation) {
+  Document doc = from_style(full_style());
+  DeletePattern del("pattern5");  // the only POCKET
+  execute(doc, del);
+  for (const auto& g : doc.container("GRADATIONS")->children) EXPECT_NE(g.attribute("piece"), "POCKET");
+  EXPECT_EQ(to_style(doc).pieces.size(), 4u);
+}
+
+TEST(CopyPattern, MakesAnIndependentPieceRightAfterTheOriginal) {
+  Document doc = full_document();
+  CopyPattern copy("pattern1");
+  const std::string id = execute(doc, copy);
+  ASSERT_EQ(doc.patterns()[1]->id(), id);
+  const Node& c = *doc.find(id);
+  EXPECT_EQ(c.attribute("block"), "FRONT_36_copy");
+  EXPECT_EQ(c.attribute("piece"), "FRONT copy");
+  EXPECT_EQ(c.attribute("size"), "36");
+  // Same geometry, new ids for it and every stretch, notch and association.
+  const Piece a = to_piece(doc, "pattern1"), b = to_piece(doc, id);
+  ASSERT_EQ(a.boundary.size(), b.boundary.size());
+  for (std::size_t i = 0; i < a.boundary.size(); ++i) EXPECT_EQ(a.boundary[i].p, b.boundary[i].p);
+  for (const auto& s : boundary_stretches(c)) EXPECT_EQ(doc.path_of(s.id)->at(1), 1u) << s.id << " lives in the copy";
+  // Its own gradation names it.
+  bool listed = false;
+  for (const auto& g : doc.container("GRADATIONS")->children)
+    if (g.attribute("piece") == "FRONT copy") listed = g.children.size() == 1 && g.children[0].attribute("pattern") == id;
+  EXPECT_TRUE(listed);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+}
+
+TEST(CopyPattern, SecondCopyGetsNumberedNames) {
+  Document doc = from_style(full_style());
+  CopyPattern copy("pattern1");
+  execute(doc, copy);
+  const std::string id = execute(doc, copy);
+  EXPECT_EQ(doc.find(id)->attribute("block"), "FRONT_36_copy2");
+  EXPECT_EQ(doc.find(id)->attribute("piece"), "FRONT copy 2");
+}
+
+TEST(CopyPattern, CopyOfTheSampleSizeIsMarkedSample) {
+  Document doc = from_style(full_style());
+  CopyPattern copy("pattern3");  // FRONT 38, the sample size
+  const std::string id = execute(doc, copy);
+  for (const auto& g : doc.container("GRADATIONS")->children)
+    for (const auto& s : g.children)
+      if (s.attribute("pattern") == id) {
+        EXPECT_EQ(s.attribute("sample"), "true");
+      }
+}
+
+TEST(MirrorPattern, KeepsTheOutlineCounterClockwise) {
+  Document doc = full_document();
+  const double area = vgd::pattern::signed_area(to_piece(doc, "pattern1").boundary);
+  ASSERT_GT(area, 0);
+  MirrorPattern mirror("pattern1", MirrorAxis::vertical);
+  execute(doc, mirror);
+  EXPECT_NEAR(vgd::pattern::signed_area(to_piece(doc, "pattern1").boundary), area, 1e-12);
+}
+
+TEST(MirrorPattern, VerticalAxisReflectsAboutTheBoxMiddle) {
+  Document doc = from_style(full_style());
+  const Piece before = to_piece(doc, "pattern2");  // x in [0.5, 0.8]
+  MirrorPattern mirror("pattern2", MirrorAxis::vertical);
+  execute(doc, mirror);
+  const Piece after = to_piece(doc, "pattern2");
+  ASSERT_EQ(after.boundary.size(), before.boundary.size());
+  const std::size_t n = before.boundary.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // New vertex j holds old vertex (n - j) % n, reflected: x -> 1.3 - x.
+    const auto& old = before.boundary[(n - i) % n];
+    EXPECT_NEAR(after.boundary[i].p.x(), 1.3 - old.p.x(), 1e-12) << i;
+    EXPECT_EQ(after.boundary[i].p.y(), old.p.y()) << i;
+    EXPECT_EQ(after.boundary[i].kind, old.kind) << i;
+  }
+}
+
+TEST(MirrorPattern, EachStretchStillCoversItsEdgeSoHemsStayRight) {
+  Document doc = full_document();
+  const auto before = stretch_edges(doc, "pattern1");
+  const Node hem = *doc.find("hem1");
+  MirrorPattern mirror("pattern1", MirrorAxis::vertical);
+  execute(doc, mirror);
+  const auto after = stretch_edges(doc, "pattern1");
+  ASSERT_EQ(before.size(), after.size());
+  for (const auto& [id, pts] : before) {
+    std::vector<Vec2> reflected;
+    for (const auto& p : pts) reflected.emplace_back(0.3 - p.x(), p.y());
+    EXPECT_TRUE(same_point_set(reflected, after.at(id))) << id;
+  }
+  // Contour order reversed: the hem's ends swap and it runs the other way.
+  const Node& h = *doc.find("hem1");
+  EXPECT_EQ(h.attribute("from"), hem.attribute("to"));
+  EXPECT_EQ(h.attribute("to"), hem.attribute("from"));
+  EXPECT_EQ(h.attribute("direction"), "reverse");
+  EXPECT_EQ(doc.find("hem2")->attribute("direction"), "reverse") << "a hem on another pattern is untouched";
+}
+
+TEST(MirrorPattern, NotchesFollowTheirVertexAndAngle) {
+  Document doc = from_style(full_style());
+  MirrorPattern mirror("pattern1", MirrorAxis::vertical);
+  execute(doc, mirror);
+  const Piece after = to_piece(doc, "pattern1");
+  const auto& notch = after.notches[0];  // was on vertex 2 at (0.3, 0.15), cutting at 180 deg
+  ASSERT_GE(notch.boundary_index, 0);
+  EXPECT_NEAR((after.boundary[static_cast<std::size_t>(notch.boundary_index)].p - notch.position).norm(), 0, 1e-12);
+  EXPECT_NEAR(notch.position.x(), 0.0, 1e-12);
+  EXPECT_NEAR(notch.angle_deg, 0.0, 1e-12) << "a cut pointing -x now points +x";
+  EXPECT_NEAR(after.notches[1].angle_deg, 90.0, 1e-12) << "a cut along the axis keeps its angle";
+}
+
+TEST(MirrorPattern, GrainLineAxisReflectsAcrossTheGrain) {
+  Document doc = diagonal_grain_document();
+  MirrorPattern mirror("pattern1", MirrorAxis::grain_line);
+  execute(doc, mirror);
+  // Across y = x: (0.3, 0) -> (0, 0.3), which was vertex 1 and is now vertex n - 1.
+  const Piece after = to_piece(doc, "pattern1");
+  const auto& p = after.boundary[after.boundary.size() - 1].p;
+  EXPECT_NEAR(p.x(), 0.0, 1e-12);
+  EXPECT_NEAR(p.y(), 0.3, 1e-12);
+  EXPECT_GT(vgd::pattern::signed_area(after.boundary), 0);
+}
+
+TEST(MirrorPattern, AutomaticAxisUsesTheGrainLineWhenThereIsOne) {
+  Document a = diagonal_grain_document(), b = diagonal_grain_document();
+  MirrorPattern automatic("pattern1"), grain("pattern1", MirrorAxis::grain_line);
+  execute(a, automatic);
+  execute(b, grain);
+  EXPECT_EQ(save_string(a), save_string(b));
+  Document c = from_style(full_style());
+  MirrorPattern no_grain("pattern5");  // POCKET has no grain line: vertical
+  execute(c, no_grain);
+  EXPECT_NEAR(to_piece(c, "pattern5").boundary[1].p.x(), 3.0, 1e-12);
+}
+
+TEST(MirrorPattern, AutomaticAxisIgnoresAZeroLengthGrainLine) {
+  auto style = full_style();
+  style.pieces[1].grain_line = vgd::pattern::Segment{Vec2(0.6, 0.1), Vec2(0.6, 0.1)};
+  Document doc = from_style(style);
+  MirrorPattern automatic("pattern2");
+  execute(doc, automatic);
+  EXPECT_NEAR(to_piece(doc, "pattern2").boundary[0].p.x(), 1.3 - 0.6, 1e-12) << "vertical about x = 0.65";
+  MirrorPattern grain("pattern2", MirrorAxis::grain_line);
+  EXPECT_THROW(execute(doc, grain), vgd::Error);
+}
+
+TEST(MirrorPattern, GrainAxisWithoutGrainLineIsRefused) {
+  Document doc = from_style(full_style());
+  const std::string before = save_string(doc);
+  MirrorPattern mirror("pattern5", MirrorAxis::grain_line);
+  try {
+    execute(doc, mirror);
+    FAIL() << "expected an error";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pattern5 has no grain line"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(save_string(doc), before);
+}
+
+TEST(MirrorPattern, TwiceGivesBackTheOriginal) {
+  Document doc = full_document();
+  const Piece before = to_piece(doc, "pattern1");
+  MirrorPattern mirror("pattern1", MirrorAxis::vertical);
+  execute(doc, mirror);
+  execute(doc, mirror);
+  const Piece after = to_piece(doc, "pattern1");
+  ASSERT_EQ(after.boundary.size(), before.boundary.size());
+  for (std::size_t i = 0; i < after.boundary.size(); ++i) {
+    EXPECT_NEAR((after.boundary[i].p - before.boundary[i].p).norm(), 0, 1e-12) << i;
+    EXPECT_EQ(after.boundary[i].kind, before.boundary[i].kind) << i;
+  }
+  EXPECT_EQ(stretch_ids(doc, "pattern1"), stretch_ids(from_style(full_style()), "pattern1"));
+  EXPECT_EQ(after.cutouts[0].points.size(), before.cutouts[0].points.size());
+  EXPECT_NEAR((after.cutouts[0].points[1] - before.cutouts[0].points[1]).norm(), 0, 1e-12) << "closed loops restored";
+  EXPECT_EQ(doc.find("hem1")->attribute("from"), "seq2");
+  EXPECT_EQ(doc.find("hem1")->attribute("direction"), "forward");
+}
+
+TEST(PatternEdits, EveryEditedDocumentIsValidAgainstTheSchema) {
+  Document doc = full_document();
+  UndoStack stack(doc);
+  stack.execute(std::make_unique<CopyPattern>("pattern1"));
+  stack.execute(std::make_unique<MirrorPattern>("pattern1"));
+  stack.execute(std::make_unique<MirrorPattern>("pattern2", MirrorAxis::vertical));
+  stack.execute(std::make_unique<DeletePattern>("pattern4"));
+  stack.execute(std::make_unique<DeleteNode>("seq3"));
+  stack.execute(std::make_unique<PasteNode>("patterns", copy_node(doc, "pattern3")));
+  const auto d = validate_string(save_string(doc), "edited.xvc", schema());
+  EXPECT_FALSE(d.has_errors()) << dump(d);
+  EXPECT_EQ(d.count(vgd::Severity::warning), 1u) << "the pasted pattern repeats its block name: " << dump(d);
+}
