@@ -13,7 +13,7 @@ constexpr std::array<ParameterSpec, 4> kKnown{{
     {"mesh.spacing", "m", 0.0, 1.0, "target distance between resampled boundary points"},
     {"mesh.turn_angle", "deg", 0.0, 180.0,
      "a boundary vertex turning more than this is kept as a corner when resampling"},
-    {"mesh.min_angle", "deg", 0.0, 60.0, "smallest triangle angle the mesher aims for"},
+    {"mesh.min_angle", "deg", 0.0, 33.0, "smallest triangle angle the mesher aims for (Delaunay refinement may not end above ~33.8 deg)"},
     {"mesh.max_area", "m2", 0.0, 1.0, "largest triangle area the mesher allows"},
 }};
 

@@ -62,7 +62,7 @@ TEST(Parameters, OutOfRangeAndNonFiniteValuesAreRefused) {
   Document doc;
   EXPECT_THROW(set_parameter(doc, "mesh.spacing", 0.0), vgd::Error);
   EXPECT_THROW(set_parameter(doc, "mesh.spacing", -0.01), vgd::Error);
-  EXPECT_THROW(set_parameter(doc, "mesh.min_angle", 61), vgd::Error);
+  EXPECT_THROW(set_parameter(doc, "mesh.min_angle", 34), vgd::Error);
   EXPECT_THROW(set_parameter(doc, "mesh.turn_angle", std::numeric_limits<double>::quiet_NaN()), vgd::Error);
   EXPECT_THROW(set_parameter(doc, "x.y", std::numeric_limits<double>::infinity(), "1"), vgd::Error);
   EXPECT_EQ(save_string(doc), save_string(Document{}));

@@ -64,6 +64,10 @@ struct ScanInfo {
   int lines = 0;
   int pairs = 0;
   int blocks = 0;
+  // Line of every "0 / TYPE" pair, per entity type, in file order. dxflib does
+  // not report lines when it reads from memory, so the reader takes the n-th
+  // entity of a type's line from here.
+  std::map<std::string, std::vector<int>, std::less<>> entity_lines;
 };
 ScanInfo scan(std::string_view text, const std::string& name);
 

@@ -18,16 +18,8 @@ class Collector final : public DL_CreationAdapter {
   explicit Collector(DL_Dxf& dxf) : dxf_(dxf) {}
   Drawing drawing;
 
-  // Every pair passes here first: track the line where the current entity began.
-  // dxflib reports an entity when the next "0" group arrives, so the entity's
-  // own start is the previous "0" group.
-  void processCodeValuePair(unsigned int code, const std::string&) override {
-    ++pairs_;
-    if (code == 0) {
-      entity_line_ = zero_line_;
-      zero_line_ = 2 * pairs_ - 1;
-    }
-  }
+  // Lines of the entities, from the scan (dxflib gives none when reading memory).
+  void set_lines(const ScanInfo& info) { lines_ = &info.entity_lines; }
 
   void addComment(const std::string& c) override { drawing.comments.push_back(c); }
 
@@ -45,7 +37,7 @@ class Collector final : public DL_CreationAdapter {
     b.name = std::string(trim(d.name));
     b.base_x = d.bpx;
     b.base_y = d.bpy;
-    b.line = entity_line_;
+    b.line = line_of("BLOCK");
     drawing.blocks.push_back(std::move(b));
     current_ = &drawing.blocks.back();
   }
@@ -66,16 +58,17 @@ class Collector final : public DL_CreationAdapter {
     p.thickness = dxf_.getRealValue(39, 0.0);
     p.has_angle = dxf_.hasValue(50);
     p.angle = dxf_.getRealValue(50, 0.0);
-    p.line = entity_line_;
+    p.line = line_of("POINT");
     target().points.push_back(p);
   }
   void addLine(const DL_LineData& d) override {
     finish_polyline();
-    target().lines.push_back({layer(), d.x1, d.y1, d.x2, d.y2, entity_line_});
+    target().lines.push_back({layer(), d.x1, d.y1, d.x2, d.y2, line_of("LINE")});
   }
   void addPolyline(const DL_PolylineData& d) override {
     finish_polyline();
-    poly_ = Polyline{layer(), {}, (d.flags & 1) != 0, entity_line_};
+    // dxflib reports POLYLINE and LWPOLYLINE alike; only LWPOLYLINE carries group 90.
+    poly_ = Polyline{layer(), {}, (d.flags & 1) != 0, line_of(dxf_.hasValue(90) ? "LWPOLYLINE" : "POLYLINE")};
     poly_open_ = true;
   }
   void addVertex(const DL_VertexData& d) override {
@@ -85,20 +78,20 @@ class Collector final : public DL_CreationAdapter {
   void endSequence() override { finish_polyline(); }
   void addText(const DL_TextData& d) override {
     finish_polyline();
-    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, entity_line_});
+    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, line_of("TEXT")});
   }
   void addMText(const DL_MTextData& d) override {
     finish_polyline();
-    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, entity_line_});
+    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, line_of("MTEXT")});
   }
   void addAttribute(const DL_AttributeData& d) override {
     // ATTRIB/ATTDEF: treat as a text so "Key: value" attributes are not lost.
     finish_polyline();
-    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, entity_line_});
+    target().texts.push_back({layer(), d.ipx, d.ipy, d.text, 0});
   }
   void addInsert(const DL_InsertData& d) override {
     finish_polyline();
-    target().inserts.push_back({std::string(trim(d.name)), d.ipx, d.ipy, d.sx, d.sy, d.angle, entity_line_});
+    target().inserts.push_back({std::string(trim(d.name)), d.ipx, d.ipy, d.sx, d.sy, d.angle, line_of("INSERT")});
   }
 
   void finish_polyline() {
@@ -116,8 +109,18 @@ class Collector final : public DL_CreationAdapter {
   Block* current_ = &drawing.model;
   Polyline poly_;
   bool poly_open_ = false;
-  long pairs_ = 0;
-  int zero_line_ = 0, entity_line_ = 0;
+  const std::map<std::string, std::vector<int>, std::less<>>* lines_ = nullptr;
+  std::map<std::string, std::size_t, std::less<>> seen_;
+
+  // Line of the next entity of this type (0 if the counts ever disagree).
+  int line_of(std::string_view type) {
+    if (!lines_) return 0;
+    const auto it = lines_->find(type);
+    auto& n = seen_[std::string(type)];
+    const int line = it != lines_->end() && n < it->second.size() ? it->second[n] : 0;
+    ++n;
+    return line;
+  }
 };
 
 }  // namespace
@@ -128,7 +131,9 @@ Drawing read(std::string_view text, const std::string& name) {
   std::istringstream in{std::string(text)};
   // Blocks live in a vector that grows while current_ points into it: reserve
   // for the block count so the pointer stays valid.
-  c.drawing.blocks.reserve(scan(text, name).blocks + 1);
+  const ScanInfo info = scan(text, name);
+  c.drawing.blocks.reserve(info.blocks + 1);
+  c.set_lines(info);
   if (!dxf.in(in, &c)) throw Error(name, "", "dxflib could not read the file");
   c.finish_polyline();
   return std::move(c.drawing);

@@ -103,6 +103,7 @@ ScanInfo scan(std::string_view text, const std::string& name) {
     }
     if (*code != 0) continue;
     expect_block_name = false;
+    info.entity_lines[std::string(v)].push_back(line);  // the line that names the entity
     if (v == "SECTION") {
       if (!section.empty())
         throw Error(name, "", "SECTION " + section + " (line " + std::to_string(section_line) +

@@ -226,3 +226,18 @@ TEST(DxfBadInput, InsertCyclesAndFanOutAreCut) {
   EXPECT_TRUE(has_diag(r, vgd::Severity::warning, "", "copies ignored"));
   EXPECT_LT(r.diagnostics.items().size(), 50u) << "one warning per problem, not one per copy";
 }
+
+TEST(DxfBadInput, BlockDiagnosticsGiveTheEntityLine) {
+  // The warning names the line where the open POLYLINE starts.
+  const std::string text = with_block([](DxfText& d) { d.polyline("1", {{0, 0}, {100, 0}, {100, 100}, {0, 100}, {0, 20}}); });
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < text.find("POLYLINE"); ++i) line += text[i] == '\n';
+  const auto r = import_string(text, "open.dxf");
+  bool found = false;
+  for (const auto& d : r.diagnostics.items())
+    if (d.message.find("open boundary") != std::string::npos) {
+      EXPECT_EQ(d.line, static_cast<int>(line));
+      found = true;
+    }
+  EXPECT_TRUE(found);
+}
