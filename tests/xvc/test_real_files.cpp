@@ -4,6 +4,12 @@
 #include <gtest/gtest.h>
 
 #include "fixtures.hpp"
+#include <tinyxml2.h>
+
+#include <cstdio>
+#include <functional>
+#include <map>
+
 #include "vgd/io/dxf/import.hpp"
 
 using namespace vgd::xvc;
@@ -53,4 +59,49 @@ TEST(RealFiles, SharedSamplesAreValidLosslessAndDrawable) {
     ++files;
   }
   EXPECT_GT(files, 0);
+}
+
+// The seed's XSL view, run by the xsltproc program itself on a real Gerber file
+// (7 pieces x 15 sizes, inch units): every pattern, notch, grain line and drill
+// hole of the imported style must be drawn, inside the drawing's view box.
+TEST(RealFiles, XsltprocDrawsAnImportedGerberFile) {
+  VGD_REQUIRE_SHARED();
+  const auto imported = vgd::dxf::import_file(vgd::test::shared_dxf("MEN_CLASSIC_TEE.DXF"));
+  const Document doc = from_style(imported.style);
+  const std::string svg = render_svg_with_xsltproc(doc, stylesheet());
+  tinyxml2::XMLDocument x;
+  ASSERT_EQ(x.Parse(svg.c_str(), svg.size()), tinyxml2::XML_SUCCESS) << "the SVG is not well-formed";
+  const auto* root = x.RootElement();
+  ASSERT_STREQ(root->Name(), "svg");
+  double vb[4] = {0, 0, 0, 0};
+  ASSERT_EQ(std::sscanf(root->Attribute("viewBox"), "%lf %lf %lf %lf", &vb[0], &vb[1], &vb[2], &vb[3]), 4);
+
+  std::map<std::string, int> count;
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  std::function<void(const tinyxml2::XMLElement*)> walk = [&](const tinyxml2::XMLElement* e) {
+    if (const char* c = e->Attribute("class")) ++count[c];
+    for (const char* a : {"x1", "x2", "cx"})
+      if (e->Attribute(a)) min_x = std::min(min_x, e->DoubleAttribute(a)), max_x = std::max(max_x, e->DoubleAttribute(a));
+    for (const char* a : {"y1", "y2", "cy"})
+      if (e->Attribute(a)) min_y = std::min(min_y, e->DoubleAttribute(a)), max_y = std::max(max_y, e->DoubleAttribute(a));
+    for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) walk(c);
+  };
+  walk(root);
+
+  int notches = 0, grains = 0, drills = 0;
+  for (const auto& p : imported.style.pieces) {
+    notches += static_cast<int>(p.notches.size());
+    grains += p.grain_line.has_value();
+    drills += static_cast<int>(p.drill_holes.size());
+  }
+  EXPECT_EQ(count["pattern"], 105);
+  EXPECT_EQ(count["outline"], 105);
+  EXPECT_EQ(count["notch"], notches);
+  EXPECT_EQ(count["grain"], grains);
+  EXPECT_EQ(count["drill"], drills);
+  EXPECT_GT(notches, 0);
+  EXPECT_GE(min_x, vb[0]);
+  EXPECT_LE(max_x, vb[0] + vb[2]);
+  EXPECT_GE(min_y, vb[1]);
+  EXPECT_LE(max_y, vb[1] + vb[3]);
 }
