@@ -64,17 +64,7 @@ TEST_P(MeshSharedDxf, EverySizeMeetsTheBounds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Files, MeshSharedDxf,
-                         ::testing::Values("simple.DXF", "MEN_CLASSIC_TEE.DXF", "WM_SLIM_TANK.DXF",
-                                           "GLX4802S19_AAMA.DXF", "GLX4802S19_ASTM.DXF", "ORILEGWB_AAMA.DXF",
-                                           "GMH1006F18_AAMA.DXF", "drill-holes.DXF", "mirrored.DXF", "clo-box.dxf",
-                                           "clo-pattern.dxf", "Valentina_MaleShirt_AAMA_R12.dxf",
-                                           "Valentina_Trousers_ASTM_R12.dxf"),
-                         [](const auto& file) {
-                           std::string n = file.param;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+                         ::testing::ValuesIn(test::shared_dxf_files()), test::FileParamName());
 
 TEST(MeshSharedDxfFiles, TriangleFilesOfARealPieceRoundTrip) {
   VGD_REQUIRE_SHARED();

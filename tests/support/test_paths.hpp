@@ -6,7 +6,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <cctype>
 #include <string>
+#include <vector>
 
 namespace vgd::test {
 
@@ -21,6 +23,26 @@ inline std::filesystem::path shared_dxf(const std::string& name) {
   return shared_dir() / "data" / "dxf" / name;
 }
 inline bool have_shared() { return std::filesystem::is_directory(shared_dir() / "data" / "dxf"); }
+
+// The real DXF exports in ../shared/data/dxf (Gerber AAMA/ASTM, CLO, Valentina).
+inline std::vector<std::string> shared_dxf_files() {
+  return {"simple.DXF",          "MEN_CLASSIC_TEE.DXF", "WM_SLIM_TANK.DXF",
+          "GLX4802S19_AAMA.DXF", "GLX4802S19_ASTM.DXF", "ORILEGWB_AAMA.DXF",
+          "GMH1006F18_AAMA.DXF", "drill-holes.DXF",     "mirrored.DXF",
+          "clo-box.dxf",         "clo-pattern.dxf",     "Valentina_MaleShirt_AAMA_R12.dxf",
+          "Valentina_Trousers_ASTM_R12.dxf"};
+}
+
+// A file name as a gtest parameter name ("clo-box.dxf" -> "clo_box_dxf").
+struct FileParamName {
+  template <class Info>
+  std::string operator()(const Info& param_info) const {
+    std::string n = param_info.param;
+    for (auto& c : n)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return n;
+  }
+};
 
 // A fresh, empty directory for one test's outputs, under the build tree.
 inline std::filesystem::path scratch_dir(const std::string& name) {

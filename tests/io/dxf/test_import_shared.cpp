@@ -93,17 +93,7 @@ TEST_P(SharedDxf, MatchesIndependentReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFiles, SharedDxf,
-                         ::testing::Values("simple.DXF", "MEN_CLASSIC_TEE.DXF", "WM_SLIM_TANK.DXF",
-                                           "GLX4802S19_AAMA.DXF", "GLX4802S19_ASTM.DXF", "ORILEGWB_AAMA.DXF",
-                                           "GMH1006F18_AAMA.DXF", "drill-holes.DXF", "mirrored.DXF", "clo-box.dxf",
-                                           "clo-pattern.dxf", "Valentina_MaleShirt_AAMA_R12.dxf",
-                                           "Valentina_Trousers_ASTM_R12.dxf"),
-                         [](const auto& param_info) {
-                           std::string n = param_info.param;
-                           for (auto& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+                         ::testing::ValuesIn(vgd::test::shared_dxf_files()), vgd::test::FileParamName());
 
 // Hand-checked figures (tests/io/dxf/reference/README.md, "Hand checks").
 TEST(SharedDxfByHand, CloBoxIsThreeByTwoMetres) {
