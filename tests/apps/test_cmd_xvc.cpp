@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "fixtures.hpp"
+#include "support/run_vgd.hpp"
+#include "xvc/fixtures.hpp"
 #include "vgd/core/file.hpp"
 
 using namespace vgd::xvc;
@@ -13,20 +14,8 @@ using namespace vgd::xvc::test;
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-// Runs `vgd ARGS` in `dir`, capturing stdout and stderr.
-Result vgd_run(const fs::path& dir, const std::string& args) {
-  Result r;
-  r.code = run("cd '" + dir.string() + "' && VGD_SCHEMA_DIR='" + schema().parent_path().string() + "' '" VGD_EXE "' " +
-               args + " > out.txt 2> err.txt");
-  r.out = slurp(dir / "out.txt");
-  r.err = slurp(dir / "err.txt");
-  return r;
-}
+// Runs `vgd ARGS` in `dir`.
+vgd::test::CliResult vgd_run(const fs::path& dir, const std::string& args) { return vgd::test::run_vgd(args, dir); }
 
 fs::path with_document(const std::string& test) {
   const auto dir = vgd::test::scratch_dir("xvc_cli_" + test);

@@ -7,7 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "support/test_paths.hpp"
-#include "synthetic.hpp"
+#include "mesh/synthetic.hpp"
+#include "support/run_vgd.hpp"
 #include "vgd/mesh/triangle_io.hpp"
 #include "vgd/xvc/document.hpp"
 #include "vgd/xvc/io.hpp"
@@ -17,24 +18,8 @@ using namespace vgd;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;
-};
-
-// Runs `vgd ARGS`, capturing stdout (stderr stays on the test's stderr).
-Result vgd_run(const std::string& args) {
-  Result r;
-  const std::string cmd = std::string(VGD_EXE) + " -q " + args;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+// Runs `vgd -q ARGS`.
+test::CliResult vgd_run(const std::string& args) { return test::run_vgd("-q " + args); }
 
 // A two-piece style, sample size M, saved with mesh.spacing = 2 cm.
 std::filesystem::path make_document(const std::filesystem::path& dir) {
@@ -61,7 +46,7 @@ std::filesystem::path make_document(const std::filesystem::path& dir) {
 TEST(CmdMesh, UsesDocumentParametersAndPrintsJson) {
   const auto dir = test::scratch_dir("cmd_mesh_json");
   const auto doc = make_document(dir);
-  const Result r = vgd_run("mesh " + doc.string() + " --json");
+  const auto r = vgd_run("mesh " + doc.string() + " --json");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("size"), "M");
@@ -77,7 +62,7 @@ TEST(CmdMesh, UsesDocumentParametersAndPrintsJson) {
 TEST(CmdMesh, OptionsOverrideTheDocument) {
   const auto dir = test::scratch_dir("cmd_mesh_override");
   const auto doc = make_document(dir);
-  const Result r = vgd_run("mesh " + doc.string() + " --json --spacing 0.05 --min-angle 30 --size S --piece FRONT");
+  const auto r = vgd_run("mesh " + doc.string() + " --json --spacing 0.05 --min-angle 30 --size S --piece FRONT");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_DOUBLE_EQ(j.at("options").at("spacing_m").get<double>(), 0.05);
@@ -89,7 +74,7 @@ TEST(CmdMesh, OptionsOverrideTheDocument) {
 TEST(CmdMesh, WritesTriangleFilesAndATable) {
   const auto dir = test::scratch_dir("cmd_mesh_files");
   const auto doc = make_document(dir);
-  const Result r = vgd_run("mesh " + doc.string() + " --triangle-files " + (dir / "tri").string());
+  const auto r = vgd_run("mesh " + doc.string() + " --triangle-files " + (dir / "tri").string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("FRONT_M"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("2 pieces of size M"), std::string::npos) << r.out;

@@ -1,0 +1,108 @@
+// vgd draft / import / export-dxf and the program's conventions (exit codes,
+// --help, --version, JSON on stdout, messages on stderr), run as a user would.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/run_vgd.hpp"
+#include "support/test_paths.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/io/dxf/import.hpp"
+
+using vgd::test::run_vgd;
+namespace fs = std::filesystem;
+
+namespace {
+const fs::path kSkirt = vgd::test::source_dir() / "data/garments/a-line-skirt.dxf";
+}
+
+TEST(Cli, VersionAndHelpExitZero) {
+  auto r = run_vgd("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("vgd 0."), std::string::npos) << r.out;
+  for (const char* cmd : {"draft", "import", "export-dxf", "validate", "edit", "svg", "mesh"}) {
+    r = run_vgd(std::string(cmd) + " --help");
+    EXPECT_EQ(r.code, 0) << cmd;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << cmd;
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run_vgd("").code, 2);
+  EXPECT_EQ(run_vgd("frobnicate").code, 2);
+  EXPECT_EQ(run_vgd("import").code, 2);  // FILE is required
+  EXPECT_EQ(run_vgd("import x.dxf --no-such-option").code, 2);
+}
+
+TEST(CliImport, BadFileExitsOneAndNamesIt) {
+  const auto dir = vgd::test::scratch_dir("cli_import_bad");
+  vgd::write_file_atomic(dir / "notes.dxf", "this is not a DXF\n");
+  const auto r = run_vgd("import notes.dxf -o out.xvc", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("notes.dxf:1"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out.xvc")) << "nothing may be written for a bad input";
+  EXPECT_EQ(run_vgd("import missing.dxf --report", dir).code, 1);
+}
+
+TEST(CliImport, ReportJsonHasTheDocumentedFields) {
+  const auto r = run_vgd("import " + kSkirt.string() + " --report --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);  // stdout is JSON only
+  for (const char* k : {"producer", "flavour", "style", "units", "sample_size", "pieces", "blocks", "sizes"})
+    EXPECT_TRUE(j["summary"].contains(k)) << k;
+  EXPECT_EQ(j["summary"]["pieces"], 3);
+  EXPECT_EQ(j["summary"]["blocks"], 15);
+  EXPECT_EQ(j["summary"]["sample_size"], "38");
+  ASSERT_EQ(j["blocks"].size(), 15u);
+  for (const char* k : {"block", "piece", "size", "quantity", "category", "boundary_vertices", "closed", "area_m2",
+                        "perimeter_m", "grain_angle_deg", "notches", "internal_lines", "drill_holes", "mirror_line",
+                        "self_intersecting"})
+    EXPECT_TRUE(j["blocks"][0].contains(k)) << k;
+  EXPECT_TRUE(j["warnings"].is_array());
+}
+
+TEST(CliImport, ImportExportImportKeepsTheGarment) {
+  const auto dir = vgd::test::scratch_dir("cli_roundtrip");
+  ASSERT_EQ(run_vgd("-q import " + kSkirt.string() + " -o skirt.xvc", dir).code, 0);
+  ASSERT_EQ(run_vgd("validate skirt.xvc", dir).code, 0);
+  const auto e = run_vgd("export-dxf skirt.xvc -o back.dxf --units in", dir);
+  ASSERT_EQ(e.code, 0) << e.err;
+  const auto a = vgd::dxf::import_file(kSkirt), b = vgd::dxf::import_file(dir / "back.dxf");
+  EXPECT_EQ(b.style.units, "in");
+  ASSERT_EQ(a.style.pieces.size(), b.style.pieces.size());
+  for (std::size_t i = 0; i < a.style.pieces.size(); ++i) {
+    EXPECT_EQ(a.style.pieces[i].block, b.style.pieces[i].block);
+    EXPECT_NEAR(a.blocks[i].area_m2, b.blocks[i].area_m2, 1e-12);
+    EXPECT_EQ(a.blocks[i].boundary_vertices, b.blocks[i].boundary_vertices);
+  }
+}
+
+TEST(CliImport, DroppedBlockStopsTheWriteUnlessKeepGoing) {
+  const auto dir = vgd::test::scratch_dir("cli_keep_going");
+  // The skirt plus a block with no boundary.
+  std::string text = vgd::read_file(kSkirt);
+  const auto at = text.find("  0\nENDSEC");  // end of BLOCKS
+  text.insert(at, "  0\nBLOCK\n  8\n0\n  2\nEMPTY\n 70\n0\n 10\n0\n 20\n0\n  0\nTEXT\n  8\n1\n 10\n0\n 20\n0\n 40\n1\n  1\n"
+                  "Piece Name: EMPTY\n  0\nENDBLK\n  8\n0\n");
+  vgd::write_file_atomic(dir / "bad.dxf", text);
+  auto r = run_vgd("import bad.dxf -o out.xvc", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("EMPTY"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out.xvc"));
+  r = run_vgd("import bad.dxf -o out.xvc --keep-going", dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out.xvc"));
+}
+
+TEST(CliDraft, DraftedFileImportsCleanly) {
+  const auto dir = vgd::test::scratch_dir("cli_draft");
+  auto r = run_vgd("draft skirt --sizes 36,40 -o s.dxf", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto a = vgd::dxf::import_file(dir / "s.dxf");
+  EXPECT_EQ(a.style.sizes, (std::vector<std::string>{"36", "40"}));
+  EXPECT_EQ(a.diagnostics.count(vgd::Severity::warning), 0u);
+  r = run_vgd("draft skirt --waist 1.5 --hip 0.9 -o t.dxf", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("waist"), std::string::npos) << r.err;
+  EXPECT_EQ(run_vgd("draft skirt --sizes 99 -o u.dxf", dir).code, 1);
+}
