@@ -1,0 +1,60 @@
+#pragma once
+// One physical effect = one Effect (docs/architecture.md, "Effect"). A scene
+// lists the effects it calls for; the engine builds its step from exactly those,
+// so an effect the scene does not list is never constructed nor evaluated.
+//
+// Every effect implements the same small set of verbs (IPC Toolkit's Potential,
+// MuJoCo's passive forces): forces, optionally their Jacobian, its potential
+// energy, a stiffness bound for the explicit stability limit, prescribed motion
+// (pins) and an after-step hook (deformation limits; later collisions and seams).
+#include <vector>
+
+#include "vgd/sim/model.hpp"
+
+namespace vgd::sim {
+
+// What an effect evaluates at: an integrator stage, not necessarily State.
+struct Eval {
+  const Model& model;
+  double t;     // s
+  const VecX& x;  // 3N positions (m)
+  const VecX& v;  // 3N velocities (m/s)
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  // Short name used in profiles and messages ("gravity", "mass-spring", ...).
+  virtual const char* name() const = 0;
+
+  // Adds this effect's forces (N) into f (3N).
+  virtual void add_forces(const Eval& e, VecX& f) = 0;
+
+  // Adds df/dx (N/m) and df/dv (N·s/m) as 3x3 particle blocks, for the implicit
+  // integrators. Returns false when the effect provides none; its forces then
+  // enter implicit steps explicitly. Effects whose forces do not depend on x
+  // or v (gravity) return true and add nothing.
+  virtual bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets& dfdv) { return false; }
+
+  // Potential energy (J) of the effect's conservative forces; 0 if it has none.
+  virtual double energy(const Eval& e) const { return 0.0; }
+
+  // Adds, per particle, bounds on the row sums of |df/dx| (N/m) and |df/dv|
+  // (N·s/m) over the motions the simulation will see (at least at the rest
+  // shape). The explicit integrators' stability limit comes from these
+  // (Gershgorin: the largest eigenvalue of M⁻¹K is at most max_i k_i / m_i).
+  virtual void add_stiffness_bound(const Model& m, VecX& k_rows, VecX& c_rows) const {}
+
+  // Particles whose motion this effect prescribes (pins); default none.
+  virtual void prescribed_particles(std::vector<int>& out) const {}
+  // Writes the prescribed particles' positions (m) and velocities (m/s) at time t.
+  virtual void prescribe(double t, VecX& x, VecX& v) const {}
+
+  // Runs after every accepted step; may change positions and velocities
+  // (deformation limiting, later collision projection and seam merges).
+  virtual void after_step(const Model& m, State& s) {}
+  // True when the effect has done all its work and may leave the step.
+  virtual bool finished() const { return false; }
+};
+
+}  // namespace vgd::sim

@@ -1,0 +1,60 @@
+#pragma once
+// Tiny models and effects built inside the tests (style guide: build tiny
+// scenes inside the test).
+#include <functional>
+
+#include "vgd/sim/effect.hpp"
+#include "vgd/sim/system.hpp"
+
+namespace vgd::sim::test {
+
+// n particles of mass m in a row along x, spacing d (m), no triangles.
+inline Model particles(int n, double m = 1.0, double d = 1.0) {
+  Model model;
+  model.x0 = VecX::Zero(3 * n);
+  model.v0 = VecX::Zero(3 * n);
+  model.mass = VecX::Constant(n, m);
+  model.uv.assign(n, Vec2::Zero());
+  for (int i = 0; i < n; ++i) model.x0[3 * i] = i * d;
+  return model;
+}
+
+// Each particle tied to its start by a linear spring of stiffness k (N/m):
+// an undamped harmonic oscillator per particle, ω = sqrt(k/m).
+class Anchor final : public Effect {
+ public:
+  Anchor(const Model& m, double k) : k_(k), x0_(m.x0) {}
+  const char* name() const override { return "anchor"; }
+  void add_forces(const Eval& e, VecX& f) override { f -= k_ * (e.x - x0_); }
+  bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets&) override {
+    for (int i = 0; i < e.model.num_particles(); ++i) add_block(dfdx, i, i, -k_ * Mat3::Identity());
+    return true;
+  }
+  double energy(const Eval& e) const override { return 0.5 * k_ * (e.x - x0_).squaredNorm(); }
+  void add_stiffness_bound(const Model&, VecX& k, VecX&) const override { k.array() += k_; }
+
+ private:
+  double k_;
+  VecX x0_;
+};
+
+// Counts its evaluations and applies a force given by a function.
+class Probe final : public Effect {
+ public:
+  std::function<void(const Eval&, VecX&)> force;
+  int calls = 0;
+  const char* name() const override { return "probe"; }
+  void add_forces(const Eval& e, VecX& f) override {
+    ++calls;
+    if (force) force(e, f);
+  }
+};
+
+template <class... E>
+std::vector<std::unique_ptr<Effect>> effects(std::unique_ptr<E>... e) {
+  std::vector<std::unique_ptr<Effect>> v;
+  (v.push_back(std::move(e)), ...);
+  return v;
+}
+
+}  // namespace vgd::sim::test

@@ -1,0 +1,122 @@
+// The environment's effects against the laws they state.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "helpers.hpp"
+#include "vgd/sim/effects/basic.hpp"
+#include "vgd/sim/integrator.hpp"
+
+using namespace vgd::sim;
+using namespace vgd::sim::test;
+
+namespace {
+// A flat square plate of side 1 m in the z = 0 plane, normal +z.
+Model plate() { return make_grid(2, 2, 1.0, 1.0, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 0.1); }
+
+Vec3 total(const VecX& f) {
+  Vec3 s = Vec3::Zero();
+  for (int i = 0; i < f.size() / 3; ++i) s += at(f, i);
+  return s;
+}
+
+VecX forces(Effect& e, const Model& m, const VecX& x, const VecX& v, double t = 0.0) {
+  VecX f = VecX::Zero(m.num_dofs());
+  e.add_forces({m, t, x, v}, f);
+  return f;
+}
+}  // namespace
+
+TEST(Gravity, ForceIsMassTimesG) {
+  Model m = particles(2, 3.0);
+  auto g = make_gravity({Vec3(0, -9.81, 0)});
+  EXPECT_NEAR(total(forces(*g, m, m.x0, m.v0)).y(), -2 * 3.0 * 9.81, 1e-12);
+}
+
+TEST(Viscosity, TerminalVelocityIsMgOverK) {
+  Model m = particles(1, 0.1);
+  System sys(m, effects(make_gravity({}), make_viscosity({0.2, 0.0})));
+  IntegratorSettings st;
+  st.method = Method::rk4;
+  st.step = 0.01;
+  auto integ = make_integrator(st);
+  State s = initial_state(sys.model());
+  integ->advance(sys, s, 10.0);  // 20 time constants m/k = 0.5 s
+  EXPECT_NEAR(s.v[1], -0.1 * 9.81 / 0.2, 1e-6);
+}
+
+TEST(Wind, PlateFacingTheWindFeelsCAwnAndEdgeOnFeelsNothing) {
+  const Model m = plate();
+  auto w = make_wind({Vec3(0, 0, 10.0), 0.5});
+  const Vec3 f = total(forces(*w, m, m.x0, m.v0));
+  EXPECT_NEAR(f.z(), 0.5 * 1.0 * 10.0, 1e-12);  // c A (w·n)
+  EXPECT_NEAR(f.head<2>().norm(), 0.0, 1e-12);
+  auto edge_on = make_wind({Vec3(10.0, 0, 0), 0.5});
+  EXPECT_NEAR(total(forces(*edge_on, m, m.x0, m.v0)).norm(), 0.0, 1e-12);
+}
+
+TEST(Wind, PlateMovingWithTheWindFeelsNothing) {
+  const Model m = plate();
+  auto w = make_wind({Vec3(0, 0, 3.0), 1.0});
+  VecX v = m.v0;
+  for (int i = 0; i < m.num_particles(); ++i) at(v, i) = Vec3(0, 0, 3.0);
+  EXPECT_NEAR(total(forces(*w, m, m.x0, v)).norm(), 0.0, 1e-12);
+}
+
+TEST(Wind, TurbulenceIsDeterministicAndAveragesToTheMeanWind) {
+  WindDef d{Vec3(5, 0, 0), 1.0, 0.3, 1.0, 7};
+  EXPECT_EQ(wind_at(d, 1.234, Vec3(1, 2, 3)), wind_at(d, 1.234, Vec3(1, 2, 3)));
+  WindDef other = d;
+  other.seed = 8;
+  EXPECT_NE(wind_at(d, 1.234, Vec3::Zero()), wind_at(other, 1.234, Vec3::Zero()));
+  Vec3 mean = Vec3::Zero();
+  double max_dev = 0.0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const Vec3 w = wind_at(d, k * 0.01, Vec3::Zero());
+    mean += w / n;
+    max_dev = std::max(max_dev, (w - d.velocity).norm());
+  }
+  EXPECT_NEAR((mean - d.velocity).norm(), 0.0, 0.1);
+  EXPECT_GT(max_dev, 0.5);           // it does gust
+  EXPECT_LE(max_dev, 0.3 * 5 * std::sqrt(3.0) + 1e-9);  // within the stated amplitude
+}
+
+TEST(Damping, RigidMotionIsNotDamped) {
+  const Model m = plate();
+  auto d = make_damping(m, {2.0});
+  VecX v = VecX::Zero(m.num_dofs());
+  for (int i = 0; i < m.num_particles(); ++i) at(v, i) = Vec3(1, 2, 3) + Vec3(0, 0, 1).cross(at(m.x0, i));
+  EXPECT_LT(forces(*d, m, m.x0, v).norm(), 1e-12);
+}
+
+TEST(Damping, StretchingIsDampedAndMomentumKept) {
+  const Model m = plate();
+  auto d = make_damping(m, {2.0});
+  VecX v = VecX::Zero(m.num_dofs());
+  at(v, 3) = Vec3(1.0, 1.0, 0.0);  // one corner flies off diagonally
+  const VecX f = forces(*d, m, m.x0, v);
+  EXPECT_LT(at(f, 3).dot(at(v, 3)), 0.0);
+  EXPECT_LT(total(f).norm(), 1e-12);  // internal forces
+}
+
+TEST(Jacobians, ViscosityAndDampingMatchFiniteDifferencesInVelocity) {
+  Model m = plate();
+  VecX x = m.x0;
+  x[2] = 0.1;  // out of plane, so edge directions are general
+  VecX v = VecX::Random(m.num_dofs());
+  for (auto* e : {make_viscosity({0.3, 0.7}).release(), make_damping(m, {1.5}).release()}) {
+    std::unique_ptr<Effect> eff(e);
+    Triplets jx, jv;
+    eff->add_jacobian({m, 0.0, x, v}, jx, jv);
+    SparseMatrix J(m.num_dofs(), m.num_dofs());
+    J.setFromTriplets(jv.begin(), jv.end());
+    const double h = 1e-6;
+    for (int c = 0; c < m.num_dofs(); ++c) {
+      VecX vp = v, vm = v;
+      vp[c] += h, vm[c] -= h;
+      const VecX col = (forces(*eff, m, x, vp) - forces(*eff, m, x, vm)) / (2 * h);
+      EXPECT_LT((col - VecX(J.col(c))).norm(), 1e-6) << eff->name() << " column " << c;
+    }
+  }
+}
