@@ -1,0 +1,212 @@
+// vgd bench engine: the shipped flag (data/scenes/flag.json) for every cloth
+// model x integrator, with 1 thread and with every core, then the cost of each
+// listed effect (the flag with one effect switched off at a time).
+//
+// Explicit methods run with automatic sub-stepping, so each takes its own
+// stable step; implicit Euler takes the scene's step, BDF its own adaptive
+// ones. A model or integrator this build lacks is reported as unavailable, a
+// run the engine stops as failed (with its message), and a run that exceeds
+// its wall-time budget as partial (rates are per simulated second reached).
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cli.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/scene/build.hpp"
+#include "vgd/scene/data.hpp"
+#include "vgd/scene/json.hpp"
+
+namespace {
+
+namespace scene = vgd::scene;
+namespace sim = vgd::sim;
+
+struct Options {
+  bool json = false, quick = false;
+  std::string scene_file;
+};
+
+struct Record {
+  std::string scene, variant, model, integrator, status = "ok", message;
+  std::vector<std::string> effects;
+  std::vector<std::pair<std::string, double>> profile;  // seconds per effect (System::profile)
+  int threads = 1, particles = 0;
+  long steps = 0, rhs = 0, jacobians = 0;
+  double step_s = 0, simulated_s = 0, wall_s = 0;
+  double particle_steps_per_s() const { return wall_s > 0 ? particles * static_cast<double>(steps) / wall_s : 0.0; }
+  bool implicit() const { return integrator == "implicit-euler" || integrator == "bdf"; }
+};
+
+// Runs `def` frame by frame until its duration or the wall budget (s).
+Record run_one(const scene::SceneDef& def, sim::Method method, int threads, double budget_s) {
+  Record r;
+  r.scene = def.name;
+  r.model = scene::to_string(def.cloth.front().model);
+  r.integrator = sim::to_string(method);
+  r.threads = threads;
+  r.effects = scene::effect_names(def);
+  if (!scene::model_available(def.cloth.front().model)) {
+    r.status = "unavailable";
+    r.message = "this build has no " + r.model + " model";
+    return r;
+  }
+  omp_set_num_threads(threads);
+  scene::Scene s = scene::build(def);
+  sim::IntegratorSettings settings = s.integrator;
+  settings.method = method;
+  settings.auto_substep = sim::is_explicit(method);  // each explicit method at its own stable step
+  std::unique_ptr<sim::Integrator> integ;
+  try {
+    integ = sim::make_integrator(settings);
+  } catch (const sim::SimulationError& e) {
+    r.status = "unavailable";
+    r.message = e.what();
+    return r;
+  }
+  auto& sys = *s.system;
+  r.particles = sys.model().num_particles();
+  sim::State st = sim::initial_state(sys.model());
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  try {
+    sys.apply_prescribed(st);
+    integ->prepare(sys, st);
+    const int frames = static_cast<int>(std::floor(s.run.duration * s.run.fps + 1e-9));
+    for (int k = 1; k <= frames; ++k) {
+      integ->advance(sys, st, k / s.run.fps);
+      if (wall() > budget_s && k < frames) {
+        r.status = "partial";
+        r.message = "stopped at the wall-time budget of " + vgd::format_fixed(budget_s, 0) + " s";
+        break;
+      }
+    }
+  } catch (const sim::SimulationError& e) {
+    r.status = "failed";
+    r.message = e.what();
+  }
+  r.wall_s = wall();
+  r.simulated_s = st.t;
+  for (const auto& p : sys.profile()) r.profile.emplace_back(p.name, p.seconds);
+  const auto stats = integ->stats();
+  r.steps = stats.steps;
+  r.rhs = stats.rhs_evaluations;
+  r.jacobians = stats.jacobian_evaluations;
+  r.step_s = integ->step() > 0 ? integ->step() : (stats.steps > 0 ? st.t / stats.steps : 0.0);
+  return r;
+}
+
+nlohmann::json to_json(const Record& r) {
+  nlohmann::json j{{"scene", r.scene},
+                   {"model", r.model},
+                   {"integrator", r.integrator},
+                   {"threads", r.threads},
+                   {"particles", r.particles},
+                   {"steps", r.steps},
+                   {"wall_s", r.wall_s},
+                   {"particle_steps_per_s", r.particle_steps_per_s()},
+                   {"simulated_s", r.simulated_s},
+                   {"step_s", r.step_s},
+                   {"effects", r.effects},
+                   {"status", r.status}};
+  if (!r.variant.empty()) j["variant"] = r.variant;
+  auto prof = nlohmann::json::object();
+  for (const auto& [name, sec] : r.profile) prof[name] = prof.value(name, 0.0) + sec;
+  j["effect_seconds"] = prof;
+  if (!r.message.empty()) j["message"] = r.message;
+  if (r.implicit() && r.simulated_s > 0) {
+    j["rhs_per_simulated_s"] = r.rhs / r.simulated_s;
+    j["jacobians_per_simulated_s"] = r.jacobians / r.simulated_s;
+  }
+  return j;
+}
+
+void print_row(const Record& r) {
+  auto rate = [&](long n) { return r.implicit() && r.simulated_s > 0 ? vgd::format_fixed(n / r.simulated_s, 0) : "-"; };
+  std::printf("%-15s %-17s %3d %10.3g %7ld %8.3f %11.3g %9s %9s  %s%s%s\n", r.model.c_str(), r.integrator.c_str(),
+              r.threads, r.step_s, r.steps, r.wall_s, r.particle_steps_per_s(), rate(r.rhs).c_str(),
+              rate(r.jacobians).c_str(), r.status.c_str(), r.message.empty() ? "" : ": ",
+              r.message.substr(0, 90).c_str());
+  std::fflush(stdout);
+}
+
+vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common) {
+  auto* sub = app.add_subcommand("bench", "Measure speed on the shipped scenes");
+  sub->require_subcommand(1);
+  auto o = std::make_shared<Options>();
+  auto* engine = sub->add_subcommand(
+      "engine", "The flag for every cloth model x integrator, 1 thread and all cores, and the cost of each effect");
+  engine->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
+  engine->add_flag("--quick", o->quick, "0.2 s of simulated time instead of 2 s (a smoke test)");
+  engine->add_option("--scene", o->scene_file, "Another scene file instead of the shipped flag");
+  return vgd::cli::Command{sub, [o, &common, engine]() -> int {
+    if (!engine->parsed()) return vgd::cli::kUsage;
+    const auto file = o->scene_file.empty() ? scene::shipped_scene("flag") : std::filesystem::path(o->scene_file);
+    scene::SceneDef base = scene::load_scene(file);
+    base.run.duration = o->quick ? 0.2 : 2.0;
+    base.outputs.clear();
+    const double budget = o->quick ? 10.0 : 60.0;
+    const int cores = std::max(1, omp_get_num_procs());
+    std::vector<int> thread_counts{1};
+    if (cores > 1) thread_counts.push_back(cores);
+
+    std::vector<Record> records;
+    if (!o->json) {
+      std::printf("%s: %s s simulated per run, wall-time budget %s s per run, %d cores\n", file.string().c_str(),
+                  vgd::format_fixed(base.run.duration, 1).c_str(), vgd::format_fixed(budget, 0).c_str(), cores);
+      std::printf("%-15s %-17s %3s %10s %7s %8s %11s %9s %9s  %s\n", "model", "integrator", "thr", "step s", "steps",
+                  "wall s", "p-steps/s", "RHS/sim-s", "Jac/sim-s", "status");
+    }
+    auto add = [&](Record r) {
+      if (!o->json) print_row(r);
+      records.push_back(std::move(r));
+    };
+
+    // Every model x integrator x thread count.
+    for (const auto model : {scene::ClothModel::mass_spring, scene::ClothModel::strain_rosette}) {
+      scene::SceneDef def = base;
+      for (auto& c : def.cloth) c.model = model;
+      for (const auto method : {sim::Method::symplectic_euler, sim::Method::midpoint, sim::Method::rk4,
+                                sim::Method::implicit_euler, sim::Method::bdf})
+        for (const int t : thread_counts) {
+          add(run_one(def, method, t, budget));
+        }
+    }
+
+    // The cost of each listed effect: the flag with it switched off (1 thread).
+    if (!o->json)
+      std::printf("\neffects switched off one at a time (%s, %s, 1 thread):\n%-14s %8s %11s  %s\n",
+                  scene::to_string(base.cloth.front().model), sim::to_string(base.integrator.settings.method),
+                  "variant", "wall s", "p-steps/s", "seconds per effect (System::profile)");
+    auto variant = [&](const std::string& name, scene::SceneDef def) {
+      Record r = run_one(def, def.integrator.settings.method, 1, budget);
+      r.variant = name;
+      if (!o->json) {
+        std::string prof;
+        for (const auto& [effect, sec] : r.profile) prof += effect + " " + vgd::format_fixed(sec, 3) + "  ";
+        std::printf("%-14s %8.3f %11.3g  %s%s\n", name.c_str(), r.wall_s, r.particle_steps_per_s(), prof.c_str(),
+                    r.status == "ok" ? "" : r.status.c_str());
+      }
+      records.push_back(std::move(r));
+    };
+    variant("all effects", base);
+    if (base.effects.wind) variant("no wind", [&] { auto d = base; d.effects.wind.reset(); return d; }());
+    if (base.effects.viscosity) variant("no viscosity", [&] { auto d = base; d.effects.viscosity.reset(); return d; }());
+    if (base.effects.gravity) variant("no gravity", [&] { auto d = base; d.effects.gravity.reset(); return d; }());
+    if (base.effects.damping) variant("no damping", [&] { auto d = base; d.effects.damping.reset(); return d; }());
+    omp_set_num_threads(cores);
+
+    if (o->json) {
+      auto list = nlohmann::json::array();
+      for (const auto& r : records) list.push_back(to_json(r));
+      vgd::cli::print_json(list);
+    }
+    return vgd::cli::kOk;
+  }};
+}};
+
+}  // namespace
