@@ -36,6 +36,7 @@ enum Exit : int {
 struct Common {
   bool quiet = false;    // no progress or summaries on stderr
   bool verbose = false;  // also print informational diagnostics
+  int threads = 1;       // OpenMP threads for the engine's force kernels (0 = all cores)
 };
 
 struct Command {

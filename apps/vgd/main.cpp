@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <exception>
 
+#include <omp.h>
+
 #include "cli.hpp"
 #include "vgd/core/version.hpp"
 
@@ -18,6 +20,11 @@ int main(int argc, char** argv) {
   Common common;
   app.add_flag("-q,--quiet", common.quiet, "No progress, summaries or warnings on stderr (errors still shown)");
   app.add_flag("-v,--verbose", common.verbose, "Also show informational messages (units found, repairs made)");
+  // One thread unless asked: OpenMP's spinning barriers make small scenes much
+  // slower when the cores are shared with other work (docs/performance.md).
+  app.add_option("--threads", common.threads, "Threads for the simulation's force kernels (0 = all cores)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 
   auto entries = registry();
   std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.order < b.order; });
@@ -30,6 +37,7 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? kOk : kUsage;
   }
+  omp_set_num_threads(common.threads > 0 ? common.threads : omp_get_num_procs());
   try {
     for (auto& c : commands)
       if (c.app->parsed()) return c.run();

@@ -18,7 +18,7 @@ constexpr int kSide = 30;
 
 // The flag: 1 m × 1 m, warp along +x, weft hanging along −y, pinned at the
 // two corners of its staff side (u = 0).
-System flag(double max_strain) {
+System flag(double max_strain, bool wind = false) {
   Model m = make_grid(kSide, kSide, 1.0 / (kSide - 1), 1.0 / (kSide - 1), Vec3::Zero(), Vec3::UnitX(),
                       -Vec3::UnitY(), 0.1);
   MassSpringMaterial mat;  // the seed's constants
@@ -30,16 +30,18 @@ System flag(double max_strain) {
   effects.push_back(make_gravity({}));
   effects.push_back(make_viscosity({0.2, 0.0}));
   effects.push_back(make_pins(m, {opt.fixed}));
+  // The shipped flag's wind (data/scenes/flag.json): the seed's (10, 10, -100) m/s, gusty.
+  if (wind) effects.push_back(make_wind({Vec3(10, 10, -100), 40.0, 0.1, 1.0, 1}));
   return System(std::move(m), std::move(effects));
 }
 
 // Whole steps (forces of every effect, integration, pins, after-step hooks,
 // state checks) at the seed's step of 2.5 ms, shortened to the stability
 // limit where the method needs it (midpoint: ≈ 1 ms).
-void BM_MassSpringFlag(benchmark::State& state, Method method, double max_strain) {
+void BM_MassSpringFlag(benchmark::State& state, Method method, double max_strain, bool wind = false) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(static_cast<int>(state.range(0)));
-  System sys = flag(max_strain);
+  System sys = flag(max_strain, wind);
   IntegratorSettings st;
   st.method = method;
   st.step = 0.0025;
@@ -88,6 +90,7 @@ void BM_MassSpringForces(benchmark::State& state) {
 BENCHMARK_CAPTURE(BM_MassSpringFlag, symplectic_euler, Method::symplectic_euler, 0.0)->Arg(1)->Arg(2)->UseRealTime();
 BENCHMARK_CAPTURE(BM_MassSpringFlag, midpoint, Method::midpoint, 0.0)->Arg(1)->Arg(2)->UseRealTime();
 BENCHMARK_CAPTURE(BM_MassSpringFlag, rk4, Method::rk4, 0.0)->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK_CAPTURE(BM_MassSpringFlag, symplectic_euler_wind, Method::symplectic_euler, 0.0, true)->Arg(1)->Arg(2)->UseRealTime();
 BENCHMARK_CAPTURE(BM_MassSpringFlag, symplectic_euler_provot10, Method::symplectic_euler, 0.1)
     ->Arg(1)
     ->Arg(2)

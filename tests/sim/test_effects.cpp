@@ -131,9 +131,16 @@ TEST(Wind, GustsOnTheClothMatchTheWindFieldAtTheFaces) {
   auto w = make_wind(d);
   const auto& t = one.triangles[0];
   const Vec3 centre = (at(one.x0, t[0]) + at(one.x0, t[1]) + at(one.x0, t[2])) / 3.0;
+  // The field is sampled along the wind and interpolated: within 0.125 % of the
+  // gust amplitude (0.4 x |w|) of the exact field.
+  const double tol = 0.7 * 0.5 * 0.00125 * 0.4 * d.velocity.norm() * std::sqrt(3.0);
   for (double time : {0.0, 0.37, 1.9}) {
     const Vec3 f = total(forces(*w, one, one.x0, one.v0, time));
     const Vec3 expected = Vec3(0, 0, 0.7 * 0.5 * wind_at(d, time, centre).z());
-    EXPECT_NEAR((f - expected).norm(), 0.0, 1e-12) << "t = " << time;
+    EXPECT_LE((f - expected).norm(), tol) << "t = " << time;
   }
+  // On a wide cloth the faces far apart along the wind feel different gusts.
+  const Model wide = make_grid(3, 2, 40.0, 1.0, Vec3::Zero(), Vec3(0.3, 0, 0.95), Vec3::UnitY(), 0.1);
+  VecX fw = forces(*make_wind(d), wide, wide.x0, wide.v0, 0.5);
+  EXPECT_GT((at(fw, 0) - at(fw, 2)).norm(), 1e-3);
 }

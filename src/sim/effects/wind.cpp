@@ -1,8 +1,9 @@
 // Wind on faces (seed 000: proportional to the wind's component along the face
 // normal). f_face = c·A·((w - v_face)·n) n, split equally over the corners.
 // Turbulence: a deterministic sum of three sines per axis with seeded phases,
-// travelling with the wind so that gusts sweep across the cloth. Cost per call:
-// 9 sin/cos for the instant plus a few multiply-adds per face.
+// travelling with the wind so that gusts sweep across the cloth (sampled once
+// per call along the wind, interpolated per face).
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -52,38 +53,32 @@ class Wind final : public Effect {
   const char* name() const override { return "wind"; }
   void add_forces(const Eval& e, VecX& f) override {
     const auto& tris = e.model.triangles;
-    if (def_.turbulence != 0.0 && delay_.empty()) prepare_gusts(e.model);
-    // The gust phases of this instant, shared by every face (9 sin/cos per call).
-    double sw[3][3], cw[3][3];
-    if (def_.turbulence != 0.0)
-      for (int axis = 0; axis < 3; ++axis)
-        for (int k = 0; k < 3; ++k) {
-          const double a = 2.0 * M_PI * gusts_.freq[axis][k] * e.t + gusts_.phase[axis][k];
-          sw[axis][k] = std::sin(a);
-          cw[axis][k] = std::cos(a);
-        }
-    const double scale = def_.turbulence * std::max(def_.velocity.norm(), 1e-9);
+    const bool gusty = def_.turbulence != 0.0;
+    if (gusty) sample_gusts(e.model, e.t);
+    // Raw loops: this kernel runs once per face per force evaluation.
+    const double* x = e.x.data();
+    const double* v = e.v.data();
+    double* out = f.data();
+    const double k = def_.coefficient / 6.0;  // c/(2|cross|) · (1/3 per corner) · |cross| folded below
     for (std::size_t ti = 0; ti < tris.size(); ++ti) {
-      const auto& t = tris[ti];
-      const Vec3 a = at(e.x, t[0]), b = at(e.x, t[1]), c = at(e.x, t[2]);
-      const Vec3 cross = (b - a).cross(c - a);  // |cross| = 2A, direction n
-      const double len = cross.norm();
-      if (len == 0.0) continue;
-      Vec3 w = def_.velocity;
-      if (def_.turbulence != 0.0) {
-        // sin(ωt + φ - ωs) = sin(ωt + φ) cos(ωs) - cos(ωt + φ) sin(ωs), with the
-        // delay s of this face precomputed: gusts sweep across the cloth.
-        const double* d = &delay_[ti * 18];
-        for (int axis = 0; axis < 3; ++axis) {
-          double sum = 0.0;
-          for (int k = 0; k < 3; ++k) sum += sw[axis][k] * d[2 * (3 * axis + k)] - cw[axis][k] * d[2 * (3 * axis + k) + 1];
-          w[axis] += scale * sum / 3.0;
-        }
+      const int i0 = 3 * tris[ti][0], i1 = 3 * tris[ti][1], i2 = 3 * tris[ti][2];
+      const double e1x = x[i1] - x[i0], e1y = x[i1 + 1] - x[i0 + 1], e1z = x[i1 + 2] - x[i0 + 2];
+      const double e2x = x[i2] - x[i0], e2y = x[i2 + 1] - x[i0 + 1], e2z = x[i2 + 2] - x[i0 + 2];
+      const double cx = e1y * e2z - e1z * e2y, cy = e1z * e2x - e1x * e2z, cz = e1x * e2y - e1y * e2x;
+      const double len2 = cx * cx + cy * cy + cz * cz;  // |cross|² = 4A²
+      if (len2 == 0.0) continue;
+      const Vec3 w = gusty ? gust_at(delay_[ti]) : def_.velocity;
+      const double rx = w.x() - (v[i0] + v[i1] + v[i2]) / 3.0;
+      const double ry = w.y() - (v[i0 + 1] + v[i1 + 1] + v[i2 + 1]) / 3.0;
+      const double rz = w.z() - (v[i0 + 2] + v[i1 + 2] + v[i2 + 2]) / 3.0;
+      // Per corner: c A (rel·n) n / 3 = c (rel·cross) cross / (6 |cross|).
+      const double s = k * (rx * cx + ry * cy + rz * cz) / std::sqrt(len2);
+      const double fx = s * cx, fy = s * cy, fz = s * cz;
+      for (const int i : {i0, i1, i2}) {
+        out[i] += fx;
+        out[i + 1] += fy;
+        out[i + 2] += fz;
       }
-      const Vec3 vface = (at(e.v, t[0]) + at(e.v, t[1]) + at(e.v, t[2])) / 3.0;
-      // c A (rel·n) n = c (rel·cross) cross / (2 |cross|)
-      const Vec3 ff = def_.coefficient * (w - vface).dot(cross) / (2.0 * len) * cross;
-      for (int k = 0; k < 3; ++k) at(f, t[k]) += ff / 3.0;
     }
   }
   // The velocity part only (relative wind): an approximation, hence false.
@@ -109,29 +104,47 @@ class Wind final : public Effect {
   }
 
  private:
-  // Each face's gust delay is taken at its rest centroid (x0): the gust field
-  // travels with the mean wind over where the cloth started. Exact for
-  // wind_at() at those points; the cloth's own motion shifts it by a fraction
-  // of a gust wavelength, which turbulence does not resolve anyway.
-  void prepare_gusts(const Model& m) {
-    const double speed = def_.velocity.norm();
-    delay_.resize(m.triangles.size() * 18);
-    for (std::size_t ti = 0; ti < m.triangles.size(); ++ti) {
-      const auto& t = m.triangles[ti];
-      const Vec3 centre = (at(m.x0, t[0]) + at(m.x0, t[1]) + at(m.x0, t[2])) / 3.0;
-      const double s = speed > 0 ? centre.dot(def_.velocity) / (speed * speed) : 0.0;
-      for (int axis = 0; axis < 3; ++axis)
-        for (int k = 0; k < 3; ++k) {
-          const double ws = 2.0 * M_PI * gusts_.freq[axis][k] * s;
-          delay_[ti * 18 + 2 * (3 * axis + k)] = std::cos(ws);
-          delay_[ti * 18 + 2 * (3 * axis + k) + 1] = std::sin(ws);
-        }
+  // Gusts travel with the mean wind, so a face feels the gust field delayed by
+  // its distance along the wind over the wind speed. The delay is taken at the
+  // face's rest centroid (x0), and the field is sampled once per call at delays
+  // spaced so that the fastest sine advances at most kPhaseStep rad between
+  // samples; faces interpolate linearly. Error ≤ kPhaseStep²/8 of the gust
+  // amplitude (0.125 %); cost: 9 sines per sample instead of 9 per face.
+  static constexpr double kPhaseStep = 0.1;  // rad
+
+  void sample_gusts(const Model& m, double t) {
+    if (delay_.empty() && !m.triangles.empty()) {
+      const double speed = def_.velocity.norm();
+      delay_.resize(m.triangles.size());
+      for (std::size_t ti = 0; ti < m.triangles.size(); ++ti) {
+        const auto& tr = m.triangles[ti];
+        const Vec3 centre = (at(m.x0, tr[0]) + at(m.x0, tr[1]) + at(m.x0, tr[2])) / 3.0;
+        delay_[ti] = speed > 0 ? centre.dot(def_.velocity) / (speed * speed) : 0.0;
+      }
+      s_min_ = *std::min_element(delay_.begin(), delay_.end());
+      const double span = *std::max_element(delay_.begin(), delay_.end()) - s_min_;
+      double omega_max = 0.0;
+      for (const auto& row : gusts_.freq)
+        for (double fq : row) omega_max = std::max(omega_max, 2.0 * M_PI * fq);
+      const int samples = std::clamp(static_cast<int>(std::ceil(span * omega_max / kPhaseStep)) + 1, 2, 1 << 16);
+      ds_ = span > 0 ? span / (samples - 1) : 1.0;
+      table_.resize(samples);
     }
+    for (std::size_t k = 0; k < table_.size(); ++k) table_[k] = wind(def_, gusts_, t - (s_min_ + k * ds_), Vec3::Zero());
+  }
+
+  Vec3 gust_at(double delay) const {
+    const double u = (delay - s_min_) / ds_;
+    const std::size_t k = std::min(static_cast<std::size_t>(u), table_.size() - 2);
+    const double w = u - static_cast<double>(k);
+    return (1.0 - w) * table_[k] + w * table_[k + 1];
   }
 
   WindDef def_;
   Gusts gusts_;
-  std::vector<double> delay_;  // per face: cos and sin of ω·delay for 3 axes x 3 sines
+  std::vector<double> delay_;  // per face, s: its rest centroid's distance along the wind / speed
+  double s_min_ = 0.0, ds_ = 1.0;
+  std::vector<Vec3> table_;  // the wind at delays s_min_ + k ds_, this call
 };
 
 }  // namespace
