@@ -58,6 +58,17 @@ System::System(Model model, std::vector<std::unique_ptr<Effect>> effects)
 }
 
 void System::force(double t, const VecX& x, const VecX& v, VecX& f) {
+  sum_forces(t, x, v, f);
+  if (!prescribed_.empty()) f = f.cwiseProduct(free_);
+}
+
+void System::acceleration(double t, const VecX& x, const VecX& v, VecX& a) {
+  // inv_mass_dof_ is zero on prescribed dofs: one pass scales and masks.
+  sum_forces(t, x, v, a);
+  a = a.cwiseProduct(inv_mass_dof_);
+}
+
+void System::sum_forces(double t, const VecX& x, const VecX& v, VecX& f) {
   f.setZero(num_dofs());
   const Eval e{model_, t, x, v};
   for (std::size_t i = 0; i < effects_.size(); ++i) {
@@ -67,13 +78,7 @@ void System::force(double t, const VecX& x, const VecX& v, VecX& f) {
     profile_[i].seconds += seconds_since(t0);
     ++profile_[i].force_calls;
   }
-  if (!prescribed_.empty()) f = f.cwiseProduct(free_);
   ++force_evals_;
-}
-
-void System::acceleration(double t, const VecX& x, const VecX& v, VecX& a) {
-  force(t, x, v, a);
-  a = a.cwiseProduct(inv_mass_dof_);
 }
 
 bool System::jacobian(double t, const VecX& x, const VecX& v, SparseMatrix& dfdx, SparseMatrix& dfdv) {
@@ -139,7 +144,19 @@ double System::potential_energy(double t, const VecX& x, const VecX& v) const {
 }
 
 void System::check_state(const State& s, double max_speed) const {
+  // One cheap pass on every step (no square roots); the particle is looked up
+  // only when something is wrong.
+  const double limit2 = max_speed * max_speed;
   const int n = model_.num_particles();
+  const double* x = s.x.data();
+  const double* v = s.v.data();
+  bool ok = true;
+  for (int k = 0; k < 3 * n; k += 3) {
+    const double v2 = v[k] * v[k] + v[k + 1] * v[k + 1] + v[k + 2] * v[k + 2];
+    // NaN fails every comparison: `!(v2 <= limit2)` also catches non-finite velocities.
+    ok &= (v2 <= limit2) & std::isfinite(x[k] + x[k + 1] + x[k + 2]);
+  }
+  if (ok) return;
   for (int i = 0; i < n; ++i) {
     if (!at(s.x, i).allFinite() || !at(s.v, i).allFinite())
       throw SimulationError("the simulation diverged at t = " + std::to_string(s.t) + " s: particle " +

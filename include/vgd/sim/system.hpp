@@ -68,6 +68,9 @@ class System {
   long jacobian_evaluations() const { return jacobian_evals_; }
 
  private:
+  // Σ effect forces, unmasked; counts and times every effect.
+  void sum_forces(double t, const VecX& x, const VecX& v, VecX& f);
+
   Model model_;
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<EffectProfile> profile_;  // parallel to effects_
