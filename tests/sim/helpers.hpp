@@ -1,7 +1,9 @@
 #pragma once
 // Tiny models and effects built inside the tests (style guide: build tiny
 // scenes inside the test).
+#include <cstdio>
 #include <functional>
+#include <string>
 
 #include "vgd/sim/effect.hpp"
 #include "vgd/sim/system.hpp"
@@ -49,6 +51,21 @@ class Probe final : public Effect {
     if (force) force(e, f);
   }
 };
+
+// Forces (N) of one effect at (x, v, t).
+inline VecX forces(Effect& e, const Model& m, const VecX& x, const VecX& v, double t = 0.0) {
+  VecX f = VecX::Zero(m.num_dofs());
+  e.add_forces({m, t, x, v}, f);
+  return f;
+}
+inline VecX forces(Effect& e, const Model& m, const VecX& x) { return forces(e, m, x, m.v0); }
+
+// A figure for the test report (--gtest_output=xml).
+inline std::string sci(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3e", v);
+  return b;
+}
 
 template <class... E>
 std::vector<std::unique_ptr<Effect>> effects(std::unique_ptr<E>... e) {

@@ -18,15 +18,9 @@
 #include "vgd/sim/effects/strain_rosette.hpp"
 
 using namespace vgd::sim;
+using namespace vgd::sim::test;
 
 namespace {
-
-// A figure for the test report (--gtest_output=xml).
-std::string sci(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3e", v);
-  return b;
-}
 
 OrthotropicMaterial reference() { return OrthotropicMaterial{}; }
 
@@ -44,11 +38,6 @@ Model irregular(int nu, int nv, double d, double jitter, unsigned seed) {
   return m;
 }
 
-VecX forces(Effect& e, const Model& m, const VecX& x) {
-  VecX f = VecX::Zero(m.num_dofs());
-  e.add_forces({m, 0.0, x, m.v0}, f);
-  return f;
-}
 double energy(const Effect& e, const Model& m, const VecX& x) { return e.energy({m, 0.0, x, m.v0}); }
 
 // The pattern wrapped on a cylinder of curvature k (1/m) whose curvature runs

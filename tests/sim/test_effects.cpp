@@ -20,11 +20,6 @@ Vec3 total(const VecX& f) {
   return s;
 }
 
-VecX forces(Effect& e, const Model& m, const VecX& x, const VecX& v, double t = 0.0) {
-  VecX f = VecX::Zero(m.num_dofs());
-  e.add_forces({m, t, x, v}, f);
-  return f;
-}
 }  // namespace
 
 TEST(Gravity, ForceIsMassTimesG) {

@@ -51,12 +51,6 @@ Model mixed_square(int n, unsigned seed = 3) {
   return m;
 }
 
-VecX forces(Effect& e, const Model& m, const VecX& x, const VecX& v) {
-  VecX f = VecX::Zero(m.num_dofs());
-  e.add_forces({m, 0.0, x, v}, f);
-  return f;
-}
-
 // A random deformed state: every particle moved by up to `amp` (m) per axis,
 // random velocities of up to `speed` (m/s) per axis.
 void deform(const Model& m, double amp, double speed, unsigned seed, VecX& x, VecX& v) {

@@ -7,28 +7,13 @@
 #include <map>
 #include <sstream>
 
+#include "support/reference_csv.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/sim/material.hpp"
 
 using namespace vgd::sim;
 
 namespace {
-
-// A CSV of ../shared/reference as columns by header name; empty if absent.
-std::map<std::string, std::vector<double>> reference_csv(const std::string& name) {
-  std::map<std::string, std::vector<double>> cols;
-  std::ifstream in(vgd::test::shared_dir() / "reference" / name);
-  if (!in) return cols;
-  std::string line, cell;
-  std::getline(in, line);
-  std::vector<std::string> head;
-  for (std::stringstream ss(line); std::getline(ss, cell, ',');) head.push_back(cell);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    for (std::size_t k = 0; k < head.size() && std::getline(ss, cell, ','); ++k) cols[head[k]].push_back(std::stod(cell));
-  }
-  return cols;
-}
 
 // The first problem that mentions `field`, or "" if none does.
 std::string problem_about(const OrthotropicMaterial& m, const std::string& field) {
@@ -160,7 +145,7 @@ TEST(Material, OffAxisModulusIsEwarpEweftAndRecoversGFromTheBias) {
 }
 
 TEST(Material, OffAxisModulusMatchesTheReferenceCsv) {
-  const auto csv = reference_csv("orthotropic_E_theta.csv");
+  const auto csv = vgd::test::reference_csv("orthotropic_E_theta.csv");
   if (csv.empty()) GTEST_SKIP() << "SKIPPED: " << vgd::test::shared_dir() / "reference" << " not found";
   const OrthotropicMaterial m;
   const auto& th = csv.at("theta_deg");
@@ -179,7 +164,7 @@ TEST(Material, TwistRigidityIsTheSheetShearModulusTimesHSquaredOver12) {
 }
 
 TEST(Material, BendingRigidityMatchesTheConsistentColumnNotThePapers) {
-  const auto csv = reference_csv("orthotropic_B_theta.csv");
+  const auto csv = vgd::test::reference_csv("orthotropic_B_theta.csv");
   if (csv.empty()) GTEST_SKIP() << "SKIPPED: " << vgd::test::shared_dir() / "reference" << " not found";
   const OrthotropicMaterial m;
   const auto& th = csv.at("theta_deg");

@@ -14,19 +14,14 @@
 #include <sstream>
 
 #include "helpers.hpp"
+#include "support/reference_csv.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/sim/effects/strain_rosette.hpp"
 
 using namespace vgd::sim;
+using namespace vgd::sim::test;
 
 namespace {
-
-// A figure for the test report (--gtest_output=xml).
-std::string sci(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3e", v);
-  return b;
-}
 
 using Mat32 = Eigen::Matrix<double, 3, 2>;
 using Mat2 = Eigen::Matrix2d;
@@ -50,12 +45,6 @@ VecX place(const Model& m, const Mat32& R, const Mat2& F, const Vec3& o) {
   VecX x(m.num_dofs());
   for (int i = 0; i < m.num_particles(); ++i) at(x, i) = R * (F * m.uv[i]) + o;
   return x;
-}
-
-VecX forces(Effect& e, const Model& m, const VecX& x) {
-  VecX f = VecX::Zero(m.num_dofs());
-  e.add_forces({m, 0.0, x, m.v0}, f);
-  return f;
 }
 
 double energy(const Effect& e, const Model& m, const VecX& x) { return e.energy({m, 0.0, x, m.v0}); }
@@ -158,21 +147,6 @@ double tensile_test(Effect& e, const Model& m, double L, double W, int nu, int n
   double reaction = 0.0;
   for (int j = 0; j < nv; ++j) reaction -= f[3 * (j * nu + nu - 1)];
   return reaction / W;
-}
-
-// A CSV of the shared reference folder as columns by header name.
-std::map<std::string, std::vector<double>> read_csv(const std::string& name) {
-  std::ifstream in(vgd::test::shared_dir() / "reference" / name);
-  std::map<std::string, std::vector<double>> cols;
-  std::string line, cell;
-  std::getline(in, line);
-  std::vector<std::string> head;
-  for (std::stringstream ss(line); std::getline(ss, cell, ',');) head.push_back(cell);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    for (std::size_t k = 0; k < head.size() && std::getline(ss, cell, ','); ++k) cols[head[k]].push_back(std::stod(cell));
-  }
-  return cols;
 }
 
 bool have_reference() { return std::filesystem::exists(vgd::test::shared_dir() / "reference" / "orthotropic_E_theta.csv"); }
@@ -392,7 +366,7 @@ TEST(StrainRosette, OffAxisStripHasTheOrthotropicModulus) {
   const OrthotropicMaterial mat = reference();
   std::map<int, double> csv;
   if (have_reference()) {
-    const auto cols = read_csv("orthotropic_E_theta.csv");
+    const auto cols = vgd::test::reference_csv("orthotropic_E_theta.csv");
     for (std::size_t k = 0; k < cols.at("theta_deg").size(); ++k)
       csv[static_cast<int>(cols.at("theta_deg")[k])] = cols.at("E_theta_N_per_m")[k];
   }

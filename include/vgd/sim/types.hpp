@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,6 +29,20 @@ inline void add_block(Triplets& t, int i, int j, const Mat3& b) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       if (b(r, c) != 0.0) t.emplace_back(3 * i + r, 3 * j + c, b(r, c));
+}
+
+// Per particle, the largest absolute row sum of its three rows in a 3N x 3N
+// matrix given as triplets (duplicates summed first): the Gershgorin bound the
+// effects report for the explicit stability limit (System::stiffness).
+inline VecX particle_row_sums(const Triplets& t, int particles) {
+  SparseMatrix s(3 * particles, 3 * particles);
+  s.setFromTriplets(t.begin(), t.end());
+  VecX rows = VecX::Zero(3 * particles);
+  for (int c = 0; c < s.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(s, c); it; ++it) rows[it.row()] += std::abs(it.value());
+  VecX out(particles);
+  for (int i = 0; i < particles; ++i) out[i] = rows.segment<3>(3 * i).maxCoeff();
+  return out;
 }
 
 // A simulation that cannot go on: non-finite values, runaway energy, a solver

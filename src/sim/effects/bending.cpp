@@ -592,13 +592,7 @@ class Bending final : public Effect {
     for (int i = 0; i < n_; ++i) at(xr, i) = Vec3(m.uv[i].x(), m.uv[i].y(), 0.0);
     Triplets trip;
     assemble_hessian(xr.data(), trip, 1.0);
-    SparseMatrix S(3 * n_, 3 * n_);
-    S.setFromTriplets(trip.begin(), trip.end());
-    VecX rows = VecX::Zero(3 * n_);
-    for (int c = 0; c < S.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(S, c); it; ++it) rows[it.row()] += std::abs(it.value());
-    k_bound_ = VecX::Zero(n_);
-    for (int i = 0; i < n_; ++i) k_bound_[i] = std::max({rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]});
+    k_bound_ = particle_row_sums(trip, n_);
   }
 
   int n_;

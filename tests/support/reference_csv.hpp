@@ -1,0 +1,30 @@
+#pragma once
+// The analytic reference tables of ../shared/reference (mechanics.md): a CSV
+// as columns by header name. Empty when the file is absent (callers skip
+// with VGD_REQUIRE_SHARED()).
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_paths.hpp"
+
+namespace vgd::test {
+
+inline std::map<std::string, std::vector<double>> reference_csv(const std::string& name) {
+  std::map<std::string, std::vector<double>> cols;
+  std::ifstream in(shared_dir() / "reference" / name);
+  if (!in) return cols;
+  std::string line, cell;
+  std::getline(in, line);
+  std::vector<std::string> head;
+  for (std::stringstream ss(line); std::getline(ss, cell, ',');) head.push_back(cell);
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    for (std::size_t k = 0; k < head.size() && std::getline(ss, cell, ','); ++k) cols[head[k]].push_back(std::stod(cell));
+  }
+  return cols;
+}
+
+}  // namespace vgd::test
