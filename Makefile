@@ -35,17 +35,19 @@ test: build
 # validated, drawn and meshed. Each step is a plain vgd command.
 demo: build
 	@mkdir -p $(DEMO_OUT)
-	@echo "== 1/5 draft: the project's A-line skirt from the size table (data/garments/a-line-skirt.dxf is the committed copy)"
+	@echo "== 1/6 draft: the project's A-line skirt from the size table (data/garments/a-line-skirt.dxf is the committed copy)"
 	@$(VGD) draft skirt -o $(DEMO_OUT)/a-line-skirt.dxf
-	@echo "== 2/5 import: AAMA DXF -> XVC document"
+	@echo "== 2/6 import: AAMA DXF -> XVC document"
 	@$(VGD) import data/garments/a-line-skirt.dxf --report -o $(DEMO_OUT)/skirt.xvc
-	@echo "== 3/5 validate against schemas/xvc.xsd and the reference rules"
+	@echo "== 3/6 validate against schemas/xvc.xsd and the reference rules"
 	@$(VGD) validate $(DEMO_OUT)/skirt.xvc
-	@echo "== 4/5 draw the patterns (schemas/xvc-to-svg.xsl)"
+	@echo "== 4/6 draw the patterns (schemas/xvc-to-svg.xsl)"
 	@$(VGD) svg $(DEMO_OUT)/skirt.xvc -o $(DEMO_OUT)/skirt.svg
-	@echo "== 5/5 mesh the sample size (CGAL, 1 cm spacing, 25 deg) and write Triangle files"
+	@echo "== 5/6 mesh the sample size (CGAL, 1 cm spacing, 25 deg) and write Triangle files"
 	@$(VGD) mesh $(DEMO_OUT)/skirt.xvc --triangle-files $(DEMO_OUT)/mesh
-	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf skirt.xvc skirt.svg mesh/"
+	@echo "== 6/6 simulate the seed's flag in the wind for 2 s (data/scenes/flag.json)"
+	@$(VGD) simulate data/scenes/flag.json --duration 2 -o $(DEMO_OUT)/flag --profile
+	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf skirt.xvc skirt.svg mesh/ flag/ (OBJ frames)"
 
 asan:
 	@$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_ARGS="-DVGD_SANITIZE=ON -DVGD_BUILD_BENCHMARKS=OFF"
