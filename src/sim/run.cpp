@@ -2,7 +2,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <limits>
+
+#include "vgd/core/diagnostics.hpp"
 
 namespace vgd::sim {
 
@@ -18,23 +21,51 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   const int frames = static_cast<int>(std::floor(settings.duration * settings.fps + 1e-9));
   const double t0 = s.t;
 
+  VGD_ASSERT(s.x.size() == sys.num_dofs() && s.v.size() == sys.num_dofs(),
+             "sim::run takes the state in the system's current (reduced) particle set");
   for (auto* sink : sinks) sink->begin(sys.model());
+  // Sinks see the model's original particles (seed 002 §3.3: E-Fabric's client
+  // keeps an eliminated particle with its survivor's attributes), so every
+  // frame of a run has one topology whatever merged.
+  VecX full;
   auto emit = [&](int index) {
-    for (auto* sink : sinks) sink->frame(index, s.t, s.x);
+    const VecX* x = &s.x;
+    if (sys.merged()) {
+      full = sys.expand(s.x);
+      x = &full;
+    }
+    for (auto* sink : sinks) sink->frame(index, s.t, *x);
     summary.frames = index + 1;
+    summary.times.push_back(s.t);
+    summary.kinetic_energy.push_back(sys.kinetic_energy(s.v) / std::max(1, sys.num_particles()));
   };
+  // Seam merges at frame boundaries only: the integrator then starts afresh
+  // on the smaller system.
+  auto merge = [&](bool prepared) {
+    if (!sys.apply_merges(s)) return;
+    if (prepared) integrator.reset(sys, s);
+  };
+  int calm = 0;  // frames in a row below the rest energy
   try {
     sys.apply_prescribed(s);
+    merge(false);
     integrator.prepare(sys, s);
     sys.check_state(s, std::numeric_limits<double>::infinity());
     emit(0);
     for (int k = 1; k <= frames; ++k) {
       // A failing step throws before its frame is emitted: sinks only ever see checked states.
       integrator.advance(sys, s, t0 + k / settings.fps);
+      merge(true);
       emit(k);
+      const double ke = summary.kinetic_energy.back();
+      calm = settings.rest_energy > 0.0 && ke < settings.rest_energy ? calm + 1 : 0;
       if (progress) {
         const double w = wall();
-        progress({k, frames, s.t - t0, settings.duration, w, w / k * (frames - k)});
+        progress({k, frames, s.t - t0, settings.duration, w, w / k * (frames - k), ke});
+      }
+      if (settings.rest_energy > 0.0 && calm >= std::max(1, settings.rest_frames)) {
+        summary.at_rest = true;
+        break;
       }
     }
   } catch (const SimulationError& e) {

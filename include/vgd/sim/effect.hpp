@@ -6,7 +6,9 @@
 // Every effect implements the same small set of verbs (IPC Toolkit's Potential,
 // MuJoCo's passive forces): forces, optionally their Jacobian, its potential
 // energy, a stiffness bound for the explicit stability limit, prescribed motion
-// (pins) and an after-step hook (deformation limits; later collisions and seams).
+// (pins), an after-step hook (deformation limits, collisions) and the seams'
+// merge verbs (merge_requests, particles_merged).
+#include <array>
 #include <vector>
 
 #include "vgd/sim/model.hpp"
@@ -50,9 +52,30 @@ class Effect {
   // Writes the prescribed particles' positions (m) and velocities (m/s) at time t.
   virtual void prescribe(double t, VecX& x, VecX& v) const {}
 
+  // Constraint effects (contacts) may change the total force after every
+  // effect has added its share: seed 002 cancels the normal component of a
+  // colliding particle's force. Called in effect order, only for effects whose
+  // constrains_forces() is true, after all add_forces.
+  virtual bool constrains_forces() const { return false; }
+  virtual void constrain_forces(const Eval& e, VecX& f) {}
+
   // Runs after every accepted step; may change positions and velocities
   // (deformation limiting, later collision projection and seam merges).
   virtual void after_step(const Model& m, State& s) {}
+  // Seams (docs/seams.md). Merges happen between integrator advances (frame
+  // boundaries of sim::run), in System::apply_merges, never inside a step.
+  // Adds pairs of particles (indices of the Model) that should become one
+  // particle now; `full` holds every particle of the Model (merged particles'
+  // copies share position and velocity).
+  virtual void merge_requests(const Model& m, const State& full, std::vector<std::array<int, 2>>& out) {}
+  // Particles were merged. Effects keep their original indexing and are
+  // evaluated on full vectors, so nothing is required; representative[i] is
+  // the reduced particle of original particle i (equal values: one particle),
+  // for effects that drop elements made degenerate or duplicate by the merge
+  // (a spring with both ends on one particle, two springs on one edge).
+  // Called on every effect, active or not.
+  virtual void particles_merged(const Model& m, const std::vector<int>& representative) {}
+
   // True when the effect has done all its work and may leave the step.
   virtual bool finished() const { return false; }
 };

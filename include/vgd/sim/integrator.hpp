@@ -66,6 +66,11 @@ class Integrator {
   // SimulationError explaining why a run would fail (an explicit step above
   // the stability limit) and what would work.
   virtual void prepare(System& sys, const State& s) {}
+  // The system changed between two advances (seam merges: fewer particles,
+  // new masses and stiffness bounds): drops what was sized or factored for the
+  // old system (buffers, CVODE's history) and checks the settings again, as
+  // prepare does. Statistics keep counting.
+  virtual void reset(System& sys, const State& s) { prepare(sys, s); }
   // Advances s to t_end (s). Throws SimulationError on a blow-up or solver failure.
   virtual void advance(System& sys, State& s, double t_end) = 0;
   virtual IntegratorStats stats() const = 0;

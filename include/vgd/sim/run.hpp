@@ -34,13 +34,19 @@ class MemorySink : public FrameSink {
 
 struct RunSettings {
   double fps = 30.0;        // frames per second of simulated time
-  double duration = 1.0;    // s of simulated time
+  double duration = 1.0;    // s of simulated time: the time limit when rest detection is on
+  // Rest detection: the run ends early once the mean kinetic energy per
+  // particle, ½ Σ m v² / N (J), stays below rest_energy for rest_frames frames
+  // in a row. 0 = off (the run lasts `duration`).
+  double rest_energy = 0.0;
+  int rest_frames = 10;
 };
 
 struct Progress {
   int frame = 0, frames = 0;   // frames done, total
   double t = 0.0, duration = 0.0;  // s simulated
   double wall_s = 0.0, eta_s = 0.0;  // wall time so far and estimate of what is left
+  double kinetic_energy = 0.0;  // J per particle at this frame
 };
 
 struct RunSummary {
@@ -50,8 +56,18 @@ struct RunSummary {
   double simulated_s = 0.0;
   double wall_s = 0.0;
   IntegratorStats stats;
+  bool at_rest = false;                // ended by rest detection (before `duration`)
+  std::vector<double> times;           // s, per emitted frame
+  std::vector<double> kinetic_energy;  // J per particle, per emitted frame
 };
 
+// Runs from s to s.t + settings.duration. s is in the system's current
+// particle set (System::num_particles(): the model's full set until seams
+// merge; initial_state(sys.model()) for a fresh system) and stays in it: after
+// merges it holds the reduced set; System::expand(s.x) gives the positions of
+// every original particle. Seam merges are applied at frame boundaries
+// (System::apply_merges; the integrator is then reset); sinks always receive
+// the original particle set, a merged particle's copies at one position.
 RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings& settings,
                const std::vector<FrameSink*>& sinks, const std::function<void(const Progress&)>& progress = {});
 

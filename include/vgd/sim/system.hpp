@@ -2,6 +2,17 @@
 // The system an integrator advances: a model plus the effects a scene called
 // for. It sums forces, assembles Jacobians, applies prescribed motion, checks
 // states, and counts and times every effect (the per-effect profile).
+//
+// Seam merges (docs/seams.md) happen in the System's coordinates: the Model
+// and the effects keep the original particles ("full" set, Model indexing);
+// after merges the integrator's State holds the reduced set
+// (num_particles() ≤ num_particles_full()). Every verb below takes and
+// returns reduced vectors: the System expands a reduced x, v to the full set
+// (a merged particle's copies get its position and velocity), evaluates the
+// effects on full vectors and reduces forces and Jacobian rows and columns by
+// summing copies. A merged particle's mass is the sum of its copies' masses —
+// exactly what deleting a vertex and re-pointing its triangles does to lumped
+// masses. Before the first merge reduced = full and nothing is expanded.
 #include <chrono>
 #include <memory>
 #include <string>
@@ -32,8 +43,24 @@ class System {
  public:
   System(Model model, std::vector<std::unique_ptr<Effect>> effects);
 
+  // The original model (full particle set; never changes).
   const Model& model() const { return model_; }
-  int num_dofs() const { return model_.num_dofs(); }
+  // Particles and degrees of freedom the integrator advances (reduced set).
+  int num_particles() const { return static_cast<int>(mass_.size()); }
+  int num_dofs() const { return 3 * num_particles(); }
+  int num_particles_full() const { return model_.num_particles(); }
+  // Masses (kg) of the reduced particles.
+  const VecX& mass() const { return mass_; }
+  // True once some particles were merged.
+  bool merged() const { return merged_; }
+  // Original particle → reduced particle (identity before any merge).
+  const std::vector<int>& representative() const { return rep_; }
+  // A reduced 3N vector (positions, velocities) as the full set: merged
+  // particles' copies get the same values. Returns the input unchanged before any merge.
+  VecX expand(const VecX& reduced) const;
+  // A full state in the current reduced coordinates: each merged particle at
+  // the mass-weighted mean of its copies' positions and velocities.
+  State reduce(const State& full) const;
   const std::vector<std::unique_ptr<Effect>>& effects() const { return effects_; }
 
   // Sum of all effects' forces (N); rows of prescribed particles are zero.
@@ -56,7 +83,18 @@ class System {
   double kinetic_energy(const VecX& v) const;
   double potential_energy(double t, const VecX& x, const VecX& v) const;
 
-  // Gershgorin bounds at the rest shape (computed once).
+  // Seams: gathers the active effects' merge requests at s (reduced), unites
+  // them with the merges so far (a particle may merge with several: seam
+  // crossings, corners), and when the particle count falls maps s to the new
+  // reduced set conserving mass, Σ m x and momentum Σ m v exactly (to rounding),
+  // tells every effect (Effect::particles_merged) and recomputes the stiffness
+  // bounds. A request that would make one particle of two prescribed ones is
+  // ignored (they follow their own paths). Returns true when particles were
+  // merged: integrators must then be reset (Integrator::reset). Call only
+  // between integrator advances (sim::run does, at frame boundaries).
+  bool apply_merges(State& s);
+
+  // Gershgorin bounds at the rest shape (computed at construction and after every merge).
   const Stiffness& stiffness() const { return stiffness_; }
 
   // Throws SimulationError if x or v holds a non-finite value or a particle
@@ -71,11 +109,26 @@ class System {
   // Σ effect forces, unmasked; counts and times every effect.
   void sum_forces(double t, const VecX& x, const VecX& v, VecX& f);
 
+  void compute_stiffness();
+  // Full-set scratch state from a reduced one (t, x, v).
+  void expand_into(const VecX& reduced, VecX& full) const;
+  // Reduced forces (or any per-dof sum) from full ones: copies summed.
+  void reduce_sum(const VecX& full, VecX& reduced) const;
+
   Model model_;
+  // ---- merges (identity, merged_ false, until the first merge) ----
+  bool merged_ = false;
+  std::vector<int> rep_;               // original particle → reduced particle
+  std::vector<int> first_;             // reduced particle → its lowest original particle
+  VecX mass_;                          // reduced masses (kg)
+  std::vector<int> prescribed_full_;   // prescribed original particles, sorted
+  VecX xf_, vf_, ff_;                  // full-set scratch vectors (forces, Jacobians)
+  mutable VecX px_, pv_;               // full-set scratch of apply_prescribed
+  State sf_;                           // full-set scratch state (after-step hooks, merge requests)
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<EffectProfile> profile_;  // parallel to effects_
   std::vector<bool> active_;
-  std::vector<int> prescribed_;
+  std::vector<int> prescribed_;  // prescribed reduced particles
   VecX free_;
   VecX inv_mass_dof_;  // 3N: 1/m for free dofs, 0 for prescribed ones
   Stiffness stiffness_;

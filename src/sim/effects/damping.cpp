@@ -47,6 +47,25 @@ class Damping final : public Effect {
     }
     return false;
   }
+  // Seam merges: the merged mesh's edges (merged_topology): dashpots whose
+  // ends became one particle go, and of two on one particle pair the first is
+  // kept (one dashpot per edge, as mass-spring keeps one spring per edge).
+  void particles_merged(const Model&, const std::vector<int>& rep) override {
+    std::vector<std::pair<std::array<int, 2>, std::size_t>> keyed;
+    for (std::size_t q = 0; q < edges_.size(); ++q) {
+      const int ra = rep[edges_[q][0]], rb = rep[edges_[q][1]];
+      if (ra != rb) keyed.push_back({{std::min(ra, rb), std::max(ra, rb)}, q});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::size_t> keep;
+    for (std::size_t q = 0; q < keyed.size(); ++q)
+      if (q == 0 || keyed[q].first != keyed[q - 1].first) keep.push_back(keyed[q].second);
+    std::sort(keep.begin(), keep.end());
+    std::vector<std::array<int, 2>> kept;
+    kept.reserve(keep.size());
+    for (std::size_t q : keep) kept.push_back(edges_[q]);
+    edges_ = std::move(kept);
+  }
   void add_stiffness_bound(const Model&, VecX&, VecX& c) const override {
     for (const auto& [i, j] : edges_) {
       c[i] += 2 * c_;

@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <string>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 
 namespace vgd::sim {
 
@@ -471,6 +473,54 @@ class MassSpring final : public Effect {
       k_rows[a] += ks, k_rows[b] += ks;
       c_rows[a] += 2.0 * kd_[s], c_rows[b] += 2.0 * kd_[s];
     }
+  }
+
+  // Seam merges (seed 002 §3.3): the restructured mesh loses the springs
+  // whose ends became one particle and keeps one spring per particle pair.
+  // Where two springs now join the same pair (the two hems' edges along a
+  // sewn seam) the first in spring order is kept — the spring of the lower
+  // particle indices, as E-Fabric keeps the surviving vertex's edge. Keeping
+  // the stiffer one was not chosen: it would make the result depend on which
+  // material is stiffer along that direction (a warp hem sewn to a weft hem
+  // would take the warp constant and rest length), and summing both would
+  // double the stiffness of every seam line; one spring per edge is what
+  // rebuilding the springs from the merged mesh gives. The limiter's springs
+  // and the parallel partition are rebuilt.
+  void particles_merged(const Model&, const std::vector<int>& rep) override {
+    const int n = static_cast<int>(k_.size());
+    std::vector<std::pair<std::array<int, 2>, int>> keyed;  // reduced pair, spring
+    keyed.reserve(n);
+    for (int s = 0; s < n; ++s) {
+      const int ra = rep[ia_[s] / 3], rb = rep[ib_[s] / 3];
+      if (ra != rb) keyed.push_back({{std::min(ra, rb), std::max(ra, rb)}, s});
+    }
+    std::sort(keyed.begin(), keyed.end());  // by pair, then by spring: the first of a pair is kept
+    std::vector<int> keep;
+    for (std::size_t q = 0; q < keyed.size(); ++q)
+      if (q == 0 || keyed[q].first != keyed[q - 1].first) keep.push_back(keyed[q].second);
+    if (static_cast<int>(keep.size()) == n) return;
+    std::sort(keep.begin(), keep.end());  // original order: neighbouring springs, neighbouring memory
+    std::vector<int> new_index(n, -1);
+    auto pick = [&](auto& v) {
+      std::remove_reference_t<decltype(v)> out;
+      out.reserve(keep.size());
+      for (int s : keep) out.push_back(v[s]);
+      v = std::move(out);
+    };
+    for (std::size_t q = 0; q < keep.size(); ++q) new_index[keep[q]] = static_cast<int>(q);
+    pick(ia_), pick(ib_), pick(k_), pick(kd_), pick(r_);
+    std::size_t w = 0;
+    for (std::size_t q = 0; q < lim_spring_.size(); ++q) {
+      if (new_index[lim_spring_[q]] < 0) continue;
+      lim_spring_[w] = new_index[lim_spring_[q]];
+      lim_length_[w] = lim_length_[q], lim_share_a_[w] = lim_share_a_[q], lim_share_b_[w] = lim_share_b_[q];
+      ++w;
+    }
+    lim_spring_.resize(w), lim_length_.resize(w), lim_share_a_.resize(w), lim_share_b_.resize(w);
+    stats_.springs = static_cast<int>(k_.size());
+    stats_.limited_springs = static_cast<int>(w);
+    chunks_.clear();
+    buffer_dofs_ = -1;
   }
 
   // Provot (1995), "Deformation constraints in a mass-spring model to describe

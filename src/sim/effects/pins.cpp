@@ -20,6 +20,9 @@ class Pins final : public Effect {
   void prescribed_particles(std::vector<int>& out) const override {
     out.insert(out.end(), particles_.begin(), particles_.end());
   }
+  // Seam merges need nothing here: the System maps each pinned particle to
+  // its merged particle (which is then prescribed) and never merges two pinned
+  // particles into one.
   void prescribe(double t, VecX& x, VecX& v) const override {
     for (std::size_t k = 0; k < particles_.size(); ++k) {
       at(x, particles_[k]) = start_[k] + t * velocity_;

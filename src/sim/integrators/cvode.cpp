@@ -34,6 +34,10 @@
 //   the right-hand side (one evaluation per product, counted in
 //   rhs_evaluations) and so includes every effect.
 //
+// Seam merges (System::apply_merges, between advances) change the number of
+// unknowns: sim::run then calls reset(), and the next advance builds a new
+// CVODE of the new size (order 1, a fresh initial step).
+//
 // After-step hooks (deformation limits, later collisions) change the state,
 // which invalidates CVODE's history. They run once per advance() call, i.e.
 // once per frame under sim::run, on the state CVODE returns at t_end. When a
@@ -179,6 +183,13 @@ class Bdf final : public Integrator {
       throw SimulationError("BDF max step must be >= 0 s, 0 meaning no limit (got " + fmt(st.max_step) + ")");
   }
 
+  // A merge changed the system: bind() rebuilds the free-dof map and a new
+  // CVODE of the new size (statistics are folded, not lost).
+  void reset(System& sys, const State& s) override {
+    prepare(sys, s);
+    sys_ = nullptr;
+  }
+
   void advance(System& sys, State& s, double t_end) override {
     if (!(t_end > s.t)) return;
     bind(sys);
@@ -217,9 +228,10 @@ class Bdf final : public Integrator {
       }
     nf_ = static_cast<int>(free_.size());
     inv_mass_.resize(nf_);
-    for (int j = 0; j < nf_; ++j) inv_mass_[j] = 1.0 / sys.model().mass[free_[j] / 3];
-    eval_.x = sys.model().x0;
-    eval_.v = sys.model().v0;
+    for (int j = 0; j < nf_; ++j) inv_mass_[j] = 1.0 / sys.mass()[free_[j] / 3];
+    // Every entry is written before use: free ones from y, prescribed ones by apply_prescribed.
+    eval_.x = VecX::Zero(n);
+    eval_.v = VecX::Zero(n);
     pat_ptr_.clear();
     pat_rows_.clear();
     have_jacobian_ = false;

@@ -157,6 +157,7 @@ class ImplicitEuler final : public FixedStepIntegrator {
 
   void prepare(System& sys, const State& s) override {
     FixedStepIntegrator::prepare(sys, s);
+    mass_dof_.resize(0);  // rebuilt from the system's (possibly merged) masses on the next step
     if (settings_.newton_iterations < 1)
       throw SimulationError("implicit Euler needs at least 1 Newton iteration (got " +
                             std::to_string(settings_.newton_iterations) + ")");
@@ -216,7 +217,7 @@ class ImplicitEuler final : public FixedStepIntegrator {
     const VecX& filter = sys.free_dofs();
     if (mass_dof_.size() != n) {
       mass_dof_.resize(n);
-      for (int i = 0; i < n / 3; ++i) at(mass_dof_, i).setConstant(sys.model().mass[i]);
+      for (int i = 0; i < n / 3; ++i) at(mass_dof_, i).setConstant(sys.mass()[i]);
       inv_mass_dof_ = mass_dof_.cwiseInverse();
       mass_matrix_.resize(n, n);
       mass_matrix_.setIdentity();

@@ -1,0 +1,53 @@
+#pragma once
+// Cloth against itself, within a piece and between pieces (docs/collisions.md):
+// point–triangle proximity found through a spatial hash of the particles,
+// rebuilt at every call (O(N)), with the two parts of Bridson, Fedkiw and
+// Anderson (2002):
+//
+//  - a repulsion spring (add_forces): a particle closer than `thickness` to a
+//    triangle (its projection inside the triangle, not one of its corners) is
+//    pushed away along the triangle normal with f = k (thickness − d), the
+//    triangle's corners take −f shared by barycentric weight;
+//  - after each step, for the same pairs: an inelastic impulse stops the
+//    particle's normal approach to the triangle, and a position correction
+//    puts it back to `thickness` on the side it came from (the side before the
+//    step, so a particle that went through in one step is brought back), both
+//    shared by inverse mass and barycentric weight. A few Gauss–Seidel passes.
+//
+// Edge–edge pairs (the edges at particles near a triangle against its edges,
+// closest points interior to both) get the same correction and impulse along
+// their closest-point direction before the step: a fold can pass two edges
+// through each other with no corner near a face (found by the fold test).
+// The repulsion force is point–triangle only.
+// The scene switches this effect on only when it asks for self-collisions.
+#include <memory>
+#include <vector>
+
+#include "vgd/sim/effect.hpp"
+
+namespace vgd::sim {
+
+struct SelfCollisionDef {
+  double thickness = 0.003;  // m: the smallest particle–triangle distance kept (the cloth's collision thickness)
+  // N/m: repulsion spring within the thickness. Enters the explicit stability
+  // bound (2k per particle: a particle rarely presses on more than two
+  // triangles at once). 0 = impulses and corrections only.
+  double stiffness = 1.0;
+  bool skip_one_ring = false;  // also skip particles sharing an edge with the triangle
+  int passes = 4;              // Gauss–Seidel passes of the after-step correction
+  std::vector<int> fixed;      // particles never moved (the scene's pins)
+};
+
+struct SelfCollisionStats {
+  int pairs = 0;                  // point–triangle pairs within the thickness after the last step (before correction)
+  int crossings = 0;              // of those, particles that had gone through their triangle in the last step
+  long pairs_total = 0;           // whole run
+  double min_distance = 0.0;      // m: smallest pair distance after the last correction (thickness if none)
+};
+
+std::unique_ptr<Effect> make_self_collision(const Model& model, const SelfCollisionDef& def);
+
+// The statistics of an effect made by make_self_collision (asserts otherwise).
+const SelfCollisionStats& self_collision_stats(const Effect& effect);
+
+}  // namespace vgd::sim

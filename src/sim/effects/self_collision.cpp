@@ -1,0 +1,377 @@
+// Cloth self-collision: spatial hash, point–triangle repulsion and after-step
+// impulses and corrections (include/vgd/sim/effects/self_collision.hpp).
+//
+// The hash holds particles, not triangles: one entry per particle (N inserts,
+// a counting sort into a table of ≥ 2N buckets), and each triangle visits the
+// cells its box (grown by the thickness) covers. Cells are as wide as the mean
+// rest edge (at least two thicknesses), so a triangle visits about 8–27 cells.
+#include "vgd/sim/effects/self_collision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <tuple>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/sim/effects/basic.hpp"
+
+namespace vgd::sim {
+namespace {
+
+// Barycentric tolerance of "the projection is inside the triangle": a point
+// over a shared edge belongs to both triangles rather than to neither.
+constexpr double kInsideTolerance = 0.02;
+
+class SpatialHash {
+ public:
+  void build(const VecX& x, int n, double cell) {
+    inv_cell_ = 1.0 / cell;
+    std::size_t size = 1;
+    while (size < 2 * static_cast<std::size_t>(n)) size <<= 1;
+    mask_ = size - 1;
+    start_.assign(size + 1, 0);
+    cell_.resize(n);
+    bucket_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      cell_[i] = cell_of(at(x, i));
+      bucket_[i] = hash(cell_[i]);
+      ++start_[bucket_[i] + 1];
+    }
+    for (std::size_t b = 0; b < size; ++b) start_[b + 1] += start_[b];
+    items_.resize(n);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (int i = 0; i < n; ++i) items_[fill_[bucket_[i]]++] = i;
+  }
+
+  std::array<int, 3> cell_of(const Vec3& p) const {
+    return {static_cast<int>(std::floor(p.x() * inv_cell_)), static_cast<int>(std::floor(p.y() * inv_cell_)),
+            static_cast<int>(std::floor(p.z() * inv_cell_))};
+  }
+
+  // Calls f(i) once for every particle whose cell meets the box [lo, hi].
+  template <class F>
+  void for_each_in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
+    const auto a = cell_of(lo), b = cell_of(hi);
+    for (int k = a[2]; k <= b[2]; ++k)
+      for (int j = a[1]; j <= b[1]; ++j)
+        for (int i = a[0]; i <= b[0]; ++i) {
+          const std::array<int, 3> c{i, j, k};
+          const std::size_t h = hash(c);
+          for (std::size_t s = start_[h]; s < start_[h + 1]; ++s) {
+            const int p = items_[s];
+            if (cell_[p] == c) f(p);  // other cells sharing the bucket: skip
+          }
+        }
+  }
+
+ private:
+  std::size_t hash(const std::array<int, 3>& c) const {
+    const std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 73856093u ^ static_cast<std::uint64_t>(c[1]) * 19349663u ^
+                            static_cast<std::uint64_t>(c[2]) * 83492791u;
+    return static_cast<std::size_t>(h) & mask_;
+  }
+  double inv_cell_ = 1.0;
+  std::size_t mask_ = 0;
+  std::vector<std::size_t> start_, fill_, bucket_;
+  std::vector<int> items_;
+  std::vector<std::array<int, 3>> cell_;
+};
+
+struct Pair {
+  int p, t;
+  double side;  // +1 / −1: the side of the triangle the particle must stay on
+};
+
+// The particle's height over the triangle's plane and the barycentric
+// coordinates of its projection; false for a degenerate triangle.
+inline bool project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& nrm, double& dn, Vec3& w) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 cr = e1.cross(e2);
+  const double len2 = cr.squaredNorm();
+  if (len2 <= 0.0) return false;
+  nrm = cr / std::sqrt(len2);
+  const Vec3 r = p - a;
+  dn = r.dot(nrm);
+  // Barycentric coordinates of the projection (r − dn n) in (e1, e2).
+  const double w1 = r.cross(e2).dot(cr) / len2, w2 = e1.cross(r).dot(cr) / len2;
+  w = {1.0 - w1 - w2, w1, w2};
+  return true;
+}
+
+inline bool inside(const Vec3& w) { return w.minCoeff() >= -kInsideTolerance; }
+
+// Closest points of segments p0p1 and q0q1 (Ericson §5.1.9): parameters s, t
+// in [0, 1]; false when both are degenerate or parallel.
+inline bool closest_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, double& s, double& t) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double c = d1.dot(r), b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  if (a <= 0.0 || e <= 0.0 || denom <= 1e-12 * a * e) return false;  // parallel: the point tests cover it
+  s = std::clamp((b * f - c * e) / denom, 0.0, 1.0);
+  t = (b * s + f) / e;
+  if (t < 0.0) {
+    t = 0.0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  return true;
+}
+
+// Two edges (a0, a1) and (b0, b1) to be kept `thickness` apart along dir
+// (from b towards a, as before the step).
+struct EdgePair {
+  int a0, a1, b0, b1;
+  Vec3 dir;
+};
+
+class SelfCollision final : public Effect {
+ public:
+  SelfCollision(const Model& m, const SelfCollisionDef& d) : def_(d), tris_(m.triangles), n_(m.num_particles()) {
+    if (!(d.thickness > 0.0)) throw SimulationError("self collision: thickness must be > 0");
+    inv_mass_.resize(n_);
+    for (int i = 0; i < n_; ++i) inv_mass_[i] = 1.0 / m.mass[i];
+    for (int p : d.fixed) {
+      if (p < 0 || p >= n_) throw SimulationError("self collision: fixed particle " + std::to_string(p) + " does not exist");
+      inv_mass_[p] = 0.0;
+    }
+    double sum = 0.0;
+    const auto edges = mesh_edges(tris_);
+    for (const auto& e : edges) sum += (at(m.x0, e[0]) - at(m.x0, e[1])).norm();
+    const double mean_edge = edges.empty() ? d.thickness : sum / edges.size();
+    cell_ = std::max(mean_edge, 2.0 * d.thickness);
+    adj_.resize(n_);
+    for (const auto& e : edges) {
+      adj_[e[0]].push_back(e[1]);
+      adj_[e[1]].push_back(e[0]);
+    }
+    if (d.skip_one_ring) {
+      ring_.resize(n_);
+      for (const auto& e : edges) {
+        ring_[e[0]].push_back(e[1]);
+        ring_[e[1]].push_back(e[0]);
+      }
+    }
+    stats_.min_distance = d.thickness;
+  }
+
+  const char* name() const override { return "self-collision"; }
+
+  void add_forces(const Eval& e, VecX& f) override {
+    if (def_.stiffness <= 0.0 || tris_.empty()) return;
+    hash_.build(e.x, n_, cell_);
+    const double th = def_.thickness, k = def_.stiffness;
+    for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
+      const auto& tr = tris_[t];
+      const Vec3 a = at(e.x, tr[0]), b = at(e.x, tr[1]), c = at(e.x, tr[2]);
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(th), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(th);
+      hash_.for_each_in_box(lo, hi, [&](int p) {
+        if (skip(p, tr)) return;
+        Vec3 nrm, w;
+        double dn;
+        if (!project(at(e.x, p), a, b, c, nrm, dn, w) || std::abs(dn) >= th || !inside(w)) return;
+        const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
+        at(f, p) += fp;
+        for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
+      });
+    }
+  }
+  bool add_jacobian(const Eval&, Triplets&, Triplets&) override { return false; }  // contact springs enter explicitly
+  void add_stiffness_bound(const Model&, VecX& k, VecX&) const override { k.array() += 2.0 * def_.stiffness; }
+
+  void after_step(const Model& m, State& s) override {
+    if (tris_.empty()) return;
+    if (x_prev_.size() != s.x.size()) x_prev_ = m.x0.size() == s.x.size() ? m.x0 : s.x;
+    const double th = def_.thickness;
+    // How far any particle moved this step: a particle that went through a
+    // triangle is at most that far on the wrong side.
+    double motion = 0.0;
+    for (int i = 0; i < n_; ++i) motion = std::max(motion, (at(s.x, i) - at(x_prev_, i)).squaredNorm());
+    motion = std::sqrt(motion);
+    hash_.build(s.x, n_, cell_);
+    pairs_.clear();
+    edge_pairs_.clear();
+    int crossings = 0;
+    for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
+      const auto& tr = tris_[t];
+      const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
+      const Vec3 grow = Vec3::Constant(th + motion);
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - grow, hi = a.cwiseMax(b).cwiseMax(c) + grow;
+      hash_.for_each_in_box(lo, hi, [&](int p) {
+        if (skip(p, tr)) return;
+        Vec3 nrm, w;
+        double dn;
+        if (!project(at(s.x, p), a, b, c, nrm, dn, w) || !inside(w) || std::abs(dn) >= th + motion) return;
+        // The side before the step.
+        Vec3 nrm0, w0;
+        double dn0;
+        double side = dn >= 0.0 ? 1.0 : -1.0;
+        if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0, dn0, w0) &&
+            std::abs(dn0) > 1e-12)
+          side = dn0 > 0.0 ? 1.0 : -1.0;
+        if (side * dn >= th) return;  // on its side and far enough
+        if (side * dn < 0.0) ++crossings;
+        pairs_.push_back({p, t, side});
+      });
+      // Edge–edge: the edges at the particles near this triangle against its edges.
+      hash_.for_each_in_box(lo, hi, [&](int p) {
+        for (int q : adj_[p]) {
+          if (q < p && in_box(at(s.x, q), lo, hi)) continue;  // the edge is met from q as well
+          for (int k = 0; k < 3; ++k) {
+            const int b0 = tr[k], b1 = tr[(k + 1) % 3];
+            if (p == b0 || p == b1 || q == b0 || q == b1) continue;
+            edge_pair(s, p, q, b0, b1, th, motion);
+          }
+        }
+      });
+    }
+    std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
+      return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
+    });
+    edge_pairs_.erase(std::unique(edge_pairs_.begin(), edge_pairs_.end(),
+                                  [](const EdgePair& x, const EdgePair& y) {
+                                    return x.a0 == y.a0 && x.a1 == y.a1 && x.b0 == y.b0 && x.b1 == y.b1;
+                                  }),
+                      edge_pairs_.end());
+    stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
+    stats_.crossings = crossings;
+    stats_.pairs_total += static_cast<long>(pairs_.size() + edge_pairs_.size());
+
+    // Gauss–Seidel: each pair in turn moves its four particles.
+    for (int pass = 0; pass < def_.passes && !(pairs_.empty() && edge_pairs_.empty()); ++pass) {
+      bool moved = false;
+      for (const Pair& pr : pairs_) moved = resolve(s, pr) || moved;
+      for (const EdgePair& ep : edge_pairs_) moved = resolve(s, ep) || moved;
+      if (!moved) break;
+    }
+    double dmin = th;
+    for (const Pair& pr : pairs_) {
+      const auto& tr = tris_[pr.t];
+      Vec3 nrm, w;
+      double dn;
+      if (project(at(s.x, pr.p), at(s.x, tr[0]), at(s.x, tr[1]), at(s.x, tr[2]), nrm, dn, w) && inside(w))
+        dmin = std::min(dmin, pr.side * dn);
+    }
+    stats_.min_distance = dmin;
+    x_prev_ = s.x;
+  }
+
+  const SelfCollisionStats& stats() const { return stats_; }
+
+ private:
+  bool skip(int p, const std::array<int, 3>& tr) const {
+    if (p == tr[0] || p == tr[1] || p == tr[2]) return true;
+    if (!ring_.empty())
+      for (int q : tr)
+        for (int r : ring_[q])
+          if (r == p) return true;
+    return false;
+  }
+
+  static bool in_box(const Vec3& x, const Vec3& lo, const Vec3& hi) {
+    return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+  }
+
+  // Records edges (a0, a1) and (b0, b1) if closer than the thickness now, or
+  // crossed during the step (their closest-point direction reversed).
+  void edge_pair(const State& s, int a0, int a1, int b0, int b1, double th, double motion) {
+    double u, w;
+    if (!closest_segments(at(s.x, a0), at(s.x, a1), at(s.x, b0), at(s.x, b1), u, w)) return;
+    if (u <= 0.0 || u >= 1.0 || w <= 0.0 || w >= 1.0) return;  // an end point: the point tests see it
+    const Vec3 r = (1 - u) * at(s.x, a0) + u * at(s.x, a1) - (1 - w) * at(s.x, b0) - w * at(s.x, b1);
+    const double dist = r.norm();
+    if (dist >= th + motion) return;
+    // Direction before the step, at the same parameters.
+    const Vec3 r0 = (1 - u) * at(x_prev_, a0) + u * at(x_prev_, a1) - (1 - w) * at(x_prev_, b0) - w * at(x_prev_, b1);
+    Vec3 dir;
+    if (r0.norm() > 1e-12) dir = r0.normalized();
+    else if (dist > 1e-12) dir = r / dist;
+    else return;
+    if (r.dot(dir) >= th) return;
+    EdgePair ep{std::min(a0, a1), std::max(a0, a1), std::min(b0, b1), std::max(b0, b1), dir};
+    edge_pairs_.push_back(ep);
+  }
+
+  bool resolve(State& s, const EdgePair& ep) {
+    double u, w;
+    if (!closest_segments(at(s.x, ep.a0), at(s.x, ep.a1), at(s.x, ep.b0), at(s.x, ep.b1), u, w)) return false;
+    const int idx[4] = {ep.a0, ep.a1, ep.b0, ep.b1};
+    const double c[4] = {1 - u, u, -(1 - w), -w};
+    double wsum = 0.0, dist = 0.0, vn = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      wsum += c[k] * c[k] * inv_mass_[idx[k]];
+      dist += c[k] * at(s.x, idx[k]).dot(ep.dir);
+      vn += c[k] * at(s.v, idx[k]).dot(ep.dir);
+    }
+    if (wsum <= 0.0) return false;
+    bool moved = false;
+    const double gap = def_.thickness - dist;
+    if (gap > 1e-9 * def_.thickness) {
+      for (int k = 0; k < 4; ++k) at(s.x, idx[k]) += (gap / wsum) * c[k] * inv_mass_[idx[k]] * ep.dir;
+      moved = true;
+    }
+    if (vn < 0.0) {
+      for (int k = 0; k < 4; ++k) at(s.v, idx[k]) += (-vn / wsum) * c[k] * inv_mass_[idx[k]] * ep.dir;
+      moved = true;
+    }
+    return moved;
+  }
+
+  // One pair: position back to the thickness on its side, then no approach.
+  bool resolve(State& s, const Pair& pr) {
+    const auto& tr = tris_[pr.t];
+    Vec3 nrm, w;
+    double dn;
+    if (!project(at(s.x, pr.p), at(s.x, tr[0]), at(s.x, tr[1]), at(s.x, tr[2]), nrm, dn, w)) return false;
+    const Vec3 dir = pr.side * nrm;  // from the triangle towards where the particle belongs
+    const double wsum = inv_mass_[pr.p] + w[0] * w[0] * inv_mass_[tr[0]] + w[1] * w[1] * inv_mass_[tr[1]] +
+                        w[2] * w[2] * inv_mass_[tr[2]];
+    if (wsum <= 0.0) return false;
+    bool moved = false;
+    const double gap = def_.thickness - pr.side * dn;
+    if (gap > 1e-9 * def_.thickness) {
+      const double lambda = gap / wsum;
+      at(s.x, pr.p) += lambda * inv_mass_[pr.p] * dir;
+      for (int q = 0; q < 3; ++q) at(s.x, tr[q]) -= lambda * w[q] * inv_mass_[tr[q]] * dir;
+      moved = true;
+    }
+    const Vec3 vr = at(s.v, pr.p) - w[0] * at(s.v, tr[0]) - w[1] * at(s.v, tr[1]) - w[2] * at(s.v, tr[2]);
+    const double vn = vr.dot(dir);
+    if (vn < 0.0) {  // approaching: an inelastic impulse stops it
+      const double j = -vn / wsum;
+      at(s.v, pr.p) += j * inv_mass_[pr.p] * dir;
+      for (int q = 0; q < 3; ++q) at(s.v, tr[q]) -= j * w[q] * inv_mass_[tr[q]] * dir;
+      moved = true;
+    }
+    return moved;
+  }
+
+  SelfCollisionDef def_;
+  std::vector<std::array<int, 3>> tris_;
+  int n_;
+  double cell_;
+  std::vector<double> inv_mass_;
+  std::vector<std::vector<int>> ring_;
+  SpatialHash hash_;
+  std::vector<Pair> pairs_;
+  std::vector<EdgePair> edge_pairs_;
+  std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
+  VecX x_prev_;
+  SelfCollisionStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> make_self_collision(const Model& model, const SelfCollisionDef& def) {
+  return std::make_unique<SelfCollision>(model, def);
+}
+
+const SelfCollisionStats& self_collision_stats(const Effect& effect) {
+  const auto* c = dynamic_cast<const SelfCollision*>(&effect);
+  VGD_ASSERT(c != nullptr, "self_collision_stats: the effect is not a self collision");
+  return c->stats();
+}
+
+}  // namespace vgd::sim
