@@ -82,6 +82,12 @@ Piece panel(const SkirtMeasurements& m, bool back) {
   }
   remove_duplicate_vertices(o);
   make_counter_clockwise(o);
+  // The back opens at centre back: a turn point there splits the waist into two
+  // stretches, so the waistband seam can start and end at the opening (skirt_seams).
+  // The waist curve's middle vertex lies exactly on x = 0 (a symmetric Bézier at t = 1/2).
+  if (back)
+    for (auto& c : o)
+      if (c.p.x() == 0.0 && c.p.y() > hip_y) c.kind = PointKind::turn;
 
   // Side-seam notches just below the hip line, on the straight part of the seam:
   // one at the front, a pair 12 mm apart at the back (the pattern maker's code).
@@ -117,7 +123,10 @@ Piece waistband(const SkirtMeasurements& m) {
   p.block = p.name + "_" + m.size;
   p.category = "SELF";
   p.annotation = "CUT 1, FOLD LENGTHWISE";
-  p.boundary = {{Vec2(0, 0), PointKind::turn}, {Vec2(len, 0), PointKind::turn},
+  // The lower edge has a turn point where the centre-back overlap (button stand)
+  // ends, so the waist seam can leave the overlap open.
+  p.boundary = {{Vec2(0, 0), PointKind::turn}, {Vec2(m.waistband_overlap, 0), PointKind::turn},
+                {Vec2(len, 0), PointKind::turn},
                 {Vec2(len, h), PointKind::turn}, {Vec2(0, h), PointKind::turn}};
   // Side seams and centre front along the waistband (from the back opening).
   const double quarter = (m.waist + m.waist_ease) / 4.0;
@@ -162,6 +171,18 @@ Style draft_skirt_style(const std::vector<SkirtMeasurements>& sizes) {
   }
   s.sample_size = s.sizes.empty() ? "" : (std::find(s.sizes.begin(), s.sizes.end(), "38") != s.sizes.end() ? "38" : s.sizes.front());
   return s;
+}
+
+std::vector<SeamPlan> skirt_seams() {
+  // FRONT stretches: 0 hem, 1 right side, 2 waist, 3 left side. BACK: 0 hem,
+  // 1 right side, 2 waist right half (to centre back), 3 waist left half, 4 left
+  // side. WAISTBAND: 0 overlap, 1 lower edge, 2 right end, 3 top, 4 left end.
+  // FRONT's right side (+x) is the wearer's left, like BACK's left side (-x).
+  return {
+      {"left side seam", {{"FRONT", 1, 1, false}, {"BACK", 4, 4, true}}},
+      {"right side seam", {{"FRONT", 3, 3, false}, {"BACK", 1, 1, true}}},
+      {"waist seam", {{"WAISTBAND", 1, 1, false}, {"BACK", 2, 2, true}, {"FRONT", 2, 2, true}, {"BACK", 3, 3, true}}},
+  };
 }
 
 }  // namespace vgd::pattern

@@ -239,6 +239,16 @@ class Checker {
 
   void check_position(const Item& it) {
     const Node& n = *it.node;
+    // Arrangements (arrangement.hpp) belong to a PATTERN and say where it goes.
+    const bool arrangement = n.attribute("type") == "arrangement";
+    if (arrangement) {
+      if (!it.pattern || (it.parent && it.parent->tag != "PATTERN")) error(it, "an arrangement belongs inside a PATTERN");
+      for (const char* a : {"segment", "side", "height"})
+        if (!n.has_attribute(a)) error(it, std::string("an arrangement needs ") + a);
+    } else {
+      for (const char* a : {"segment", "side", "height", "clearance", "flip"})
+        if (n.has_attribute(a)) error(it, std::string(a) + " applies only to arrangements");
+    }
     if (n.has_attribute("pattern"))
       if (const Item* t = target(it, "pattern"); t && t->node->tag != "PATTERN")
         error(it, "pattern names " + std::string(t->node->id()) + ", a " + t->node->tag + ", not a PATTERN");

@@ -1,0 +1,91 @@
+#pragma once
+// Arrangements: where each pattern piece goes around the body before draping
+// (docs/xvc.md, "Arrangements"; the geometry is scene/placement.hpp).
+//
+// Stored as POSITION type="arrangement" inside its PATTERN, one per copy of the piece
+// (a SLEEVE cut twice has two: the right arm and, flipped, the left arm). Attributes:
+//   x, y       m: the piece's reference point in pattern coordinates (vgd puts it at
+//              the top centre of the piece's box, measured with the piece turned by angle)
+//   segment    neck, torso, hips, left-arm, right-arm, left-leg, right-leg
+//   side       front, back, left, right: the body direction the reference point faces
+//   height     m: neck/torso/hips: the world height (y) of the reference point;
+//              arms/legs: the distance s along the segment's axis from its start
+//              (shoulder or hip joint) to the reference point
+//   clearance  m, gap between the body and the piece (default 0.03)
+//   angle      deg, counter-clockwise rotation of the pattern about the reference point
+//              that turns its "up" (towards the neck, or the shoulder for sleeves) to +y
+//   flip       true: the piece is mirrored (cut face down): its copy for the other side
+// Units: metres and degrees.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "vgd/pattern/piece.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::xvc {
+
+struct Arrangement {
+  std::string segment = "torso";  // neck, torso, hips, left-arm, right-arm, left-leg, right-leg
+  std::string side = "front";     // front, back, left, right
+  double x = 0, y = 0;            // m: reference point, pattern coordinates
+  double height = 0;              // m: see above
+  double clearance = 0.03;        // m
+  double angle_deg = 0;           // deg
+  bool flip = false;
+};
+
+// The names the schema admits.
+const std::vector<std::string_view>& arrangement_segments();
+const std::vector<std::string_view>& arrangement_sides();
+
+// The arrangements stored in a PATTERN, in document order.
+std::vector<Arrangement> arrangements_of(const Node& pattern);
+// A POSITION element (no id: AddNode gives one).
+Node arrangement_node(const Arrangement& a);
+
+// Body heights the suggestions use (m); defaults fit vgd's default mannequin (1.68 m).
+struct ArrangementOptions {
+  double neck_point_height = 1.42;  // world height of the neck point (shoulder at the neck)
+  double waist_height = 1.05;       // world height of the natural waist
+  double clearance = 0.03;          // m
+};
+
+// From the piece's name and category: FRONT -> torso front, BACK -> torso back (top
+// edge at the neck point), SLEEVE -> the arms (LEFT/RIGHT in the name picks one; a
+// sleeve cut twice gives the right arm and the left arm flipped; cap top at s = 0),
+// COLLAR/NECK -> neck front; in a lower-body garment FRONT/BACK -> hips front/back with
+// their top at the waist and WAISTBAND -> hips front around the waist. Empty when no
+// rule fits or the piece is not cut (quantity 0). The reference point and angle come from the piece's box and grain line.
+std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body,
+                                             const ArrangementOptions& opts = {});
+// Every PATTERN of the document: (pattern id, its suggestions). A garment is lower-body
+// when a piece is a waistband or its name says skirt, trousers or pants.
+std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
+    const Document& doc, const ArrangementOptions& opts = {});
+
+// "SEGMENT:SIDE:HEIGHT[:CLEARANCE[:ANGLE[:flip]]]", e.g. "torso:front:1.25:0.03".
+// The reference point is filled in from `piece` (top centre). Throws vgd::Error.
+Arrangement parse_arrangement(std::string_view spec, const pattern::Piece& piece);
+
+// The reference point vgd uses: top centre of the piece's box with the piece turned by
+// angle_deg (m, pattern coordinates).
+pattern::Vec2 reference_point(const pattern::Piece& piece, double angle_deg);
+
+// Undoable: replaces every arrangement of a PATTERN with the given ones (empty: removes
+// them). Returns the pattern id.
+class SetArrangements : public Command {
+ public:
+  SetArrangements(std::string pattern_id, std::vector<Arrangement> arrangements);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  std::vector<Arrangement> arrangements_;
+};
+
+}  // namespace vgd::xvc

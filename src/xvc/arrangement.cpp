@@ -1,0 +1,217 @@
+// Arrangements of pattern pieces around the body (arrangement.hpp).
+#include "vgd/xvc/arrangement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/xvc/style.hpp"
+
+namespace vgd::xvc {
+
+namespace {
+
+std::string upper(std::string_view s) {
+  std::string o(s);
+  for (auto& c : o) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return o;
+}
+bool has(const std::string& s, std::string_view w) { return s.find(w) != std::string::npos; }
+
+pattern::Vec2 rotate(const pattern::Vec2& p, double deg) {
+  const double a = deg * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+}
+
+// Rotation that turns the grain line's direction to +y (0 when there is none).
+double upright_angle(const pattern::Piece& p) {
+  if (!p.grain_line) return 0;
+  const pattern::Vec2 d = p.grain_line->b - p.grain_line->a;
+  if (d.norm() == 0) return 0;
+  double a = 90.0 - std::atan2(d.y(), d.x()) * 180.0 / M_PI;
+  while (a > 180) a -= 360;
+  while (a <= -180) a += 360;
+  return std::abs(a) < 1e-9 ? 0.0 : a;
+}
+
+}  // namespace
+
+const std::vector<std::string_view>& arrangement_segments() {
+  static const std::vector<std::string_view> v = {"neck", "torso", "hips", "left-arm", "right-arm", "left-leg", "right-leg"};
+  return v;
+}
+const std::vector<std::string_view>& arrangement_sides() {
+  static const std::vector<std::string_view> v = {"front", "back", "left", "right"};
+  return v;
+}
+
+std::vector<Arrangement> arrangements_of(const Node& pattern) {
+  std::vector<Arrangement> out;
+  for (const auto& c : pattern.children) {
+    if (c.tag != "POSITION" || c.attribute("type") != "arrangement") continue;
+    Arrangement a;
+    a.segment = std::string(c.attribute("segment"));
+    a.side = std::string(c.attribute("side"));
+    a.x = parse_double(c.attribute("x")).value_or(0);
+    a.y = parse_double(c.attribute("y")).value_or(0);
+    a.height = parse_double(c.attribute("height")).value_or(0);
+    if (c.has_attribute("clearance")) a.clearance = parse_double(c.attribute("clearance")).value_or(0.03);
+    a.angle_deg = parse_double(c.attribute("angle")).value_or(0);
+    a.flip = c.attribute("flip") == "true" || c.attribute("flip") == "1";
+    out.push_back(a);
+  }
+  return out;
+}
+
+Node arrangement_node(const Arrangement& a) {
+  Node n{"POSITION", {{"type", "arrangement"}, {"x", format_double(a.x)}, {"y", format_double(a.y)}}, {}};
+  if (a.angle_deg != 0) n.set_attribute("angle", format_double(a.angle_deg));
+  n.set_attribute("segment", a.segment);
+  n.set_attribute("side", a.side);
+  n.set_attribute("height", format_double(a.height));
+  n.set_attribute("clearance", format_double(a.clearance));
+  if (a.flip) n.set_attribute("flip", "true");
+  return n;
+}
+
+pattern::Vec2 reference_point(const pattern::Piece& piece, double angle_deg) {
+  double xmin = 1e300, xmax = -1e300, ymax = -1e300;
+  for (const auto& c : piece.boundary) {
+    const auto q = rotate(c.p, angle_deg);
+    xmin = std::min(xmin, q.x());
+    xmax = std::max(xmax, q.x());
+    ymax = std::max(ymax, q.y());
+  }
+  if (piece.boundary.empty()) return pattern::Vec2::Zero();
+  return rotate(pattern::Vec2(0.5 * (xmin + xmax), ymax), -angle_deg);
+}
+
+std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body, const ArrangementOptions& opts) {
+  if (piece.quantity == 0) return {};  // not cut (a reference piece): nothing to place
+  const std::string n = upper(piece.name) + " " + upper(piece.category);
+  Arrangement a;
+  a.clearance = opts.clearance;
+  const bool band = has(n, "WAISTBAND") || (has(n, "WAIST") && has(n, "BAND"));
+  a.angle_deg = band ? 0.0 : upright_angle(piece);
+  const auto ref = reference_point(piece, a.angle_deg);
+  a.x = ref.x();
+  a.y = ref.y();
+  double box_h = 0;
+  {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : piece.boundary) {
+      lo = std::min(lo, rotate(c.p, a.angle_deg).y());
+      hi = std::max(hi, rotate(c.p, a.angle_deg).y());
+    }
+    box_h = piece.boundary.empty() ? 0 : hi - lo;
+  }
+  // The same name rules as the seam suggestions (seams.cpp): SLEEVE or ...SL, ...SL1, ...SL FR.
+  const bool sleeve = has(n, "SLEEVE") || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
+  if (sleeve) {
+    a.height = 0.0;  // the cap top at the shoulder end of the arm
+    Arrangement l = a, r = a;
+    l.segment = "left-arm";
+    l.side = "left";
+    r.segment = "right-arm";
+    r.side = "right";
+    if (has(n, "LEFT")) return {l};
+    if (has(n, "RIGHT")) return {r};
+    l.flip = true;  // one sleeve pattern cut twice: the left copy is the mirror
+    return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
+  }
+  if (band) {
+    a.segment = "hips";
+    a.side = "front";
+    a.height = opts.waist_height + 0.5 * box_h;  // folded lengthwise: the fold sits above the waist
+    return {a};
+  }
+  if (has(n, "COLLAR") || has(n, "NECK")) {
+    a.segment = "neck";
+    a.side = "front";
+    a.height = opts.neck_point_height + box_h;
+    return {a};
+  }
+  const bool front = has(n, "FRONT") || std::regex_search(n, std::regex(R"((FRT?|FT)\d*( |$))"));
+  const bool back = has(n, "BACK") || std::regex_search(n, std::regex(R"((BK|BCK)\d*( |$))"));
+  if (!front && !back) return {};
+  a.segment = lower_body ? "hips" : "torso";
+  a.side = front ? "front" : "back";
+  a.height = lower_body ? opts.waist_height : opts.neck_point_height;
+  return {a};
+}
+
+std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(const Document& doc,
+                                                                                   const ArrangementOptions& opts) {
+  bool lower = false;
+  const std::string gname = upper(doc.root().attribute("name"));
+  if (has(gname, "SKIRT") || has(gname, "TROUSER") || has(gname, "PANT")) lower = true;
+  for (const Node* p : doc.patterns()) {
+    const std::string n = upper(p->attribute("piece"));
+    if (has(n, "WAISTBAND") || has(n, "SKIRT")) lower = true;
+  }
+  std::vector<std::pair<std::string, std::vector<Arrangement>>> out;
+  for (const Node* p : doc.patterns())
+    out.emplace_back(std::string(p->id()), suggest_arrangement(to_piece(doc, p->id()), lower, opts));
+  return out;
+}
+
+Arrangement parse_arrangement(std::string_view spec, const pattern::Piece& piece) {
+  const auto parts = split(std::string(spec), ':');
+  const std::string where = "arrangement '" + std::string(spec) + "'";
+  if (parts.size() < 3 || parts.size() > 6)
+    throw Error("", where, "expected SEGMENT:SIDE:HEIGHT[:CLEARANCE[:ANGLE[:flip]]], e.g. torso:front:1.25:0.03");
+  Arrangement a;
+  a.segment = trim(parts[0]);
+  a.side = trim(parts[1]);
+  const auto& segs = arrangement_segments();
+  const auto& sides = arrangement_sides();
+  if (std::find(segs.begin(), segs.end(), a.segment) == segs.end())
+    throw Error("", where, "unknown segment '" + a.segment + "' (neck, torso, hips, left-arm, right-arm, left-leg, right-leg)");
+  if (std::find(sides.begin(), sides.end(), a.side) == sides.end())
+    throw Error("", where, "unknown side '" + a.side + "' (front, back, left, right)");
+  auto number = [&](const std::string& t, const char* what) {
+    const auto v = parse_double(trim(t));
+    if (!v || !std::isfinite(*v)) throw Error("", where, std::string(what) + " '" + t + "' is not a number");
+    return *v;
+  };
+  a.height = number(parts[2], "height (m)");
+  if (parts.size() > 3) a.clearance = number(parts[3], "clearance (m)");
+  if (a.clearance < 0) throw Error("", where, "clearance must be at least 0 m");
+  if (parts.size() > 4) a.angle_deg = number(parts[4], "angle (deg)");
+  if (parts.size() > 5) {
+    if (trim(parts[5]) != "flip") throw Error("", where, "the sixth field can only be 'flip'");
+    a.flip = true;
+  }
+  const auto ref = reference_point(piece, a.angle_deg);
+  a.x = ref.x();
+  a.y = ref.y();
+  return a;
+}
+
+SetArrangements::SetArrangements(std::string pattern_id, std::vector<Arrangement> arrangements)
+    : id_(std::move(pattern_id)), arrangements_(std::move(arrangements)) {}
+
+std::string SetArrangements::label() const { return "Arrange " + id_; }
+
+std::string SetArrangements::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const Node* p = doc.find(id_);
+  if (!p) throw Error(doc.name(), id_, "no element with id " + id_);
+  if (p->tag != "PATTERN") throw Error(doc.name(), id_, id_ + " is a " + p->tag + ", not a PATTERN");
+  std::vector<std::string> old;
+  for (const auto& c : p->children)
+    if (c.tag == "POSITION" && c.attribute("type") == "arrangement") old.emplace_back(c.id());
+  for (const auto& id : old) {
+    DeleteNode del(id);
+    del.apply(edit);
+  }
+  for (const auto& a : arrangements_) {
+    AddNode add(id_, arrangement_node(a));
+    add.apply(edit);
+  }
+  return id_;
+}
+
+}  // namespace vgd::xvc

@@ -1,0 +1,664 @@
+// Seams: reading, planned seams, suggestions (seams.hpp; docs/xvc.md "SEAM suggestions").
+#include "vgd/xvc/seams.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
+#include "vgd/xvc/style.hpp"
+
+namespace vgd::xvc {
+
+namespace {
+
+using pattern::Vec2;
+
+std::string upper(std::string_view s) {
+  std::string o(s);
+  for (auto& c : o) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return o;
+}
+
+// ---- one pattern's outline, stretches and notch marks ---------------------------------
+
+struct Outline {
+  const Node* node = nullptr;
+  std::string id, piece, size, category;
+  int quantity = 1;
+  pattern::Piece shape;
+  std::vector<Stretch> stretches;
+  std::vector<double> cum;  // cum[i]: arc length from vertex 0 to vertex i; cum[n] = perimeter
+  std::vector<double> marks;  // notch marks as arc positions (pairs within 15 mm merged)
+  double perimeter() const { return cum.back(); }
+};
+
+Outline outline(const Document& doc, const Node& pat) {
+  Outline o;
+  o.node = &pat;
+  o.id = std::string(pat.id());
+  o.piece = std::string(pat.attribute("piece"));
+  o.size = std::string(pat.attribute("size"));
+  o.category = std::string(pat.attribute("category"));
+  if (const auto q = parse_int(pat.attribute("quantity"))) o.quantity = static_cast<int>(*q);
+  o.shape = to_piece(doc, o.id);
+  o.stretches = boundary_stretches(pat);
+  const auto& b = o.shape.boundary;
+  o.cum.assign(b.size() + 1, 0.0);
+  for (std::size_t i = 0; i < b.size(); ++i) o.cum[i + 1] = o.cum[i] + (b[(i + 1) % b.size()].p - b[i].p).norm();
+  std::vector<double> s;
+  for (const auto& n : o.shape.notches) {
+    if (b.size() < 2) break;
+    const auto e = pattern::nearest_edge(b, n.position);
+    const std::size_t i = static_cast<std::size_t>(e.edge);
+    s.push_back(o.cum[i] + e.t * (b[(i + 1) % b.size()].p - b[i].p).norm());
+  }
+  std::sort(s.begin(), s.end());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (i + 1 < s.size() && s[i + 1] - s[i] < 0.015) {
+      o.marks.push_back(0.5 * (s[i] + s[i + 1]));
+      ++i;
+    } else {
+      o.marks.push_back(s[i]);
+    }
+  }
+  return o;
+}
+
+std::size_t stretch_index(const Outline& o, std::string_view id) {
+  for (std::size_t k = 0; k < o.stretches.size(); ++k)
+    if (o.stretches[k].id == id) return k;
+  throw Error("", o.id, "no boundary stretch " + std::string(id) + " in this pattern");
+}
+
+// Arc range of stretches k0..k1 (inclusive, wrapping): start position and length.
+std::pair<double, double> arc_range(const Outline& o, std::size_t k0, std::size_t k1) {
+  const double P = o.perimeter();
+  const double s0 = o.cum[o.stretches[k0].first];
+  const std::size_t end_vertex = (k1 + 1 < o.stretches.size()) ? o.stretches[k1 + 1].first : 0;
+  double s1 = o.cum[end_vertex];
+  double len = s1 - s0;
+  if (len <= 0) len += P;
+  return {s0, len};
+}
+
+// Mark fractions along a hem in its direction.
+std::vector<double> mark_fractions(const Outline& o, std::size_t k0, std::size_t k1, bool reverse) {
+  const auto [s0, len] = arc_range(o, k0, k1);
+  const double P = o.perimeter();
+  std::vector<double> f;
+  for (const double m : o.marks) {
+    const double rel = std::fmod(m - s0 + 2 * P, P);
+    if (rel <= len + 1e-9 && len > 0) f.push_back(reverse ? 1.0 - rel / len : rel / len);
+  }
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+HemRef hem_ref(const Outline& o, std::size_t k0, std::size_t k1, bool reverse) {
+  HemRef h;
+  h.pattern = o.id;
+  h.from = o.stretches[k0].id;
+  h.to = o.stretches[k1].id;
+  h.reverse = reverse;
+  h.length = arc_range(o, k0, k1).second;
+  h.notches = static_cast<int>(mark_fractions(o, k0, k1, reverse).size());
+  return h;
+}
+
+// ---- edges: runs of stretches between real corners -------------------------------------
+
+struct Edge {
+  std::size_t k0 = 0, k1 = 0;  // stretches, inclusive
+  double length = 0;
+  double u_mid = 0, v_mean = 0, v_hat = 0;  // upright frame; v_hat in [0, 1] over the piece
+  int side = 0;                // +1 / -1: which side of the centre line; 0: central
+  Vec2 chord = Vec2::Zero();   // (u, v) of end - start
+  bool curved = false;
+};
+
+struct Frame {
+  Vec2 up = Vec2::UnitY(), right = Vec2::UnitX();
+  double u_centre = 0, half_width = 0, v_min = 0, v_max = 0;
+};
+
+Frame upright_frame(const Outline& o, bool use_grain) {
+  Frame f;
+  if (use_grain && o.shape.grain_line) {
+    const Vec2 d = o.shape.grain_line->b - o.shape.grain_line->a;
+    if (d.norm() > 0) f.up = d.normalized();
+  }
+  f.right = Vec2(f.up.y(), -f.up.x());
+  double umin = 1e300, umax = -1e300;
+  f.v_min = 1e300;
+  f.v_max = -1e300;
+  for (const auto& c : o.shape.boundary) {
+    const double u = c.p.dot(f.right), v = c.p.dot(f.up);
+    umin = std::min(umin, u);
+    umax = std::max(umax, u);
+    f.v_min = std::min(f.v_min, v);
+    f.v_max = std::max(f.v_max, v);
+  }
+  // A half piece (cut on the fold) has its centre on the fold line.
+  f.u_centre = o.shape.mirror_line ? 0.5 * (o.shape.mirror_line->a + o.shape.mirror_line->b).dot(f.right) : 0.5 * (umin + umax);
+  f.half_width = std::max(std::abs(umax - f.u_centre), std::abs(umin - f.u_centre));
+  return f;
+}
+
+double turn_angle_deg(const std::vector<pattern::ContourPoint>& b, std::size_t i) {
+  const std::size_t n = b.size();
+  const Vec2 a = b[i].p - b[(i + n - 1) % n].p, c = b[(i + 1) % n].p - b[i].p;
+  if (a.norm() == 0 || c.norm() == 0) return 0;
+  return std::acos(std::clamp(a.normalized().dot(c.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+std::vector<Edge> edges(const Outline& o, const Frame& f, double merge_angle) {
+  std::vector<Edge> out;
+  const auto& st = o.stretches;
+  const auto& b = o.shape.boundary;
+  if (st.empty() || b.size() < 3) return out;
+  // Stretch k starts a new edge when its first vertex is a real corner.
+  std::vector<bool> starts(st.size());
+  for (std::size_t k = 0; k < st.size(); ++k) starts[k] = turn_angle_deg(b, st[k].first) >= merge_angle;
+  std::size_t first_start = 0;
+  while (first_start < st.size() && !starts[first_start]) ++first_start;
+  if (first_start == st.size()) { first_start = 0; starts[0] = true; }
+  for (std::size_t j = 0; j < st.size();) {
+    const std::size_t k0 = (first_start + j) % st.size();
+    std::size_t len = 1;
+    while (j + len < st.size() && !starts[(first_start + j + len) % st.size()]) ++len;
+    Edge e;
+    e.k0 = k0;
+    e.k1 = (k0 + len - 1) % st.size();
+    const auto [s0, l] = arc_range(o, e.k0, e.k1);
+    e.length = l;
+    // Vertices of the edge, start to end inclusive.
+    const std::size_t v0 = st[e.k0].first;
+    const std::size_t v_end = (e.k1 + 1 < st.size()) ? st[e.k1 + 1].first : 0;
+    std::vector<Vec2> pts;
+    for (std::size_t i = v0;; i = (i + 1) % b.size()) {
+      pts.push_back(b[i].p);
+      if (i == v_end && pts.size() > 1) break;
+      if (pts.size() > b.size() + 1) break;
+    }
+    double usum = 0, vsum = 0, near = 1e300;
+    for (const auto& p : pts) {
+      usum += p.dot(f.right);
+      vsum += p.dot(f.up);
+      near = std::min(near, std::abs(p.dot(f.right) - f.u_centre));
+    }
+    e.u_mid = usum / pts.size();
+    e.v_mean = vsum / pts.size();
+    e.v_hat = f.v_max > f.v_min ? (e.v_mean - f.v_min) / (f.v_max - f.v_min) : 0.5;
+    e.side = near < 0.15 * f.half_width ? 0 : (e.u_mid > f.u_centre ? 1 : -1);
+    const Vec2 d = pts.back() - pts.front();
+    e.chord = Vec2(d.dot(f.right), d.dot(f.up));
+    e.curved = d.norm() > 0 && e.length / d.norm() > 1.01;
+    out.push_back(e);
+    j += len;
+  }
+  return out;
+}
+
+// ---- roles from names ----------------------------------------------------------------
+
+enum class Role { other, front, back, sleeve, waistband };
+
+Role role_of(const Outline& o) {
+  const std::string n = upper(o.piece) + " " + upper(o.category);
+  if (n.find("SLEEVE") != std::string::npos || std::regex_search(n, std::regex(R"(SL(\d| |$))"))) return Role::sleeve;
+  if (n.find("WAISTBAND") != std::string::npos || (n.find("WAIST") != std::string::npos && n.find("BAND") != std::string::npos))
+    return Role::waistband;
+  if (n.find("FRONT") != std::string::npos || std::regex_search(n, std::regex(R"((FRT?|FT)\d*( |$))"))) return Role::front;
+  if (n.find("BACK") != std::string::npos || std::regex_search(n, std::regex(R"((BK|BCK)\d*( |$))"))) return Role::back;
+  return Role::other;
+}
+
+// ---- scoring -------------------------------------------------------------------------
+
+struct Part {
+  const Outline* o;
+  std::size_t k0, k1;
+  bool reverse;
+};
+
+// Notches: marks of A against marks and junctions of the concatenation B.
+void score_notches(const std::vector<Part>& parts, SeamSuggestion& s, double& factor) {
+  const auto a = mark_fractions(*parts[0].o, parts[0].k0, parts[0].k1, parts[0].reverse);
+  std::vector<double> b, junctions;
+  double total = 0;
+  for (std::size_t i = 1; i < parts.size(); ++i) total += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+  double offset = 0;
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const double len = arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+    for (const double f : mark_fractions(*parts[i].o, parts[i].k0, parts[i].k1, parts[i].reverse)) b.push_back((offset + f * len) / total);
+    offset += len;
+    if (i + 1 < parts.size()) junctions.push_back(offset / total);
+  }
+  s.notches_a = static_cast<int>(a.size());
+  s.notches_b = static_cast<int>(b.size());
+  int matched = 0;
+  for (const double x : a) {
+    bool hit = false;
+    for (const double y : b) hit = hit || std::abs(x - y) < 0.03;
+    for (const double y : junctions) hit = hit || std::abs(x - y) < 0.03;
+    matched += hit;
+  }
+  s.notches_matched = matched;
+  const int want = std::max(s.notches_a, s.notches_b);
+  factor = want == 0 ? 1.0 : 0.6 + 0.4 * std::min(1.0, static_cast<double>(matched) / want);
+}
+
+SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
+                    const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
+  SeamSuggestion s;
+  s.name = name;
+  s.size = size;
+  for (const auto& p : parts) s.hems.push_back(hem_ref(*p.o, p.k0, p.k1, p.reverse));
+  s.length_a = s.hems[0].length;
+  for (std::size_t i = 1; i < s.hems.size(); ++i) s.length_b += s.hems[i].length;
+  s.ease = s.length_a - s.length_b;
+  // Length: 1 inside [ease_lo, ease_hi], falling off as a Gaussian of the relative excess.
+  const double excess = s.ease < ease_lo ? ease_lo - s.ease : (s.ease > ease_hi ? s.ease - ease_hi : 0.0);
+  const double rel = excess / std::max(s.length_a, s.length_b);
+  double notch = 1;
+  score_notches(parts, s, notch);
+  s.score = std::exp(-(rel / tolerance) * (rel / tolerance)) * shape * notch;
+  s.reason = reason + "; lengths " + format_fixed(s.length_a * 1000, 1) + " and " + format_fixed(s.length_b * 1000, 1) +
+             " mm, notches " + std::to_string(s.notches_matched) + "/" + std::to_string(std::max(s.notches_a, s.notches_b)) +
+             " matched";
+  return s;
+}
+
+void suggest_for_size(const std::vector<Outline>& outs, const std::string& size, const SeamOptions& opts,
+                      std::vector<SeamSuggestion>& out) {
+  struct PieceInfo {
+    const Outline* o;
+    Role role;
+    Frame frame;
+    std::vector<Edge> edges;
+  };
+  std::vector<PieceInfo> ps;
+  for (const auto& o : outs) {
+    if (o.size != size || o.quantity == 0 || o.stretches.empty()) continue;
+    const Role r = role_of(o);
+    if (r == Role::other) continue;
+    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband), {}};
+    pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
+    ps.push_back(std::move(pi));
+  }
+  std::set<std::pair<const Outline*, std::size_t>> used;  // (pattern, edge index)
+  std::vector<SeamSuggestion> found;
+
+  // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
+  for (const auto& sl : ps) {
+    if (sl.role != Role::sleeve || sl.edges.size() < 3) continue;
+    const std::string n = upper(sl.o->piece);
+    std::vector<int> sides;
+    if (n.find("LEFT") != std::string::npos) sides = {1};
+    else if (n.find("RIGHT") != std::string::npos) sides = {-1};
+    else if (sl.o->quantity >= 2) sides = {1, -1};
+    else sides = {1};
+    std::size_t cap = 0;
+    for (std::size_t i = 1; i < sl.edges.size(); ++i)
+      if (sl.edges[i].v_mean > sl.edges[cap].v_mean) cap = i;
+    const Edge& ce = sl.edges[cap];
+    for (const int sigma : sides) {
+      std::optional<SeamSuggestion> best;
+      std::pair<const Outline*, std::size_t> bf{}, bb{};
+      for (const auto& fr : ps) {
+        if (fr.role != Role::front) continue;
+        for (const auto& bk : ps) {
+          if (bk.role != Role::back) continue;
+          for (std::size_t i = 0; i < fr.edges.size(); ++i) {
+            const Edge& fe = fr.edges[i];
+            if (fe.side != sigma || !fe.curved || used.count({fr.o, i})) continue;
+            for (std::size_t j = 0; j < bk.edges.size(); ++j) {
+              const Edge& be = bk.edges[j];
+              if (be.side != -sigma || !be.curved || used.count({bk.o, j})) continue;
+              const double balance = std::min(fe.length, be.length) / std::max(fe.length, be.length);
+              const double shape = balance > 0.7 ? 1.0 : balance / 0.7;
+              // The wearer's left sleeve (sigma +1) meets the back armhole first along
+              // its cap's contour; the right sleeve the front one (seams.hpp).
+              std::vector<Part> parts{{sl.o, ce.k0, ce.k1, false}};
+              if (sigma > 0) {
+                parts.push_back({bk.o, be.k0, be.k1, true});
+                parts.push_back({fr.o, fe.k0, fe.k1, true});
+              } else {
+                parts.push_back({fr.o, fe.k0, fe.k1, true});
+                parts.push_back({bk.o, be.k0, be.k1, true});
+              }
+              auto s = make(sigma > 0 ? "left armhole" : "right armhole", size, parts, shape,
+                            "sleeve cap of " + sl.o->piece + " to the " + (sigma > 0 ? "left" : "right") +
+                                " armholes of " + bk.o->piece + " and " + fr.o->piece,
+                            -0.005, opts.max_cap_ease, 0.02);
+              if (!best || s.score > best->score) {
+                best = s;
+                bf = {fr.o, i};
+                bb = {bk.o, j};
+              }
+            }
+          }
+        }
+      }
+      if (best && best->score >= opts.min_score) {
+        used.insert(bf);
+        used.insert(bb);
+        found.push_back(*best);
+      }
+    }
+    // Underarm: the edge after the cap (forward) to the edge before it (reverse).
+    const std::size_t after = (cap + 1) % sl.edges.size(), before = (cap + sl.edges.size() - 1) % sl.edges.size();
+    if (after != before) {
+      const Edge &ea = sl.edges[after], &eb = sl.edges[before];
+      for (const int copy : sides) {
+        auto s = make(copy > 0 ? "left underarm" : "right underarm", size,
+                      {{sl.o, ea.k0, ea.k1, false}, {sl.o, eb.k0, eb.k1, true}}, 1.0,
+                      "underarm seam of " + sl.o->piece + ": the edges on either side of the cap", 0, 0, 0.02);
+        if (sides.size() > 1) s.reason += " (copy " + std::string(copy > 0 ? "left" : "right") + ")";
+        if (s.score >= opts.min_score) found.push_back(s);
+      }
+    }
+  }
+
+  // 2. Waistband to the skirt waist: the band's best-fitting edge to the fronts' and
+  //    backs' top edges (the back split at centre back when it has a turn point there).
+  for (const auto& wb : ps) {
+    if (wb.role != Role::waistband) continue;
+    std::vector<Part> waist;
+    std::vector<std::pair<const Outline*, std::size_t>> waist_edges;
+    double total = 0;
+    auto top_edge = [](const PieceInfo& p) -> std::optional<std::size_t> {
+      std::optional<std::size_t> t;
+      for (std::size_t i = 0; i < p.edges.size(); ++i)
+        if (p.edges[i].side == 0 && (!t || p.edges[i].v_mean > p.edges[*t].v_mean)) t = i;
+      return t;
+    };
+    const PieceInfo* fr = nullptr;
+    const PieceInfo* bk = nullptr;
+    for (const auto& p : ps) {
+      if (p.role == Role::front && !fr) fr = &p;
+      if (p.role == Role::back && !bk) bk = &p;
+    }
+    if (!fr || !bk) continue;
+    const auto tf = top_edge(*fr), tb = top_edge(*bk);
+    if (!tf || !tb) continue;
+    const Edge &ef = fr->edges[*tf], &eb = bk->edges[*tb];
+    // Split the back's waist at the stretch boundary nearest to centre back.
+    std::optional<std::size_t> split;
+    double best_d = 0.01;
+    for (std::size_t k = eb.k0; k != eb.k1; k = (k + 1) % bk->o->stretches.size()) {
+      const std::size_t next = (k + 1) % bk->o->stretches.size();
+      const Vec2 p = bk->o->shape.boundary[bk->o->stretches[next].first].p;
+      const double d = std::abs(p.dot(bk->frame.right) - bk->frame.u_centre);
+      if (d < best_d) {
+        best_d = d;
+        split = k;
+      }
+    }
+    std::vector<Part> parts{{wb.o, 0, 0, false}};
+    if (split) {
+      // Back's +u half (the wearer's right seen from behind) runs from the side to
+      // centre back along the contour; reversed it starts at centre back.
+      parts.push_back({bk->o, eb.k0, *split, true});
+      parts.push_back({fr->o, ef.k0, ef.k1, true});
+      parts.push_back({bk->o, (*split + 1) % bk->o->stretches.size(), eb.k1, true});
+    } else {
+      parts.push_back({fr->o, ef.k0, ef.k1, true});
+      parts.push_back({bk->o, eb.k0, eb.k1, true});
+    }
+    for (std::size_t i = 1; i < parts.size(); ++i) total += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+    std::optional<SeamSuggestion> best;
+    // Any run of stretches within one of the band's long edges: a button stand split
+    // off by a turn point stays open.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    const std::size_t ns = wb.o->stretches.size();
+    for (const auto& e : wb.edges) {
+      if (std::abs(e.chord.x()) < std::abs(e.chord.y())) continue;  // the band's long edges only
+      const std::size_t m = (e.k1 + ns - e.k0) % ns + 1;
+      for (std::size_t i = 0; i < m; ++i)
+        for (std::size_t j = i; j < m; ++j) runs.emplace_back((e.k0 + i) % ns, (e.k0 + j) % ns);
+    }
+    for (const auto& [k0, k1] : runs) {
+      parts[0] = {wb.o, k0, k1, false};
+      auto s = make("waist seam", size, parts, 1.0,
+                    "waistband " + wb.o->piece + " to the waist of " + bk->o->piece + " and " + fr->o->piece, -0.01,
+                    0.01, 0.03);
+      if (!best || s.score > best->score) best = s;
+    }
+    (void)total;
+    if (best && best->score >= opts.min_score) found.push_back(*best);
+  }
+
+  // 3. Fronts to backs: off-centre edges on opposite sides (front +u is the wearer's
+  //    left, like back -u), similar length, shape and height. Greedy, best first.
+  struct Cand {
+    SeamSuggestion s;
+    std::pair<const Outline*, std::size_t> a, b;
+  };
+  std::vector<Cand> cands;
+  for (const auto& fr : ps) {
+    if (fr.role != Role::front) continue;
+    for (const auto& bk : ps) {
+      if (bk.role != Role::back) continue;
+      for (std::size_t i = 0; i < fr.edges.size(); ++i) {
+        const Edge& fe = fr.edges[i];
+        if (fe.side == 0 || used.count({fr.o, i})) continue;
+        for (std::size_t j = 0; j < bk.edges.size(); ++j) {
+          const Edge& be = bk.edges[j];
+          if (be.side != -fe.side || used.count({bk.o, j})) continue;
+          const Vec2 cf = fe.chord.normalized(), cb = Vec2(-be.chord.x(), be.chord.y()).normalized();
+          const double dir = std::abs(cf.dot(cb));
+          const double dv = fe.v_hat - be.v_hat;
+          const double shape = dir * dir * std::exp(-(dv / 0.15) * (dv / 0.15));
+          const bool vertical = std::abs(cf.y()) > 0.8;
+          const std::string what = vertical ? "side seam" : (fe.v_hat > 0.6 ? "shoulder" : "seam");
+          const std::string side = fe.side > 0 ? "left " : "right ";
+          auto s = make(side + what, size, {{fr.o, fe.k0, fe.k1, false}, {bk.o, be.k0, be.k1, true}}, shape,
+                        what + " of " + fr.o->piece + " and " + bk.o->piece + " on the wearer's " + side + "side",
+                        0, 0, 0.02);
+          if (s.score >= opts.min_score) cands.push_back({s, {fr.o, i}, {bk.o, j}});
+        }
+      }
+    }
+  }
+  std::stable_sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) { return x.s.score > y.s.score; });
+  for (const auto& c : cands) {
+    if (used.count(c.a) || used.count(c.b)) continue;
+    used.insert(c.a);
+    used.insert(c.b);
+    found.push_back(c.s);
+  }
+  std::stable_sort(found.begin(), found.end(), [](const SeamSuggestion& x, const SeamSuggestion& y) { return x.score > y.score; });
+  for (auto& s : found) out.push_back(std::move(s));
+}
+
+}  // namespace
+
+double hem_length(const Document& doc, const std::string& pattern_id, const std::string& from, const std::string& to) {
+  const Node* p = doc.find(pattern_id);
+  if (!p || p->tag != "PATTERN") throw Error(doc.name(), pattern_id, "no PATTERN with this id");
+  const Outline o = outline(doc, *p);
+  return arc_range(o, stretch_index(o, from), stretch_index(o, to)).second;
+}
+
+std::vector<SeamInfo> list_seams(const Document& doc) {
+  std::vector<SeamInfo> out;
+  const Node* seams = doc.container("SEAMS");
+  if (!seams) return out;
+  std::map<std::string, Outline> cache;
+  for (const auto& s : seams->children) {
+    if (s.tag != "SEAM") continue;
+    SeamInfo info{std::string(s.id()), std::string(s.attribute("name")), {}};
+    for (const auto& h : s.children) {
+      if (h.tag != "HEM") continue;
+      // The pattern holding `from`.
+      const auto path = doc.path_of(h.attribute("from"));
+      if (!path || path->size() < 2) continue;
+      NodePath pp(path->begin(), path->end() - 1);
+      const Node& pat = doc.at(pp);
+      auto it = cache.find(std::string(pat.id()));
+      if (it == cache.end()) it = cache.emplace(std::string(pat.id()), outline(doc, pat)).first;
+      const Outline& o = it->second;
+      info.hems.push_back(hem_ref(o, stretch_index(o, h.attribute("from")), stretch_index(o, h.attribute("to")),
+                                  h.attribute("direction") == "reverse"));
+    }
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+std::vector<SeamSuggestion> suggest_seams(const Document& doc, const SeamOptions& opts) {
+  std::vector<Outline> outs;
+  std::vector<std::string> sizes;
+  for (const Node* p : doc.patterns()) {
+    outs.push_back(outline(doc, *p));
+    if (std::find(sizes.begin(), sizes.end(), outs.back().size) == sizes.end()) sizes.push_back(outs.back().size);
+  }
+  std::vector<SeamSuggestion> out;
+  for (const auto& size : sizes)
+    if (opts.size.empty() || size == opts.size) suggest_for_size(outs, size, opts, out);
+  return out;
+}
+
+Node seam_node(const std::string& name, const std::vector<HemRef>& hems) {
+  Node seam{"SEAM", {}, {}};
+  if (!name.empty()) seam.set_attribute("name", name);
+  seam.set_attribute("type", "plain");
+  for (const auto& h : hems)
+    seam.children.push_back(Node{"HEM", {{"from", h.from}, {"to", h.to}, {"direction", h.reverse ? "reverse" : "forward"}, {"type", "plain"}}, {}});
+  return seam;
+}
+
+Node seam_node(const SeamSuggestion& s) { return seam_node(s.name, s.hems); }
+
+std::vector<Node> plan_seam_nodes(const Document& doc, const std::vector<pattern::SeamPlan>& plans, const std::string& size) {
+  std::vector<std::string> sizes;
+  for (const Node* p : doc.patterns()) {
+    const std::string sz(p->attribute("size"));
+    if (std::find(sizes.begin(), sizes.end(), sz) == sizes.end()) sizes.push_back(sz);
+  }
+  std::vector<Node> out;
+  for (const auto& sz : sizes) {
+    if (!size.empty() && sz != size) continue;
+    for (const auto& plan : plans) {
+      if (plan.hems.size() < 2)
+        throw Error(doc.name(), "seam '" + plan.name + "'", "a seam needs at least two hems");
+      std::vector<HemRef> hems;
+      for (const auto& h : plan.hems) {
+        const Node* pat = nullptr;
+        for (const Node* p : doc.patterns())
+          if (p->attribute("piece") == h.piece && p->attribute("size") == sz) pat = p;
+        if (!pat)
+          throw Error(doc.name(), "seam '" + plan.name + "'", "no pattern of piece '" + h.piece + "' in size " + sz);
+        const auto st = boundary_stretches(*pat);
+        for (const int k : {h.from, h.to})
+          if (k < 0 || static_cast<std::size_t>(k) >= st.size())
+            throw Error(doc.name(), "seam '" + plan.name + "'", "piece '" + h.piece + "' size " + sz + " has " +
+                                                                     std::to_string(st.size()) + " boundary stretches; there is no stretch " +
+                                                                     std::to_string(k));
+        HemRef r;
+        r.pattern = std::string(pat->id());
+        r.from = st[h.from].id;
+        r.to = st[h.to].id;
+        r.reverse = h.reverse;
+        hems.push_back(r);
+      }
+      out.push_back(seam_node(plan.name, hems));
+    }
+  }
+  return out;
+}
+
+std::vector<pattern::SeamPlan> parse_seam_plans(std::string_view text, const std::string& file) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(file, "", std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object() || !j.contains("seams") || !j["seams"].is_array())
+    throw Error(file, "", "a seam file is an object with an array \"seams\"");
+  std::vector<pattern::SeamPlan> out;
+  int k = 0;
+  for (const auto& s : j["seams"]) {
+    const std::string where = "seams[" + std::to_string(k++) + "]";
+    if (!s.is_object() || !s.contains("hems") || !s["hems"].is_array() || s["hems"].size() < 2)
+      throw Error(file, where, "a seam needs \"hems\": an array of at least two hems");
+    pattern::SeamPlan plan;
+    plan.name = s.value("name", "");
+    for (const auto& h : s["hems"]) {
+      if (!h.is_object() || !h.contains("piece") || !h["piece"].is_string() || !h.contains("from") ||
+          !h["from"].is_number_integer())
+        throw Error(file, where, "each hem needs \"piece\" (a name) and \"from\" (a stretch index)");
+      pattern::HemPlan hp;
+      hp.piece = h["piece"].get<std::string>();
+      hp.from = h["from"].get<int>();
+      hp.to = h.contains("to") ? h["to"].get<int>() : hp.from;
+      const std::string dir = h.value("direction", "forward");
+      if (dir != "forward" && dir != "reverse")
+        throw Error(file, where, "direction must be \"forward\" or \"reverse\", not \"" + dir + "\"");
+      hp.reverse = dir == "reverse";
+      plan.hems.push_back(hp);
+    }
+    out.push_back(std::move(plan));
+  }
+  return out;
+}
+
+std::string seam_plans_to_json(const std::vector<pattern::SeamPlan>& plans) {
+  nlohmann::json seams = nlohmann::json::array();
+  for (const auto& p : plans) {
+    nlohmann::json hems = nlohmann::json::array();
+    for (const auto& h : p.hems)
+      hems.push_back({{"piece", h.piece}, {"from", h.from}, {"to", h.to}, {"direction", h.reverse ? "reverse" : "forward"}});
+    seams.push_back({{"name", p.name}, {"hems", hems}});
+  }
+  return nlohmann::json{{"seams", seams}}.dump(2) + "\n";
+}
+
+std::vector<pattern::SeamPlan> seams_as_plans(const Document& doc, const std::string& size) {
+  std::vector<pattern::SeamPlan> out;
+  for (const auto& s : list_seams(doc)) {
+    pattern::SeamPlan plan{s.name, {}};
+    bool keep = true;
+    for (const auto& h : s.hems) {
+      const Node* pat = doc.find(h.pattern);
+      if (!size.empty() && pat->attribute("size") != size) keep = false;
+      const auto st = boundary_stretches(*pat);
+      auto index = [&](const std::string& id) {
+        for (std::size_t k = 0; k < st.size(); ++k)
+          if (st[k].id == id) return static_cast<int>(k);
+        return -1;
+      };
+      plan.hems.push_back({std::string(pat->attribute("piece")), index(h.from), index(h.to), h.reverse});
+    }
+    if (keep) out.push_back(std::move(plan));
+  }
+  return out;
+}
+
+AddSeams::AddSeams(std::vector<Node> seams) : seams_(std::move(seams)) {}
+
+std::string AddSeams::label() const {
+  return seams_.size() == 1 ? "Add seam" : "Add " + std::to_string(seams_.size()) + " seams";
+}
+
+std::string AddSeams::apply(Editor& edit) {
+  const Node* container = edit.document().container("SEAMS");
+  if (!container) throw Error(edit.document().name(), "GARMENT", "the document has no SEAMS container to add seams to");
+  const std::string parent(container->id());
+  std::string last;
+  for (const auto& s : seams_) {
+    AddNode add(parent, s);
+    last = add.apply(edit);
+  }
+  return last;
+}
+
+}  // namespace vgd::xvc
