@@ -8,9 +8,12 @@
 
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/mesh.hpp"
+#include "vgd/scene/garment.hpp"
+#include "vgd/scene/dress.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/bending.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
+#include "vgd/sim/effects/seam.hpp"
 #include "vgd/sim/effects/strain_rosette.hpp"
 #include "vgd/xvc/document.hpp"
 #include "vgd/xvc/io.hpp"
@@ -223,6 +226,45 @@ std::vector<std::pair<std::string, sim::Model>> xvc_pieces(const SceneDef& def, 
   return out;
 }
 
+// A garment's pieces, assembled (hems of a seam with equal vertex counts) and
+// dressed round the avatar; its seams as (piece, node) pairs.
+struct DressedPiece {
+  std::string name;
+  sim::Model model;
+};
+std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in, const MaterialDef& m,
+                                         Diagnostics& diag, const Avatar& avatar, std::vector<GarmentSeam>& seams) {
+  const ClothDef& c = def.cloth[ci];
+  const GarmentDef& gd = *c.garment;
+  const std::string p = cloth_path(ci) + ".garment";
+  const auto& doc = in.document(gd.file, p + ".file");
+  const auto arrangements = garment_arrangements(doc, avatar, diag);
+  AssemblyOptions ao;
+  ao.size = gd.size;
+  ao.spacing = gd.spacing;
+  ao.pieces = gd.pieces;
+  for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
+  const Garment g = assemble_garment(doc, ao, diag);
+  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar);
+  std::vector<DressedPiece> out;
+  for (std::size_t k = 0; k < g.pieces.size(); ++k) {
+    const GarmentPiece& gp = g.pieces[k];
+    sim::Model mp;
+    const int n = static_cast<int>(gp.mesh.nodes.size());
+    mp.x0.resize(3 * n);
+    mp.v0 = sim::VecX::Zero(3 * n);
+    for (int i = 0; i < n; ++i) sim::at(mp.x0, i) = placed[k].positions[i];
+    mp.uv = mesh::material_coordinates(gp.mesh);
+    mp.triangles = gp.mesh.triangles;
+    if (placed[k].flipped)  // keep triangles counter-clockwise seen from outside the body
+      for (auto& t : mp.triangles) std::swap(t[1], t[2]);
+    set_masses(mp, m, c.model);
+    out.push_back({gp.piece.block.empty() ? gp.name : gp.piece.block, std::move(mp)});
+  }
+  seams = g.seams;
+  return out;
+}
+
 // A grid's named particle set (indices within the piece), or nullopt when
 // the name is not one.
 std::optional<std::vector<int>> grid_set(const PieceInfo& p, const std::string& name) {
@@ -264,7 +306,8 @@ std::optional<std::vector<int>> grid_set(const PieceInfo& p, const std::string& 
 
 }  // namespace
 
-sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag) {
+sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag, const Avatar* avatar,
+                       std::vector<sim::SeamPairs>* seams) {
   Inputs in(def);
   sim::Model model;
   model.x0.resize(0);
@@ -275,8 +318,17 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     const ClothDef& c = def.cloth[ci];
     const MaterialDef& m = in.material(c.material, c.model);
     std::vector<std::pair<std::string, sim::Model>> parts;
-    if (c.grid) parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
-    else parts = xvc_pieces(def, ci, in, m, diag);
+    std::vector<GarmentSeam> garment_seams;
+    if (c.grid) {
+      parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
+    } else if (c.xvc) {
+      parts = xvc_pieces(def, ci, in, m, diag);
+    } else {
+      if (!avatar) throw Error(def.source.string(), cloth_path(ci) + ".garment", "a garment needs the scene's avatar");
+      for (auto& d : garment_pieces(def, ci, in, m, diag, *avatar, garment_seams))
+        parts.emplace_back(std::move(d.name), std::move(d.model));
+    }
+    const int first_piece = static_cast<int>(pieces.size());
     for (auto& [name, part] : parts) {
       PieceInfo info;
       info.name = name;
@@ -292,6 +344,14 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       model.pieces.push_back(name);
       pieces.push_back(std::move(info));
     }
+    if (seams)
+      for (const auto& gs : garment_seams) {
+        sim::SeamPairs sp;
+        sp.name = gs.name.empty() ? gs.id : gs.name;
+        for (const auto& [a, b] : gs.pairs)
+          sp.pairs.push_back({pieces[first_piece + a.piece].first + a.node, pieces[first_piece + b.piece].first + b.node});
+        seams->push_back(std::move(sp));
+      }
   }
   return model;
 }
@@ -363,6 +423,36 @@ std::vector<int> pin_particles(const SceneDef& def, const sim::Model& model, con
   return out;
 }
 
+namespace {
+
+// A seam between two grid sets, paired in order.
+sim::SeamPairs grid_seam(const SceneDef& def, const sim::Model& model, const std::vector<PieceInfo>& pieces,
+                         const GridSeamDef& g, const std::string& path) {
+  const auto side = [&](const std::string& piece, const std::string& set, const std::string& key) {
+    // Not pin_particles: it sorts, and a seam needs the set's own order.
+    const auto it = std::find_if(pieces.begin(), pieces.end(), [&](const PieceInfo& p) { return p.name == piece; });
+    if (it == pieces.end()) throw Error(def.source.string(), path + "." + key + ".piece", "no piece called '" + piece + "'");
+    const auto local = grid_set(*it, set);
+    if (!local) throw Error(def.source.string(), path + "." + key + ".set", "unknown grid set '" + set + "'");
+    std::vector<int> out;
+    for (int i : *local) out.push_back(it->first + i);
+    return out;
+  };
+  const std::vector<int> a = side(g.piece_a, g.set_a, "a");
+  std::vector<int> b = side(g.piece_b, g.set_b, "b");
+  if (g.reverse) std::reverse(b.begin(), b.end());
+  if (a.size() != b.size())
+    throw Error(def.source.string(), path, "the two sets hold " + std::to_string(a.size()) + " and " +
+                                               std::to_string(b.size()) + " particles; a seam pairs them one to one");
+  sim::SeamPairs sp;
+  sp.name = g.piece_a + ":" + g.set_a + " - " + g.piece_b + ":" + g.set_b;
+  for (std::size_t k = 0; k < a.size(); ++k) sp.pairs.push_back({a[k], b[k]});
+  (void)model;
+  return sp;
+}
+
+}  // namespace
+
 std::vector<std::string> effect_names(const SceneDef& def) {
   std::vector<std::string> names;
   bool ms = false, sr = false, bend = false;
@@ -380,6 +470,9 @@ std::vector<std::string> effect_names(const SceneDef& def) {
   if (e.damping) names.push_back("damping");
   if (e.wind) names.push_back("wind");
   for (std::size_t i = 0; i < e.pins.size(); ++i) names.push_back("pins");
+  if (e.seams) names.push_back("seams");
+  if (e.collision) names.push_back("body-collision");
+  if (e.self_collision) names.push_back("self-collision");
   return names;
 }
 
@@ -387,7 +480,12 @@ Scene build(const SceneDef& def) {
   validate(def);
   Scene s;
   s.name = def.name;
-  sim::Model model = build_model(def, s.pieces, s.diagnostics);
+  if (def.avatar) s.avatar = build_avatar(def);
+  sim::Model model = build_model(def, s.pieces, s.diagnostics, s.avatar ? &*s.avatar : nullptr, &s.seams);
+  if (def.effects.seams)
+    for (std::size_t i = 0; i < def.effects.seams->grid.size(); ++i)
+      s.seams.push_back(grid_seam(def, model, s.pieces, def.effects.seams->grid[i],
+                                  "effects.seams.grid[" + std::to_string(i) + "]"));
 
   // Pins first: the strain limiter must know which particles it may not move.
   std::vector<std::vector<int>> pin_groups;
@@ -427,6 +525,28 @@ Scene build(const SceneDef& def) {
     if (e.wind) effects.push_back(sim::make_wind(*e.wind));
     for (std::size_t i = 0; i < pin_groups.size(); ++i)
       effects.push_back(sim::make_pins(model, {pin_groups[i], e.pins[i].velocity}));
+    // Seams, then contacts: the contact effects constrain the total force,
+    // seams' pull included (seed 002 §3.2.2).
+    std::vector<int> seam_particles;
+    if (e.seams && !s.seams.empty()) {
+      sim::SeamDef sd = e.seams->effect;
+      sd.seams = s.seams;
+      for (const auto& sp : sd.seams)
+        for (const auto& pr : sp.pairs) seam_particles.insert(seam_particles.end(), pr.begin(), pr.end());
+      effects.push_back(sim::make_seam(model, sd));
+    }
+    if (e.collision) {
+      sim::BodyCollisionDef cd = *e.collision;
+      cd.body = s.avatar->surface;
+      cd.seam_particles = seam_particles;
+      cd.fixed = s.pinned;
+      effects.push_back(sim::make_body_collision(model, cd));
+    }
+    if (e.self_collision) {
+      sim::SelfCollisionDef sc = *e.self_collision;
+      sc.fixed = s.pinned;
+      effects.push_back(sim::make_self_collision(model, sc));
+    }
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));
   } catch (const sim::SimulationError& err) {
     throw Error(def.source.string(), "", std::string("cannot build the simulation: ") + err.what());

@@ -212,6 +212,85 @@ XvcPiecesDef read_xvc_pieces(Object o) {
   return x;
 }
 
+GarmentDef read_garment(Object o) {
+  GarmentDef g;
+  g.file = text(o.need("file", "the XVC document"), o.at("file"), o.context());
+  o.string("size", g.size);
+  if (const json* p = o.find("pieces")) {
+    const auto& l = list(*p, o.at("pieces"), o.context());
+    for (std::size_t i = 0; i < l.size(); ++i) g.pieces.push_back(text(l[i], index_path(o.at("pieces"), i), o.context()));
+  }
+  o.number("spacing", g.spacing, dim::length);
+  o.finish();
+  return g;
+}
+
+AvatarDef read_avatar(Object o) {
+  AvatarDef a;
+  int kinds = 0;
+  if (const json* j = o.find("mannequin")) {
+    ++kinds;
+    a.kind = AvatarDef::Kind::mannequin;
+    Object m(*j, o.at("mannequin"), o.context());
+    m.string("size", a.size);
+    m.string("table", a.table);
+    m.integer("triangles", a.triangles);
+    auto& b = a.measurements;
+    m.string("sex", b.sex);
+    m.number("height", b.height, dim::length);
+    m.number("bust", b.bust, dim::length);
+    m.number("under_bust", b.under_bust, dim::length);
+    m.number("waist", b.waist, dim::length);
+    m.number("hip", b.hip, dim::length);
+    m.number("shoulder_width", b.shoulder_width, dim::length);
+    m.number("neck", b.neck, dim::length);
+    m.number("arm_length", b.arm_length, dim::length);
+    m.number("inseam", b.inseam, dim::length);
+    m.finish();
+  }
+  if (const json* j = o.find("file")) {
+    ++kinds;
+    a.kind = AvatarDef::Kind::file;
+    if (j->is_string()) {
+      a.file = j->get<std::string>();
+    } else {
+      Object f(*j, o.at("file"), o.context());
+      a.file = text(f.need("path", "the mesh file"), f.at("path"), o.context());
+      f.string("unit", a.unit);
+      f.string("up", a.up);
+      f.finish();
+    }
+  }
+  if (const json* j = o.find("sphere")) {
+    ++kinds;
+    a.kind = AvatarDef::Kind::sphere;
+    Object s(*j, o.at("sphere"), o.context());
+    s.vector("centre", a.centre, dim::length);
+    s.number("radius", a.radius, dim::length);
+    s.integer("segments", a.segments);
+    s.integer("rings", a.rings);
+    s.finish();
+  }
+  if (const json* j = o.find("cylinder")) {
+    ++kinds;
+    a.kind = AvatarDef::Kind::cylinder;
+    Object s(*j, o.at("cylinder"), o.context());
+    a.segments = 64;
+    a.rings = 1;
+    s.vector("base", a.centre, dim::length);
+    s.number("radius", a.radius, dim::length);
+    s.number("height", a.height, dim::length);
+    s.integer("segments", a.segments);
+    s.integer("stacks", a.rings);
+    s.finish();
+  }
+  if (kinds != 1)
+    o.context().fail(o.path(), kinds == 0 ? "say what the body is: mannequin, file, sphere or cylinder"
+                                          : "give one of mannequin, file, sphere and cylinder");
+  o.finish();
+  return a;
+}
+
 // Inline material values: parameter names as in XVC MATERIALs.
 MaterialDef read_material_values(Object& o, const json& j) {
   MaterialDef m;
@@ -259,6 +338,7 @@ ClothDef read_cloth(Object o, SceneDef& def) {
   o.string("name", cl.name);
   if (const json* g = o.find("grid")) cl.grid = read_grid(Object(*g, o.at("grid"), o.context()));
   if (const json* x = o.find("xvc")) cl.xvc = read_xvc_pieces(Object(*x, o.at("xvc"), o.context()));
+  if (const json* x = o.find("garment")) cl.garment = read_garment(Object(*x, o.at("garment"), o.context()));
   if (const json* p = o.find("placement")) cl.placement = read_placement(Object(*p, o.at("placement"), o.context()));
   std::string model = "mass-spring";
   o.string("model", model);
@@ -343,6 +423,72 @@ EffectsDef read_effects(Object o) {
     d.seed = static_cast<unsigned>(seed);
     if (w.enabled()) e.wind = d;
     w.finish();
+  }
+  if (const json* j = o.find("collision")) {
+    Object c(*j, o.at("collision"), o.context());
+    sim::BodyCollisionDef d;
+    c.number("clearance", d.clearance, dim::length);
+    std::string response = "provot";
+    c.string("response", response);
+    if (response == "provot") d.response = sim::ContactResponse::provot;
+    else if (response == "slide") d.response = sim::ContactResponse::slide;
+    else o.context().fail(c.at("response"), "unknown response '" + response + "' (use provot or slide)");
+    c.number("friction", d.friction, dim::none);
+    c.number("restitution", d.restitution, dim::none);
+    c.number("min_bounce_speed", d.min_bounce_speed, dim::velocity);
+    std::string query = "grid";
+    c.string("query", query);
+    if (query == "grid") d.query = sim::BodyQuery::grid;
+    else if (query == "exact") d.query = sim::BodyQuery::exact;
+    else o.context().fail(c.at("query"), "unknown query '" + query + "' (use grid or exact)");
+    c.number("grid_spacing", d.grid.spacing, dim::length);
+    c.number("grid_band", d.grid.band, dim::length);
+    if (c.enabled()) e.collision = d;
+    c.finish();
+  }
+  if (const json* j = o.find("self_collision")) {
+    Object c(*j, o.at("self_collision"), o.context());
+    sim::SelfCollisionDef d;
+    c.number("thickness", d.thickness, dim::length);
+    c.number("stiffness", d.stiffness, dim::stiffness);
+    c.flag("skip_one_ring", d.skip_one_ring);
+    c.integer("passes", d.passes);
+    if (c.enabled()) e.self_collision = d;
+    c.finish();
+  }
+  if (const json* j = o.find("seams")) {
+    Object c(*j, o.at("seams"), o.context());
+    SeamsDef d;
+    c.number("stiffness", d.effect.stiffness, dim::stiffness);
+    c.number("max_force", d.effect.max_force, dim::force);
+    c.number("damping", d.effect.damping, dim::damping);
+    c.number("merge_distance", d.effect.merge_distance, dim::length);
+    c.flag("merge", d.effect.merge);
+    std::string law = "saturating";
+    c.string("law", law);
+    if (law == "linear") d.effect.law = sim::SeamLaw::linear;
+    else if (law == "saturating") d.effect.law = sim::SeamLaw::saturating;
+    else o.context().fail(c.at("law"), "unknown law '" + law + "' (use linear or saturating)");
+    if (const json* g = c.find("grid")) {
+      const auto& l = list(*g, c.at("grid"), o.context());
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        Object q(l[i], index_path(c.at("grid"), i), o.context());
+        GridSeamDef gs;
+        const auto side = [&](const std::string& key, std::string& piece, std::string& set) {
+          Object s2(q.need(key, "{\"piece\": ..., \"set\": ...}"), q.at(key), o.context());
+          piece = text(s2.need("piece"), s2.at("piece"), o.context());
+          set = text(s2.need("set", "a grid set such as edge-u1"), s2.at("set"), o.context());
+          s2.finish();
+        };
+        side("a", gs.piece_a, gs.set_a);
+        side("b", gs.piece_b, gs.set_b);
+        q.flag("reverse", gs.reverse);
+        q.finish();
+        d.grid.push_back(gs);
+      }
+    }
+    if (c.enabled()) e.seams = d;
+    c.finish();
   }
   if (const json* j = o.find("pins")) {
     const auto& l = list(*j, o.at("pins"), o.context());
@@ -445,6 +591,7 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
       def.materials[it.key()] = read_material(*it, mats.at(it.key()), c);
     }
   }
+  if (const json* a = top.find("avatar")) def.avatar = read_avatar(Object(*a, "avatar", c));
   const json& cloth = top.need("cloth", "a list of cloth pieces");
   const auto& l = list(cloth, "cloth", c);
   for (std::size_t i = 0; i < l.size(); ++i) def.cloth.push_back(read_cloth(Object(l[i], index_path("cloth", i), c), def));
@@ -454,6 +601,8 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
     Object fr(*f, "frames", c);
     fr.number("fps", def.run.fps, dim::rate);
     fr.number("duration", def.run.duration, dim::time);
+    fr.number("rest_energy", def.run.rest_energy, dim::energy);
+    fr.integer("rest_frames", def.run.rest_frames);
     fr.finish();
   }
   if (const json* o = top.find("output")) def.outputs = read_outputs(*o, "output", c);

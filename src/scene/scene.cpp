@@ -72,10 +72,13 @@ class Checker {
       if (a.model == ClothModel::strain_rosette && a.bending != b.bending)
         fail("cloth[" + std::to_string(i) + "].bending", "differs from cloth[0]; bending is on or off for the whole scene");
     }
+    if (def_.avatar) avatar(*def_.avatar);
     effects();
     integrator();
     positive("frames.fps", def_.run.fps);
     non_negative("frames.duration", def_.run.duration);
+    non_negative("frames.rest_energy", def_.run.rest_energy);
+    if (def_.run.rest_frames < 1) fail("frames.rest_frames", "must be >= 1");
     for (std::size_t i = 0; i < def_.outputs.size(); ++i)
       if (def_.outputs[i].kind == OutputDef::Kind::obj && def_.outputs[i].directory.empty())
         fail("output[" + std::to_string(i) + "].directory", "an OBJ sequence needs a directory");
@@ -83,8 +86,14 @@ class Checker {
 
  private:
   void cloth(const ClothDef& c, const std::string& p) const {
-    if (c.grid.has_value() == c.xvc.has_value())
-      fail(p, c.grid ? "give either grid or xvc, not both" : "say where the cloth comes from: grid or xvc");
+    const int sources = c.grid.has_value() + c.xvc.has_value() + c.garment.has_value();
+    if (sources != 1)
+      fail(p, sources > 1 ? "give one of grid, xvc and garment" : "say where the cloth comes from: grid, xvc or garment");
+    if (c.garment) {
+      if (c.garment->file.empty()) fail(p + ".garment.file", "is empty");
+      non_negative(p + ".garment.spacing", c.garment->spacing);
+      if (!def_.avatar) fail(p + ".garment", "a garment is dressed on a body: the scene needs an avatar");
+    }
     if (c.grid) {
       if (c.grid->nu < 2 || c.grid->nv < 2)
         fail(p + ".grid.particles", "a grid needs at least 2 x 2 particles (got " + std::to_string(c.grid->nu) +
@@ -135,8 +144,57 @@ class Checker {
     }
   }
 
+  void avatar(const AvatarDef& a) const {
+    switch (a.kind) {
+      case AvatarDef::Kind::mannequin: {
+        if (!a.size.empty()) break;
+        const auto& m = a.measurements;
+        for (const auto& [name, v] : {std::pair{"height", m.height}, {"bust", m.bust}, {"under_bust", m.under_bust},
+                                      {"waist", m.waist}, {"hip", m.hip}, {"shoulder_width", m.shoulder_width},
+                                      {"neck", m.neck}, {"arm_length", m.arm_length}, {"inseam", m.inseam}})
+          positive(std::string("avatar.mannequin.") + name, v);
+        if (m.sex != "female" && m.sex != "male") fail("avatar.mannequin.sex", "must be female or male");
+        break;
+      }
+      case AvatarDef::Kind::file:
+        if (a.file.empty()) fail("avatar.file", "is empty");
+        break;
+      case AvatarDef::Kind::sphere:
+        finite("avatar.sphere.centre", a.centre);
+        positive("avatar.sphere.radius", a.radius);
+        if (a.segments < 3 || a.rings < 2) fail("avatar.sphere", "needs segments >= 3 and rings >= 2");
+        break;
+      case AvatarDef::Kind::cylinder:
+        finite("avatar.cylinder.base", a.centre);
+        positive("avatar.cylinder.radius", a.radius);
+        positive("avatar.cylinder.height", a.height);
+        if (a.segments < 3 || a.rings < 1) fail("avatar.cylinder", "needs segments >= 3 and stacks >= 1");
+        break;
+    }
+  }
+
   void effects() const {
     const auto& e = def_.effects;
+    if (e.collision) {
+      if (!def_.avatar) fail("effects.collision", "collides the cloth with the avatar, but the scene has no avatar");
+      non_negative("effects.collision.clearance", e.collision->clearance);
+      non_negative("effects.collision.friction", e.collision->friction);
+      if (!(e.collision->restitution >= 0.0 && e.collision->restitution <= 1.0))
+        fail("effects.collision.restitution", "must be in [0, 1]");
+      positive("effects.collision.grid_spacing", e.collision->grid.spacing);
+      positive("effects.collision.grid_band", e.collision->grid.band);
+    }
+    if (e.self_collision) {
+      positive("effects.self_collision.thickness", e.self_collision->thickness);
+      non_negative("effects.self_collision.stiffness", e.self_collision->stiffness);
+      if (e.self_collision->passes < 1) fail("effects.self_collision.passes", "must be >= 1");
+    }
+    if (e.seams) {
+      non_negative("effects.seams.stiffness", e.seams->effect.stiffness);
+      positive("effects.seams.max_force", e.seams->effect.max_force);
+      non_negative("effects.seams.damping", e.seams->effect.damping);
+      non_negative("effects.seams.merge_distance", e.seams->effect.merge_distance);
+    }
     if (e.gravity) finite("effects.gravity.g", e.gravity->g);
     if (e.viscosity) {
       non_negative("effects.viscosity.k", e.viscosity->k);

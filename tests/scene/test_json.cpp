@@ -92,7 +92,7 @@ TEST(SceneFileErrors, AMissingFieldIsNamed) {
   expect_scene_error([](json& j) { j.erase("cloth"); }, "cloth", "missing");
   expect_scene_error([](json& j) { j["cloth"][0].erase("material"); }, "cloth[0].material", "missing");
   expect_scene_error([](json& j) { j["cloth"][0]["grid"].erase("particles"); }, "cloth[0].grid.particles", "missing");
-  expect_scene_error([](json& j) { j["cloth"][0].erase("grid"); }, "cloth[0]", "grid or xvc");
+  expect_scene_error([](json& j) { j["cloth"][0].erase("grid"); }, "cloth[0]", "grid, xvc or garment");
 }
 
 TEST(SceneFileErrors, AWrongTypeIsNamed) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/scene/avatar.hpp"
 #include "vgd/scene/scene.hpp"
 #include "vgd/sim/system.hpp"
 
@@ -41,11 +42,21 @@ struct Scene {
   std::vector<PieceInfo> pieces;
   std::vector<int> pinned;              // every pinned particle, sorted
   Diagnostics diagnostics;              // meshing warnings
+  std::optional<Avatar> avatar;         // the scene's body, when it has one
+  std::vector<sim::SeamPairs> seams;    // every seam's particle pairs (global indices)
 };
+
+// The scene's body as AvatarDef says: the mannequin generated, the file
+// imported, or the solid built. Throws vgd::Error naming the scene file and
+// the field for anything wrong.
+Avatar build_avatar(const SceneDef& def);
 
 // The particles of a model the scene has not built effects for yet: pieces
 // and the model, as build() makes them. Throws vgd::Error like build().
-sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag);
+// Garments are dressed on `avatar` (required when the scene has one) and their
+// seams' particle pairs appended to `seams` (when given).
+sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag,
+                       const Avatar* avatar = nullptr, std::vector<sim::SeamPairs>* seams = nullptr);
 
 // The particles a pin group names (global indices, sorted, unique). `path` is
 // the group's JSON path for messages (e.g. "effects.pins[0]"). Throws

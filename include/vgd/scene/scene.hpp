@@ -17,8 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "vgd/scene/avatar.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/sim/effects/basic.hpp"
+#include "vgd/sim/effects/body_collision.hpp"
+#include "vgd/sim/effects/seam.hpp"
+#include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/sim/integrator.hpp"
 #include "vgd/sim/run.hpp"
 
@@ -72,10 +76,23 @@ struct Placement {
   Vec3 v = Vec3::UnitY();      // grid v (weft) / pattern y
 };
 
+// A garment of an XVC document dressed on the scene's avatar: assembled
+// (scene/garment.hpp: hems of a seam get equal vertex counts), each piece
+// wrapped round the body where its arrangement (POSITION type="arrangement")
+// says, or where vgd suggests from its name when it has none; the document's
+// seams become the seams effect's particle pairs.
+struct GarmentDef {
+  std::filesystem::path file;       // XVC document; relative to the scene file's folder
+  std::string size;                 // "" = the sample size
+  std::vector<std::string> pieces;  // piece or block names; empty = every pattern of the size
+  double spacing = 0.0;             // m between boundary vertices; 0 = the document's mesh.spacing, else 0.015
+};
+
 struct ClothDef {
   std::string name;                  // grid: the piece name; XVC: a label (pieces keep their block names)
-  std::optional<GridDef> grid;       // exactly one of grid and xvc
+  std::optional<GridDef> grid;       // exactly one of grid, xvc and garment
   std::optional<XvcPiecesDef> xvc;
+  std::optional<GarmentDef> garment;
   Placement placement;
   ClothModel model = ClothModel::mass_spring;
   bool bending = true;               // strain-rosette: add the bending effect
@@ -100,6 +117,43 @@ struct PinGroupDef {
   Vec3 velocity = Vec3::Zero();     // m/s (a moving pin: a yanked hanger, a tensile test's clamp)
 };
 
+// The body: vgd's parametric mannequin, an imported mesh or a simple solid
+// (benchmarks). Used by the collision effect and by garment placement.
+struct AvatarDef {
+  enum class Kind { mannequin, file, sphere, cylinder };
+  Kind kind = Kind::mannequin;
+  // mannequin: a size from the tables (data/bodies), or measurements
+  std::string size;                 // "" = use `measurements`
+  std::string table;                // size table; "" = the default search order
+  BodyMeasurements measurements;    // when size is ""
+  int triangles = 0;                // target triangle count, 0 = the generator's default
+  // file
+  std::filesystem::path file;       // relative to the scene file's folder
+  std::string unit = "auto";        // auto, m, cm, mm, in
+  std::string up = "auto";          // auto, y, z
+  // sphere / cylinder (Blender's UV sphere and cylinder)
+  Vec3 centre = Vec3::Zero();       // m: sphere centre; cylinder: centre of the bottom cap
+  double radius = 0.3;              // m
+  double height = 1.0;              // m, cylinder
+  int segments = 64, rings = 40;    // sphere: 64 x 40 = 4 992 triangles; cylinder: segments around, rings = stacks
+};
+
+// A seam between two particle sets of grid pieces (benchmarks, tests); the
+// sets pair in order, so they must hold the same number of particles.
+struct GridSeamDef {
+  std::string piece_a, set_a;  // e.g. "front", "edge-u1"
+  std::string piece_b, set_b;
+  bool reverse = false;        // pair the second set backwards
+};
+
+// Seams: stitching forces pulling each pair together, merging pairs that
+// come closer than merge_distance (sim/effects/seam.hpp). The pairs come from
+// the garments' documents and from `grid`; build() fills effect.seams.
+struct SeamsDef {
+  sim::SeamDef effect;            // law, stiffness, max_force, damping, merge_distance, merge
+  std::vector<GridSeamDef> grid;  // extra seams between grid pieces
+};
+
 // The effects a scene calls for; an absent effect is never constructed.
 struct EffectsDef {
   std::optional<sim::GravityDef> gravity;
@@ -107,6 +161,10 @@ struct EffectsDef {
   std::optional<sim::DampingDef> damping;
   std::optional<sim::WindDef> wind;
   std::vector<PinGroupDef> pins;
+  // Cloth against the avatar (the scene's `avatar` must exist). body is filled by build().
+  std::optional<sim::BodyCollisionDef> collision;
+  std::optional<sim::SelfCollisionDef> self_collision;
+  std::optional<SeamsDef> seams;
 };
 
 // ---- integration, frames, output --------------------------------------------------
@@ -127,6 +185,7 @@ struct OutputDef {
 struct SceneDef {
   std::string name;
   std::filesystem::path source;  // the scene file ("" when built in code); names it in messages
+  std::optional<AvatarDef> avatar;
   std::vector<ClothDef> cloth;
   std::map<std::string, MaterialSource> materials;
   EffectsDef effects;

@@ -36,6 +36,7 @@ inline constexpr Dimension stiffness{1, 0, -2};       // N/m (spring constants, 
 inline constexpr Dimension damping{1, 0, -1};         // N·s/m = kg/s
 inline constexpr Dimension pressure{1, -1, -2};       // Pa = N/m²
 inline constexpr Dimension moment{1, 2, -2};          // N·m (bending stiffness)
+inline constexpr Dimension energy{1, 2, -2};          // J (= N·m: same dimension as a moment)
 inline constexpr Dimension drag{1, -3, 0};            // N·s/m³ (wind coefficient) = kg/m³
 }  // namespace dim
 

@@ -1,0 +1,70 @@
+// vgd avatar: what an avatar file holds (report) and format conversion (convert).
+#include <cstdio>
+#include <memory>
+
+#include "cli.hpp"
+#include "vgd/scene/avatar_io.hpp"
+
+namespace {
+
+struct Options {
+  std::string input, output, unit = "auto", up = "auto", facing = "+z";
+  bool json = false;
+};
+
+vgd::scene::AvatarImportOptions import_options(const Options& o) {
+  vgd::scene::AvatarImportOptions io;
+  io.unit = o.unit, io.up = o.up, io.facing = o.facing;
+  return io;
+}
+
+void add_import_options(CLI::App* sub, const std::shared_ptr<Options>& o) {
+  sub->add_option("--unit", o->unit, "File unit: auto, m, cm, mm, in")->capture_default_str();
+  sub->add_option("--up", o->up, "File up axis: auto, x, y, z, -x, -y, -z")->capture_default_str();
+  sub->add_option("--facing", o->facing, "Where the body faces once +Y is up: +z, -z, +x, -x")->capture_default_str();
+}
+
+vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common) {
+  auto* sub = app.add_subcommand("avatar", "Report on or convert an avatar mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada)");
+  sub->require_subcommand(1);
+  auto o = std::make_shared<Options>();
+  auto* report = sub->add_subcommand("report", "Triangles, bounding box, height, watertightness, unit and up axis used");
+  report->add_option("FILE", o->input, "Avatar mesh")->required();
+  report->add_flag("--json", o->json, "Print the report as JSON on stdout");
+  add_import_options(report, o);
+  auto* convert = sub->add_subcommand("convert", "Normalise (metres, +Y up, facing +Z, feet on y = 0) and write another format");
+  convert->add_option("FILE", o->input, "Avatar mesh")->required();
+  convert->add_option("-o,--output", o->output, "Output: .obj .ply .stl .glb .gltf .dae (atomically)")->required();
+  add_import_options(convert, o);
+  sub->footer("Exit codes: 0 ok, 1 unreadable or bad file (the message says why), 2 usage.");
+  return vgd::cli::Command{sub, [o, report, &common]() -> int {
+    vgd::scene::AvatarReport r;
+    const auto avatar = vgd::scene::import_avatar(o->input, import_options(*o), &r);
+    if (report->parsed()) {
+      if (o->json) {
+        vgd::cli::print_json(nlohmann::json::parse(vgd::scene::to_json(r)));
+      } else {
+        std::printf("%s: %d meshes, %d vertices, %d triangles%s\n", r.file.c_str(), r.meshes, r.vertices, r.triangles,
+                    r.welded_vertices ? (" (" + std::to_string(r.welded_vertices) + " vertices welded)").c_str() : "");
+        std::printf("height %.4f m; box (%.4f, %.4f, %.4f) – (%.4f, %.4f, %.4f) m\n", r.height, r.box.min.x(), r.box.min.y(),
+                    r.box.min.z(), r.box.max.x(), r.box.max.y(), r.box.max.z());
+        std::printf("unit %s (%s: %s); up %s (%s: %s)\n", r.unit.c_str(), r.unit_guessed ? "guessed" : "known",
+                    r.unit_reason.c_str(), r.up.c_str(), r.up_guessed ? "guessed" : "known", r.up_reason.c_str());
+        std::printf("%s: %d boundary, %d non-manifold, %d inconsistent edges\n", r.watertight ? "watertight" : "NOT watertight",
+                    r.boundary_edges, r.non_manifold_edges, r.inconsistent_edges);
+        std::string segs;
+        for (const auto& s : r.segments) segs += (segs.empty() ? "" : ", ") + s;
+        std::printf("segments: %s\n", segs.empty() ? "none found" : segs.c_str());
+        for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
+        std::fflush(stdout);
+      }
+      return vgd::cli::kOk;
+    }
+    vgd::scene::export_avatar(avatar, o->output);
+    vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(r.triangles) + " triangles, height " +
+                              std::to_string(r.height) + " m (unit " + r.unit + ", up " + r.up + ")");
+    return vgd::cli::kOk;
+  }};
+}};
+
+}  // namespace

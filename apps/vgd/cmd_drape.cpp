@@ -1,0 +1,170 @@
+// vgd drape: sews a garment document and drapes it on a body (docs/drape.md).
+//
+//   vgd drape garment.xvc --size 38 -o out/          the mannequin of size 38
+//   vgd drape garment.xvc --avatar body.glb -o out/  an imported body
+//
+// Writes into the output folder: garment.obj (the draped garment, one group
+// per piece), avatar.obj (the body), certificate.json (why it stopped,
+// penetration, seams, strain, contact pressure, kinetic-energy history),
+// scene.json is not written: --save-scene writes the scene it ran.
+// Progress per stage (placing, sewing, settling) goes to stderr.
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "cli.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/io/obj/obj.hpp"
+#include "vgd/scene/avatar_io.hpp"
+#include "vgd/scene/drape.hpp"
+
+namespace {
+
+struct Options {
+  std::string garment, size, avatar, output = "out", material, material_id;
+  double time_limit = 8.0, spacing = 0.0;
+  bool self_collision = false, frames = false, json = false;
+};
+
+std::string fixed(double v, int d) { return vgd::format_fixed(v, d); }
+
+// One line per stage on stderr, redrawn in place on a terminal.
+class StageBar {
+ public:
+  explicit StageBar(bool enabled) : enabled_(enabled), tty_(isatty(2) == 1) {}
+  void operator()(const vgd::scene::DrapeStageProgress& p) {
+    if (!enabled_) return;
+    const bool new_stage = p.stage != stage_;
+    if (new_stage && drawn_) std::fprintf(stderr, "\n");
+    stage_ = p.stage;
+    const double f = p.time_limit > 0 ? std::min(1.0, p.t / p.time_limit) : 0.0;
+    const int width = 20, filled = static_cast<int>(width * f);
+    std::string line = "[" + std::string(filled, '#') + std::string(width - filled, '.') + "] " + p.stage;
+    if (p.stage != "placing") {
+      line += "  t " + fixed(p.t, 2) + " s  seams " + std::to_string(p.seams_closed) + "/" +
+              std::to_string(p.seam_pairs) + "  KE " + vgd::format_double(p.kinetic_energy) + " J/particle";
+    }
+    line += "  wall " + fixed(p.wall_s, 1) + " s";
+    const int tenth = static_cast<int>(10 * f);
+    if (tty_) {
+      std::fprintf(stderr, "\r%s\033[K", line.c_str());
+      drawn_ = true;
+    } else if (new_stage || tenth != tenth_) {
+      std::fprintf(stderr, "%s\n", line.c_str());
+    }
+    tenth_ = tenth;
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (drawn_) std::fprintf(stderr, "\n");
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_, tty_, drawn_ = false;
+  std::string stage_;
+  int tenth_ = -1;
+};
+
+// Keeps the last frame only (the garment as draped).
+class LastFrame : public vgd::sim::FrameSink {
+ public:
+  void frame(int, double t, const vgd::sim::VecX& x) override {
+    this->t = t;
+    this->x = x;
+  }
+  double t = 0;
+  vgd::sim::VecX x;
+};
+
+vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
+  auto* sub = app.add_subcommand("drape", "Sew a garment document and drape it on a body");
+  auto o = std::make_shared<Options>();
+  sub->add_option("GARMENT", o->garment, "XVC document with seams (docs/xvc.md)")->required()->check(CLI::ExistingFile);
+  sub->add_option("--size", o->size, "Garment size to sew, and the mannequin's size (default: the sample size)");
+  sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
+      ->check(CLI::ExistingFile);
+  sub->add_option("-o,--output", o->output, "Output folder (default: out)");
+  sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's, "
+                                             "else data/materials/shirting.xvc)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
+  sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
+  sub->add_option("--spacing", o->spacing, "Mesh spacing, m (default: the document's mesh.spacing, else 0.015)")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--self-collision", o->self_collision, "Also keep the cloth from passing through itself");
+  sub->add_flag("--frames", o->frames, "Also write every frame as OBJ into OUTPUT/frames/");
+  sub->add_flag("--json", o->json, "Print the certificate on stdout");
+  sub->footer("Exit codes: 0 draped to rest and every check passed, 1 bad input or the run failed, "
+              "3 the drape ended but a check failed (see certificate.json).");
+  return vgd::cli::Command{sub, [o, &common]() -> int {
+    namespace scene = vgd::scene;
+    namespace fs = std::filesystem;
+    scene::DrapeOptions d;
+    d.garment = o->garment;
+    d.size = o->size;
+    d.material_xvc = o->material;
+    d.material_id = o->material_id;
+    d.time_limit = o->time_limit;
+    d.spacing = o->spacing;
+    d.self_collision = o->self_collision;
+    if (!o->avatar.empty()) {
+      scene::AvatarDef a;
+      a.kind = scene::AvatarDef::Kind::file;
+      a.file = fs::absolute(o->avatar);
+      d.avatar = a;
+    }
+    const scene::SceneDef def = scene::drape_scene(d);
+
+    const fs::path out = o->output;
+    std::vector<std::unique_ptr<vgd::sim::FrameSink>> owned;
+    std::vector<vgd::sim::FrameSink*> sinks;
+    auto last = std::make_unique<LastFrame>();
+    sinks.push_back(last.get());
+    if (o->frames) {
+      owned.push_back(std::make_unique<vgd::io::obj::ObjSequenceSink>(out / "frames"));
+      sinks.push_back(owned.back().get());
+    }
+    StageBar bar(!common.quiet && !o->json);
+    scene::DrapeResult r = scene::run_drape(def, sinks, std::ref(bar));
+    bar.finish();
+    vgd::cli::print_diagnostics(r.scene.diagnostics, common);
+
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    const auto& model = r.scene.system->model();
+    vgd::write_file_atomic(out / "garment.obj", vgd::io::obj::frame_text(model, r.state.t, r.positions));
+    if (r.scene.avatar) scene::export_avatar(*r.scene.avatar, out / "avatar.obj");
+    const std::string cert = scene::to_json(r.certificate);
+    vgd::write_file_atomic(out / "certificate.json", cert);
+
+    const auto& c = r.certificate;
+    if (o->json) {
+      std::fputs(cert.c_str(), stdout);
+    } else if (!common.quiet) {
+      int pairs = 0, closed = 0;
+      for (const auto& s : c.seams) pairs += s.pairs, closed += s.closed;
+      std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", o->garment.c_str(), c.stop_reason.c_str(),
+                  fixed(c.simulated_s, 2).c_str(), fixed(c.wall_s, 2).c_str());
+      for (const auto& st : c.stages)
+        std::printf("  %-9s %7s s wall %7s s simulated\n", st.name.c_str(), fixed(st.wall_s, 2).c_str(),
+                    fixed(st.simulated_s, 2).c_str());
+      std::printf("  %d particles, %d triangles; seams %d/%d pairs closed; max penetration %s mm; "
+                  "%d crossing triangle pairs\n",
+                  c.particles, c.triangles, closed, pairs, fixed(c.max_penetration * 1000, 2).c_str(),
+                  c.triangle_intersections);
+      std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s\n", out.string().c_str(),
+                  o->frames ? ", frames/" : "");
+      std::fflush(stdout);
+    }
+    if (c.stop_reason == "error") {
+      std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", o->garment.c_str(), c.stop_message.c_str());
+      return vgd::cli::kFailed;
+    }
+    return c.passed() ? vgd::cli::kOk : vgd::cli::kCheckFailed;
+  }};
+}};
+
+}  // namespace

@@ -1,0 +1,67 @@
+#pragma once
+// Draping a garment on a body, end to end (docs/drape.md):
+//
+//   placing   the garment document assembled (seam hems with equal vertex
+//             counts), meshed, each piece wrapped round the avatar;
+//   sewing    seams pull their pairs together and merge them, the cloth
+//             collides with the body (and itself when asked);
+//   settling  the garment hangs until the mean kinetic energy per particle
+//             stays below a threshold for a number of frames (rest), or the
+//             time limit is reached.
+//
+// A drape is a scene (scene.hpp): drape_scene() writes the SceneDef the
+// options describe, so what `vgd drape` runs can be saved and rerun with
+// `vgd simulate`. run_drape() builds it, runs it with rest detection, and
+// measures the certificate (certificate.hpp).
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "vgd/scene/build.hpp"
+#include "vgd/scene/certificate.hpp"
+#include "vgd/scene/scene.hpp"
+
+namespace vgd::scene {
+
+struct DrapeOptions {
+  std::filesystem::path garment;         // the XVC document (with SEAMs)
+  std::string size;                      // "" = the document's sample size
+  std::optional<AvatarDef> avatar;       // empty = the mannequin of the garment's size (else 38)
+  std::filesystem::path material_xvc;    // "" = the garment's own MATERIAL if it has one, else data/materials/shirting.xvc
+  std::string material_id;               // MATERIAL id in material_xvc; "" = its first
+  double spacing = 0.0;                  // m; 0 = the document's mesh.spacing, else 0.015
+  bool self_collision = false;
+  double time_limit = 8.0;               // s of simulated time
+  double rest_energy = 2e-7;             // J: mean kinetic energy per particle counted as rest
+  int rest_frames = 10;                  // consecutive frames below it
+  double fps = 25.0;
+};
+
+// The scene the options describe (materials resolved to files, not read yet).
+// Throws vgd::Error for options that cannot make one (no such file, ...).
+SceneDef drape_scene(const DrapeOptions& options);
+
+struct DrapeStageProgress {
+  std::string stage;      // placing, sewing, settling
+  double t = 0.0;         // s simulated
+  double time_limit = 0.0;
+  double wall_s = 0.0;
+  int seams_closed = 0, seam_pairs = 0;
+  double kinetic_energy = 0.0;  // J per particle
+};
+
+struct DrapeResult {
+  Scene scene;                 // as built (the system holds the final merges)
+  sim::State state;            // final, reduced
+  sim::VecX positions;         // final positions of every original particle (3N, m)
+  Certificate certificate;
+  sim::RunSummary summary;
+};
+
+// Builds and runs a drape scene, frames to `sinks`. Never throws for a run
+// that fails mid-way: the certificate then says "error" and why. Throws
+// vgd::Error for a scene that cannot be built.
+DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& sinks,
+                      const std::function<void(const DrapeStageProgress&)>& progress = {});
+
+}  // namespace vgd::scene

@@ -1,0 +1,180 @@
+#include "vgd/scene/drape.hpp"
+
+#include <chrono>
+
+#include "vgd/core/version.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/scene/data.hpp"
+#include "vgd/sim/effects/seam.hpp"
+#include "vgd/xvc/io.hpp"
+
+namespace vgd::scene {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string metres(double v) { return format_double(v) + " m"; }
+
+}  // namespace
+
+SceneDef drape_scene(const DrapeOptions& o) {
+  std::error_code ec;
+  if (!fs::is_regular_file(o.garment, ec)) throw Error(o.garment.string(), "", "no such garment document");
+  const fs::path garment = fs::absolute(o.garment);
+  const xvc::Document doc = xvc::load_file(garment);
+
+  SceneDef def;
+  def.name = "drape " + garment.stem().string();
+
+  // The body: the mannequin of the garment's size unless told otherwise.
+  if (o.avatar) {
+    def.avatar = *o.avatar;
+  } else {
+    AvatarDef a;
+    a.kind = AvatarDef::Kind::mannequin;
+    std::string size = o.size;
+    if (size.empty())
+      if (const auto* g = doc.container("GRADATIONS")) size = std::string(g->attribute("sample_size"));
+    a.size = size.empty() ? "38" : size;
+    def.avatar = a;
+  }
+
+  // The fabric: the garment's own MATERIAL, else vgd's shirting.
+  MaterialSource fabric;
+  if (!o.material_xvc.empty()) {
+    fabric.xvc = fs::absolute(o.material_xvc);
+    fabric.id = o.material_id;
+  } else if (const auto* mats = doc.container("MATERIALS"); mats && !mats->children.empty()) {
+    fabric.xvc = garment;
+    fabric.id = std::string(mats->children.front().id());
+  } else {
+    fabric.xvc = data_file("materials/shirting.xvc");
+    fabric.id = "shirting";
+  }
+  if (fabric.id.empty()) {
+    const xvc::Document mdoc = xvc::load_file(fabric.xvc);
+    const auto* mats = mdoc.container("MATERIALS");
+    if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
+    fabric.id = std::string(mats->children.front().id());
+  }
+  def.materials["fabric"] = fabric;
+
+  ClothDef cloth;
+  cloth.name = garment.stem().string();
+  GarmentDef g;
+  g.file = garment;
+  g.size = o.size;
+  g.spacing = o.spacing;
+  cloth.garment = g;
+  cloth.model = ClothModel::mass_spring;
+  cloth.material = "fabric";
+  def.cloth.push_back(cloth);
+
+  auto& e = def.effects;
+  e.gravity = sim::GravityDef{};
+  // Air drag, mass-proportional so it does not depend on the mesh (a garment
+  // settles in about a second instead of swinging for ten).
+  e.viscosity = sim::ViscosityDef{0.0, 2.0};
+  e.collision = sim::BodyCollisionDef{};
+  SeamsDef seams;
+  e.seams = seams;
+  if (o.self_collision) e.self_collision = sim::SelfCollisionDef{};
+
+  def.integrator.settings.method = sim::Method::implicit_euler;
+  def.integrator.settings.step = 1.0 / (o.fps * 4);
+  def.integrator.settings.cg_tolerance = 1e-3;
+  def.integrator.settings.cg_max_iterations = 200;
+  def.run.fps = o.fps;
+  def.run.duration = o.time_limit;
+  def.run.rest_energy = o.rest_energy;
+  def.run.rest_frames = o.rest_frames;
+  validate(def);
+  return def;
+}
+
+DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& sinks,
+                      const std::function<void(const DrapeStageProgress&)>& progress) {
+  DrapeResult r;
+  const auto t_start = Clock::now();
+  r.scene = build(def);
+  const double placing_wall = seconds_since(t_start);
+  sim::System& sys = *r.scene.system;
+  r.state = sim::initial_state(sys.model());
+  auto integrator = sim::make_integrator(r.scene.integrator);
+
+  // The seam effect, for progress.
+  const sim::Effect* seam_effect = nullptr;
+  for (const auto& e : sys.effects())
+    if (sim::seam_report(*e)) seam_effect = e.get();
+
+  Certificate& c = r.certificate;
+  double sewn_at = -1.0, sewn_wall = 0.0;
+  const auto t_run = Clock::now();
+  auto on_frame = [&](const sim::Progress& p) {
+    DrapeStageProgress d;
+    d.t = p.t;
+    d.time_limit = p.duration;
+    d.wall_s = seconds_since(t_start);
+    if (seam_effect) {
+      const auto* rep = sim::seam_report(*seam_effect);
+      d.seams_closed = rep->total.closed;
+      d.seam_pairs = rep->total.total;
+    }
+    if (sewn_at < 0 && d.seams_closed == d.seam_pairs) {
+      sewn_at = p.t;
+      sewn_wall = seconds_since(t_run);
+    }
+    d.stage = sewn_at < 0 ? "sewing" : "settling";
+    d.kinetic_energy = p.kinetic_energy;
+    if (progress) progress(d);
+  };
+  if (progress) progress({"placing", 0.0, def.run.duration, placing_wall, 0, 0, 0.0});
+  r.summary = sim::run(sys, *integrator, r.state, r.scene.run, sinks, on_frame);
+  r.positions = sys.expand(r.state.x);
+
+  // The certificate.
+  c.version = std::string(kVersion);
+  for (const auto& cl : def.cloth)
+    if (cl.garment) c.inputs.emplace_back("garment", cl.garment->file.string());
+  if (r.scene.avatar) c.inputs.emplace_back("avatar", r.scene.avatar->source);
+  for (const auto& [k, m] : def.materials)
+    if (!m.xvc.empty()) c.inputs.emplace_back("material", m.xvc.string() + "#" + m.id);
+  c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
+  c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
+  c.settings.emplace_back("fps", format_double(def.run.fps));
+  c.settings.emplace_back("time_limit", format_double(def.run.duration) + " s");
+  c.settings.emplace_back("rest_energy", format_double(def.run.rest_energy) + " J per particle");
+  c.settings.emplace_back("rest_frames", std::to_string(def.run.rest_frames));
+  double merge_distance = 0.0, contact = 0.004;
+  if (def.effects.collision) {
+    c.settings.emplace_back("clearance", metres(def.effects.collision->clearance));
+    contact = def.effects.collision->clearance + 0.001;
+  }
+  if (def.effects.seams) {
+    merge_distance = def.effects.seams->effect.merge_distance;
+    c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
+  }
+  c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
+  c.stop_reason = !r.summary.ok ? "error" : r.summary.at_rest ? "rest" : "time limit";
+  c.stop_message = r.summary.error;
+  c.simulated_s = r.summary.simulated_s;
+  c.wall_s = seconds_since(t_start);
+  c.frames = r.summary.frames;
+  c.stages.push_back({"placing", placing_wall, 0.0});
+  const double run_wall = r.summary.wall_s;
+  if (sewn_at >= 0) {
+    c.stages.push_back({"sewing", sewn_wall, sewn_at});
+    c.stages.push_back({"settling", run_wall - sewn_wall, r.summary.simulated_s - sewn_at});
+  } else {
+    c.stages.push_back({"sewing", run_wall, r.summary.simulated_s});
+  }
+  c.times = r.summary.times;
+  c.kinetic_energy = r.summary.kinetic_energy;
+  measure_state(r.scene, r.positions, merge_distance, contact, true, c);
+  return r;
+}
+
+}  // namespace vgd::scene
