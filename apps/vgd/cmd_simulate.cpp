@@ -158,6 +158,8 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
                        {"steps", r.stats.steps},
                        {"rhs_evaluations", r.stats.rhs_evaluations},
                        {"jacobian_evaluations", r.stats.jacobian_evaluations},
+                       {"linear_iterations", r.stats.linear_iterations},
+                       {"convergence_failures", r.stats.convergence_failures},
                        {"simulated_s", r.simulated_s},
                        {"wall_s", r.wall_s},
                        {"particle_steps_per_s", pps},

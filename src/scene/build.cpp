@@ -538,7 +538,8 @@ Scene build(const SceneDef& def) {
     if (e.collision) {
       sim::BodyCollisionDef cd = *e.collision;
       cd.body = s.avatar->surface;
-      cd.seam_particles = seam_particles;
+      if (e.collision_seam_response != "body") cd.seam_particles = seam_particles;
+      cd.seam_keep_magnitude = e.collision_seam_response == "seed";
       cd.fixed = s.pinned;
       effects.push_back(sim::make_body_collision(model, cd));
     }

@@ -55,6 +55,21 @@ PieceStrain piece_strain(const sim::Model& m, const PieceInfo& p, const sim::Vec
   return s;
 }
 
+// Per original particle, the lowest original particle merged with it (itself
+// when unmerged): one index per sewn vertex.
+std::vector<int> first_copies(const std::vector<int>& rep, int n) {
+  std::vector<int> first(n);
+  if (rep.empty()) {
+    for (int k = 0; k < n; ++k) first[k] = k;
+    return first;
+  }
+  std::vector<int> of_group(n, -1);
+  for (int k = 0; k < n; ++k)
+    if (of_group[rep[k]] < 0) of_group[rep[k]] = k;
+  for (int k = 0; k < n; ++k) first[k] = of_group[rep[k]];
+  return first;
+}
+
 nlohmann::json to_json(const Percentiles& p) {
   return {{"min", p.min}, {"p5", p.p5}, {"p50", p.p50}, {"p95", p.p95}, {"max", p.max}};
 }
@@ -86,7 +101,21 @@ void measure_state(const Scene& scene, const sim::VecX& x, double merge_distance
       out.particles_inside += d > 0;
     }
   }
-  out.triangle_intersections = intersections ? mesh::count_triangle_intersections(points, m.triangles) : -1;
+  // Crossings in the sewn topology: a merged particle's copies are one vertex,
+  // so triangles meeting across a closed seam share it and do not count.
+  if (intersections) {
+    const std::vector<int> first = first_copies(scene.system->representative(), m.num_particles());
+    std::vector<std::array<int, 3>> sewn;
+    sewn.reserve(m.triangles.size());
+    for (const auto& t : m.triangles) {
+      std::array<int, 3> q = t;
+      for (int& k : q) k = first[k];
+      if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) sewn.push_back(q);
+    }
+    out.triangle_intersections = mesh::count_triangle_intersections(points, sewn);
+  } else {
+    out.triangle_intersections = -1;
+  }
 
   // Seams: a pair is closed when its two particles are one (merged) or as close.
   out.seams.clear();

@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <tuple>
 
 #include "vgd/xvc/arrangement.hpp"
@@ -117,6 +118,7 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
   // arrangement of the PATTERN (a sleeve cut twice is placed twice), at least one.
   std::vector<std::vector<xvc::Stretch>> stretches;  // per pattern kept
   std::vector<std::vector<int>> copies;              // per pattern kept: its pieces
+  std::set<std::string> left_out;                    // stretches of this size's patterns left out
   for (const auto* p : patterns) {
     if (std::string(p->attribute("size")) != g.size) continue;
     GarmentPiece gp;
@@ -126,8 +128,10 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
     if (!options.pieces.empty() &&
         std::find_if(options.pieces.begin(), options.pieces.end(), [&](const std::string& s) {
           return s == gp.piece.name || s == gp.piece.block || s == gp.pattern_id;
-        }) == options.pieces.end())
+        }) == options.pieces.end()) {
+      for (const auto& st : xvc::boundary_stretches(*p)) left_out.insert(st.id);
       continue;
+    }
     stretches.push_back(xvc::boundary_stretches(*p));
     copies.emplace_back();
     const auto listed = options.copies.find(gp.pattern_id);
@@ -156,14 +160,15 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
     for (const auto& s : container->children) {
       if (s.tag != "SEAM") continue;
       Seam seam{std::string(s.id()), std::string(s.attribute("name")), {}};
-      bool kept = true;
+      bool kept = true, other_size = false;
       std::vector<Hem> mine;
       for (const auto& h : s.children) {
         if (h.tag != "HEM") continue;
         const std::string from(h.attribute("from")), to(h.attribute("to"));
         const auto f = stretch_at.find(from), t = stretch_at.find(to);
         if (f == stretch_at.end() || t == stretch_at.end()) {
-          kept = false;  // a pattern of another size or one left out
+          kept = false;  // a pattern of another size, or one left out
+          other_size = !left_out.count(from) && !left_out.count(to);
           break;
         }
         if (f->second.first != t->second.first)
@@ -190,9 +195,9 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
                                         "; a seam needs two ends");
         mine.push_back(std::move(hem));
       }
+      if (other_size) continue;  // the seam of another size
       if (!kept || mine.size() < 2) {
-        diag.warn(file, seam.id, "seam '" + seam.name + "' is not sewn: one of its hems is not on a piece of size '" +
-                                     g.size + "' being assembled");
+        diag.warn(file, seam.id, "seam '" + seam.name + "' is not sewn: one of its pieces is left out");
         continue;
       }
       for (auto& h : mine) {

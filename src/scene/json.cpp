@@ -443,6 +443,11 @@ EffectsDef read_effects(Object o) {
     else o.context().fail(c.at("query"), "unknown query '" + query + "' (use grid or exact)");
     c.number("grid_spacing", d.grid.spacing, dim::length);
     c.number("grid_band", d.grid.band, dim::length);
+    c.string("seam_response", e.collision_seam_response);
+    if (e.collision_seam_response != "seed" && e.collision_seam_response != "slide" &&
+        e.collision_seam_response != "body")
+      o.context().fail(c.at("seam_response"), "unknown seam response '" + e.collision_seam_response +
+                                                  "' (use seed, slide or body)");
     if (c.enabled()) e.collision = d;
     c.finish();
   }
@@ -522,6 +527,11 @@ IntegratorDef read_integrator(Object o) {
   o.integer("newton_iterations", s.newton_iterations);
   o.number("cg_tolerance", s.cg_tolerance, dim::none);
   o.integer("cg_max_iterations", s.cg_max_iterations);
+  std::string solver;
+  o.string("linear_solver", solver);
+  if (solver == "cholesky") s.linear_solver = sim::IntegratorSettings::LinearSolver::cholesky;
+  else if (solver == "cg" || solver.empty()) s.linear_solver = sim::IntegratorSettings::LinearSolver::cg;
+  else o.context().fail(o.at("linear_solver"), "unknown linear solver '" + solver + "' (use cg or cholesky)");
   o.number("rtol", s.rtol, dim::none);
   o.number("atol", s.atol, dim::none);
   o.integer("max_order", s.max_order);

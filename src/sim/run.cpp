@@ -58,7 +58,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
       merge(true);
       emit(k);
       const double ke = summary.kinetic_energy.back();
-      calm = settings.rest_energy > 0.0 && ke < settings.rest_energy ? calm + 1 : 0;
+      calm = settings.rest_energy > 0.0 && ke < settings.rest_energy && sys.may_rest() ? calm + 1 : 0;
       if (progress) {
         const double w = wall();
         progress({k, frames, s.t - t0, settings.duration, w, w / k * (frames - k), ke});

@@ -399,4 +399,10 @@ void System::check_state(const State& s, double max_speed) const {
   }
 }
 
+bool System::may_rest() const {
+  for (std::size_t i = 0; i < effects_.size(); ++i)
+    if (active_[i] && effects_[i]->blocks_rest()) return false;
+  return true;
+}
+
 }  // namespace vgd::sim

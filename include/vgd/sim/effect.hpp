@@ -78,6 +78,9 @@ class Effect {
 
   // True when the effect has done all its work and may leave the step.
   virtual bool finished() const { return false; }
+  // True while the effect has work the system must not be called "at rest"
+  // before (seams still open): sim::run's rest detection waits for it.
+  virtual bool blocks_rest() const { return false; }
 };
 
 }  // namespace vgd::sim

@@ -34,8 +34,13 @@ struct IntegratorSettings {
   double safety = 0.9;         // explicit methods: use at most this fraction of the stability limit
   // implicit Euler
   int newton_iterations = 1;   // Baraff–Witkin take one
-  double cg_tolerance = 1e-8;  // relative residual of the linear solve
+  double cg_tolerance = 1e-8;  // relative residual of the linear solve (CG), and the Newton stop
   int cg_max_iterations = 1000;
+  // The linear solve of each step: preconditioned conjugate gradients
+  // (Baraff & Witkin), or a sparse Cholesky factorisation (LDLᵀ, ordering
+  // computed once per sparsity pattern) — exact whatever the condition
+  // number, which stiff fabrics on light particles make large.
+  enum class LinearSolver { cg, cholesky } linear_solver = LinearSolver::cg;
   // BDF (CVODE)
   double rtol = 1e-4;          // relative tolerance
   double atol = 1e-6;          // absolute tolerance (m for positions, m/s for velocities)

@@ -37,7 +37,8 @@ struct RunSettings {
   double duration = 1.0;    // s of simulated time: the time limit when rest detection is on
   // Rest detection: the run ends early once the mean kinetic energy per
   // particle, ½ Σ m v² / N (J), stays below rest_energy for rest_frames frames
-  // in a row. 0 = off (the run lasts `duration`).
+  // in a row, and no effect has work left (System::may_rest: seams all
+  // closed). 0 = off (the run lasts `duration`).
   double rest_energy = 0.0;
   int rest_frames = 10;
 };

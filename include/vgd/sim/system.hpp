@@ -76,6 +76,8 @@ class System {
   bool has_prescribed() const { return !prescribed_.empty(); }
   // Overwrites prescribed particles' positions and velocities with their values at s.t.
   void apply_prescribed(State& s) const;
+  // False while an active effect has work left that rest must wait for (Effect::blocks_rest).
+  bool may_rest() const;
   // After-step hooks of all active effects; drops effects that report finished().
   void after_step(State& s);
 

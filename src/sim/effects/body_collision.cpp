@@ -74,7 +74,7 @@ class BodyCollision final : public Effect {
       const double fn = fi.dot(nrm);
       if (fn >= 0.0) continue;  // pulling away from the body: free to leave
       if (role_[i] & kSeam) {
-        fi = keep_magnitude_tangential(fi, nrm, fn);
+        fi = def_.seam_keep_magnitude ? keep_magnitude_tangential(fi, nrm, fn) : Vec3(fi - fn * nrm);
       } else if (def_.response == ContactResponse::slide) {
         fi -= fn * nrm;
       }
@@ -128,7 +128,7 @@ class BodyCollision final : public Effect {
       const double vn = vi.dot(nrm);
       if (vn >= 0.0) continue;  // already leaving
       if (role_[i] & kSeam) {
-        vi = keep_magnitude_tangential(vi, nrm, vn);
+        vi = def_.seam_keep_magnitude ? keep_magnitude_tangential(vi, nrm, vn) : Vec3(vi - vn * nrm);
         continue;
       }
       const Vec3 vt = vi - vn * nrm;

@@ -344,7 +344,11 @@ void spring_blocks(const Vec3& l, const Vec3& w, double k, double kd, double r, 
   const Vec3 u = l / L;
   const Mat3 uu = u * u.transpose();
   const Mat3 P = Mat3::Identity() - uu;
-  dx = -k * (uu + (1.0 - r / L) * P) - (kd / L) * (u * (P * w).transpose() + u.dot(w) * P);
+  // A compressed spring's transverse stiffness k (1 − r/L) is negative: it
+  // makes M − h²K indefinite once h²k/m is large (cloth placed curved round a
+  // body starts with many). Implicit steps use it clamped at 0 (Choi & Ko
+  // 2002): the step stays definite; the forces themselves are exact.
+  dx = -k * (uu + std::max(0.0, 1.0 - r / L) * P) - (kd / L) * (u * (P * w).transpose() + u.dot(w) * P);
   dv = -kd * uu;
 }
 

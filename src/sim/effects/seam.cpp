@@ -165,6 +165,7 @@ class Seam final : public Effect {
   }
 
   bool finished() const override { return merge_ && open_.empty(); }
+  bool blocks_rest() const override { return merge_ && !open_.empty(); }
 
  private:
   void summarise() {

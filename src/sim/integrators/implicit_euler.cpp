@@ -51,6 +51,7 @@
 //   positive definite falls back to the particle's mass.
 // - Single-threaded and deterministic (effects may use OpenMP internally).
 #include <Eigen/Cholesky>
+#include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -265,10 +266,19 @@ class ImplicitEuler final : public FixedStepIntegrator {
       a_ = mass_matrix_ - h * dfdv_ - (h * h) * dfdx_;
       at_ = a_.transpose();
       a_ = 0.5 * (a_ + at_);
+      ++stats_.newton_iterations;
+      if (settings_.linear_solver == IntegratorSettings::LinearSolver::cholesky) {
+        // Prescribed dofs: their rows and columns hold M_ii only and their
+        // right-hand side is 0, so their Δv comes out 0 as with the CG filter.
+        const Outcome o = cholesky_solve();
+        if (o != Outcome::accepted) return o;
+        ++stats_.linear_iterations;
+        dv_ += delta_;
+        continue;
+      }
       block_jacobi(a_, mass_dof_, pinv_);
       const CgResult cg = pcg_.solve(a_, rhs_, pinv_, filter, settings_.cg_tolerance, settings_.cg_max_iterations, delta_);
       stats_.linear_iterations += cg.iterations;
-      ++stats_.newton_iterations;
       if (cg.status == CgStatus::non_finite) {
         nonfinite_ = "force Jacobian at t = " + fmt(it_.t) + " s";
         refuse(Outcome::non_finite, s.t, h);
@@ -279,6 +289,30 @@ class ImplicitEuler final : public FixedStepIntegrator {
     }
     s.v += dv_;
     s.x += h * s.v;
+    return Outcome::accepted;
+  }
+
+  // delta_ = A⁻¹ rhs_ by LDLᵀ; the fill-reducing ordering is recomputed only
+  // when A's sparsity pattern changes. A pivot ≤ 0 means A is not positive
+  // definite: the step is retried smaller, as for CG's negative curvature.
+  Outcome cholesky_solve() {
+    const bool same = analysed_ && a_.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
+                      std::equal(a_.outerIndexPtr(), a_.outerIndexPtr() + a_.outerSize() + 1, pattern_outer_.begin(),
+                                 pattern_outer_.end()) &&
+                      std::equal(a_.innerIndexPtr(), a_.innerIndexPtr() + a_.nonZeros(), pattern_inner_.begin());
+    if (!same) {
+      ldlt_.analyzePattern(a_);
+      pattern_outer_.assign(a_.outerIndexPtr(), a_.outerIndexPtr() + a_.outerSize() + 1);
+      pattern_inner_.assign(a_.innerIndexPtr(), a_.innerIndexPtr() + a_.nonZeros());
+      analysed_ = true;
+    }
+    ldlt_.factorize(a_);
+    if (ldlt_.info() != Eigen::Success) return Outcome::indefinite;
+    delta_ = ldlt_.solve(rhs_);
+    if (!delta_.allFinite()) {
+      nonfinite_ = "velocity change from the Cholesky solve";
+      return Outcome::non_finite;
+    }
     return Outcome::accepted;
   }
 
@@ -294,6 +328,9 @@ class ImplicitEuler final : public FixedStepIntegrator {
   std::vector<Mat3> pinv_;
   State it_;
   Pcg pcg_;
+  Eigen::CholmodSupernodalLLT<SparseMatrix> ldlt_;
+  bool analysed_ = false;
+  std::vector<int> pattern_outer_, pattern_inner_;
 };
 
 }  // namespace

@@ -52,6 +52,10 @@ struct BodyCollisionDef {
   double restitution = 0.3;
   double min_bounce_speed = 0.1;  // m/s: slower impacts are inelastic (no micro-bounces at rest)
   std::vector<int> seam_particles;    // seed 002 §3.2.2: slide keeping |F| and |v|
+  // false: seam particles slide without friction and lose the inward normal
+  // parts of force and velocity (no magnitude kept). Stable with implicit
+  // steps, whose Jacobian knows nothing of a redirected force.
+  bool seam_keep_magnitude = true;
   std::vector<int> sticky_particles;  // belt and sleeve points: stay where they touch
   std::vector<int> fixed;             // particles never moved (the scene's pins)
   BodyQuery query = BodyQuery::grid;
