@@ -78,14 +78,14 @@ SceneDef drape_scene(const DrapeOptions& o) {
   // Air drag, mass-proportional so it does not depend on the mesh (a garment
   // settles in about a second instead of swinging for ten).
   e.viscosity = sim::ViscosityDef{0.0, 2.0};
-  e.collision = sim::BodyCollisionDef{}; e.collision->friction = 0.2;
+  e.collision = sim::BodyCollisionDef{};
   // Seams pull hard enough to slide cloth over the body against friction
   // (a pair pulls with at most 0.5 N, i.e. ~10⁴ m/s² on a 50 mg particle:
   // the implicit step keeps that stable) and merge at 2 mm.
   SeamsDef seams;
   seams.effect.stiffness = 200.0;
   seams.effect.max_force = 2.0;
-  seams.effect.damping = 0.02;
+  seams.effect.damping = 0.01;
   e.seams = seams;
   if (o.self_collision) e.self_collision = sim::SelfCollisionDef{};
 

@@ -27,7 +27,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   // Sinks see the model's original particles (seed 002 §3.3: E-Fabric's client
   // keeps an eliminated particle with its survivor's attributes), so every
   // frame of a run has one topology whatever merged.
-  VecX full;
+  VecX full, prev_x;
   auto emit = [&](int index) {
     const VecX* x = &s.x;
     if (sys.merged()) {
@@ -37,7 +37,22 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
     for (auto* sink : sinks) sink->frame(index, s.t, *x);
     summary.frames = index + 1;
     summary.times.push_back(s.t);
-    summary.kinetic_energy.push_back(sys.kinetic_energy(s.v) / std::max(1, sys.num_particles()));
+    // The kinetic energy of the motion between frames, ½ Σ m |Δx fps|² / N:
+    // what a viewer sees move. The state's own velocities also hold the
+    // contact jitter a collision projection removes every step (a particle
+    // pressed on the body keeps an inward v that never moves it), which would
+    // keep a garment resting on a body from ever counting as at rest.
+    double ke = 0.0;
+    if (prev_x.size() == s.x.size()) {
+      const VecX& m = sys.mass();
+      for (int i = 0; i < sys.num_particles(); ++i)
+        ke += 0.5 * m[i] * (at(s.x, i) - at(prev_x, i)).squaredNorm() * settings.fps * settings.fps;
+      ke /= std::max(1, sys.num_particles());
+    } else {
+      ke = index == 0 ? 0.0 : sys.kinetic_energy(s.v) / std::max(1, sys.num_particles());  // just after a merge
+    }
+    prev_x = s.x;
+    summary.kinetic_energy.push_back(ke);
   };
   // Seam merges at frame boundaries only: the integrator then starts afresh
   // on the smaller system.

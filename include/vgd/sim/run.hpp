@@ -36,7 +36,8 @@ struct RunSettings {
   double fps = 30.0;        // frames per second of simulated time
   double duration = 1.0;    // s of simulated time: the time limit when rest detection is on
   // Rest detection: the run ends early once the mean kinetic energy per
-  // particle, ½ Σ m v² / N (J), stays below rest_energy for rest_frames frames
+  // particle of the motion between frames, ½ Σ m |Δx·fps|² / N (J), stays
+  // below rest_energy for rest_frames frames
   // in a row, and no effect has work left (System::may_rest: seams all
   // closed). 0 = off (the run lasts `duration`).
   double rest_energy = 0.0;
@@ -59,7 +60,7 @@ struct RunSummary {
   IntegratorStats stats;
   bool at_rest = false;                // ended by rest detection (before `duration`)
   std::vector<double> times;           // s, per emitted frame
-  std::vector<double> kinetic_energy;  // J per particle, per emitted frame
+  std::vector<double> kinetic_energy;  // J per particle, per emitted frame (motion since the last frame)
 };
 
 // Runs from s to s.t + settings.duration. s is in the system's current
