@@ -35,19 +35,24 @@ test: build
 # validated, drawn and meshed. Each step is a plain vgd command.
 demo: build
 	@mkdir -p $(DEMO_OUT)
-	@echo "== 1/6 draft: the project's A-line skirt from the size table (data/garments/a-line-skirt.dxf is the committed copy)"
+	@echo "== 1/7 draft: the project's A-line skirt as AAMA DXF, and with its seams and arrangements as XVC"
 	@$(VGD) draft skirt -o $(DEMO_OUT)/a-line-skirt.dxf
-	@echo "== 2/6 import: AAMA DXF -> XVC document"
+	@$(VGD) draft skirt -o $(DEMO_OUT)/a-line-skirt.xvc
+	@echo "== 2/7 import: AAMA DXF -> XVC document, validated against schemas/xvc.xsd and the reference rules"
 	@$(VGD) import data/garments/a-line-skirt.dxf --report -o $(DEMO_OUT)/skirt.xvc
-	@echo "== 3/6 validate against schemas/xvc.xsd and the reference rules"
-	@$(VGD) validate $(DEMO_OUT)/skirt.xvc
-	@echo "== 4/6 draw the patterns (schemas/xvc-to-svg.xsl)"
-	@$(VGD) svg $(DEMO_OUT)/skirt.xvc -o $(DEMO_OUT)/skirt.svg
-	@echo "== 5/6 mesh the sample size (CGAL, 1 cm spacing, 25 deg) and write Triangle files"
-	@$(VGD) mesh $(DEMO_OUT)/skirt.xvc --triangle-files $(DEMO_OUT)/mesh
-	@echo "== 6/6 simulate the seed's flag in the wind for 2 s (data/scenes/flag.json)"
-	@$(VGD) simulate data/scenes/flag.json --duration 2 -o $(DEMO_OUT)/flag --profile
-	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf skirt.xvc skirt.svg mesh/ flag/ (OBJ frames)"
+	@$(VGD) validate $(DEMO_OUT)/a-line-skirt.xvc
+	@echo "== 3/7 draw the patterns (schemas/xvc-to-svg.xsl)"
+	@$(VGD) svg $(DEMO_OUT)/a-line-skirt.xvc -o $(DEMO_OUT)/skirt.svg
+	@echo "== 4/7 its seams, as vgd suggests them from names, lengths and notches"
+	@$(VGD) seams suggest $(DEMO_OUT)/a-line-skirt.xvc --size 38
+	@echo "== 5/7 the default mannequin (size 38, EN 13402-3) as OBJ"
+	@$(VGD) mannequin --size 38 -o $(DEMO_OUT)/mannequin-38.obj
+	@echo "== 6/7 sew and drape the skirt on it (certificate: penetration, seams, strain, contact, energy)"
+	@$(VGD) drape $(DEMO_OUT)/a-line-skirt.xvc --size 38 -o $(DEMO_OUT)/drape-skirt || test $$? -eq 3
+	@echo "== 7/7 simulate the seed's flag in the wind for 2 s (data/scenes/flag.json)"
+	@$(VGD) simulate data/scenes/flag.json --duration 2 -o $(DEMO_OUT)/flag
+	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf a-line-skirt.xvc skirt.svg mannequin-38.obj"
+	@echo "  drape-skirt/ (garment.obj avatar.obj certificate.json) flag/ (OBJ frames)"
 
 asan:
 	@$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_ARGS="-DVGD_SANITIZE=ON -DVGD_BUILD_BENCHMARKS=OFF"

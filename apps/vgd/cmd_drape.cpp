@@ -23,7 +23,8 @@
 namespace {
 
 struct Options {
-  std::string garment, size, avatar, output = "out", material, material_id;
+  std::string garment, size, avatar, output = "out", material, material_id, table;
+  std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
   bool self_collision = false, frames = false, json = false;
 };
@@ -86,6 +87,9 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--size", o->size, "Garment size to sew, and the mannequin's size (default: the sample size)");
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
       ->check(CLI::ExistingFile);
+  sub->add_option("--pieces", o->pieces, "Sew only these pieces (names or block names; default: every piece)");
+  sub->add_option("--size-table", o->table, "Size table of the mannequin (vgd mannequin --list-sizes; default: "
+                                           "women's EN 13402, then men's, then ASTM misses)");
   sub->add_option("-o,--output", o->output, "Output folder (default: out)");
   sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's, "
                                              "else data/materials/shirting.xvc)")
@@ -105,6 +109,8 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     scene::DrapeOptions d;
     d.garment = o->garment;
     d.size = o->size;
+    d.pieces = o->pieces;
+    d.mannequin_table = o->table;
     d.material_xvc = o->material;
     d.material_id = o->material_id;
     d.time_limit = o->time_limit;

@@ -39,6 +39,7 @@ SceneDef drape_scene(const DrapeOptions& o) {
     if (size.empty())
       if (const auto* g = doc.container("GRADATIONS")) size = std::string(g->attribute("sample_size"));
     a.size = size.empty() ? "38" : size;
+    a.table = o.mannequin_table;
     def.avatar = a;
   }
 
@@ -68,6 +69,7 @@ SceneDef drape_scene(const DrapeOptions& o) {
   g.file = garment;
   g.size = o.size;
   g.spacing = o.spacing;
+  g.pieces = o.pieces;
   cloth.garment = g;
   cloth.model = ClothModel::mass_spring;
   cloth.material = "fabric";
@@ -79,9 +81,10 @@ SceneDef drape_scene(const DrapeOptions& o) {
   // settles in about a second instead of swinging for ten).
   e.viscosity = sim::ViscosityDef{0.0, 2.0};
   e.collision = sim::BodyCollisionDef{};
-  // Seams pull hard enough to slide cloth over the body against friction
-  // (a pair pulls with at most 0.5 N, i.e. ~10⁴ m/s² on a 50 mg particle:
-  // the implicit step keeps that stable) and merge at 2 mm.
+  // Seams pull hard enough to slide cloth over the body against friction: a
+  // pair pulls with 200 N/m near closing and at most 2 N (weaker pulls left
+  // the shipped skirt's waist seam stalled a few mm open against friction);
+  // implicit Euler keeps that stable. Pairs merge at 2 mm.
   SeamsDef seams;
   seams.effect.stiffness = 200.0;
   seams.effect.max_force = 2.0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <omp.h>
+
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/sim/topology.hpp"
 
@@ -34,6 +36,7 @@ System::System(Model model, std::vector<std::unique_ptr<Effect>> effects)
   profile_.resize(effects_.size());
   active_.assign(effects_.size(), true);
   for (std::size_t i = 0; i < effects_.size(); ++i) profile_[i].name = effects_[i]->name();
+  for (const auto& e : effects_) block_effects_.push_back(dynamic_cast<BlockJacobianEffect*>(e.get()));
   rep_ = identity_representative(n);
   first_ = rep_;
   mass_ = model_.mass;
@@ -210,6 +213,153 @@ bool System::jacobian(double t, const VecX& x, const VecX& v, SparseMatrix& dfdx
   return complete;
 }
 
+// ---- block Jacobians ------------------------------------------------------------
+
+int BlockPattern::find(int i, int j) const {
+  const auto b = col.begin() + row[i], e = col.begin() + row[i + 1];
+  const auto it = std::lower_bound(b, e, j);
+  return it != e && *it == j ? static_cast<int>(it - col.begin()) : -1;
+}
+
+// Block rows are independent: with several OpenMP threads they are shared out
+// statically, so y is bitwise the same for any thread count.
+void BlockJacobian::multiply(const std::vector<double>& values, const VecX& x, VecX& y) const {
+  const BlockPattern& p = pattern;
+  y.resize(3 * p.n);
+  const double* xv = x.data();
+  double* yv = y.data();
+  const double* a = values.data();
+  const int* row = p.row.data();
+  const int* col = p.col.data();
+  const int n = p.n;
+#pragma omp parallel for schedule(static) if (n >= 1024 && omp_get_max_threads() > 1)
+  for (int i = 0; i < n; ++i) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (int q = row[i]; q < row[i + 1]; ++q) {
+      const double* b = a + 9 * q;
+      const double* xj = xv + 3 * col[q];
+      y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
+      y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
+      y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
+    }
+    yv[3 * i] = y0, yv[3 * i + 1] = y1, yv[3 * i + 2] = y2;
+  }
+}
+
+SparseMatrix BlockJacobian::to_sparse(const std::vector<double>& values) const {
+  Triplets t;
+  t.reserve(9 * pattern.col.size());
+  for (int i = 0; i < pattern.n; ++i)
+    for (int q = pattern.row[i]; q < pattern.row[i + 1]; ++q)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + r, 3 * pattern.col[q] + c, values[9 * q + 3 * r + c]);
+  SparseMatrix m(3 * pattern.n, 3 * pattern.n);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
+}
+
+int JacobianAssembler::slot(int i, int j) {
+  const int ri = (*rep_)[i], rj = (*rep_)[j];
+  if ((*free_)[3 * ri] == 0.0 || (*free_)[3 * rj] == 0.0) return -1;
+  const int q = pattern_->find(ri, rj);
+  if (q >= 0) return q;
+  missing_->push_back({ri, rj});
+  return pattern_->blocks();  // the scratch block
+}
+
+// The pattern grows to hold `blocks` (reduced particles), their transposes
+// and every diagonal block (the step matrix always has M there).
+void System::grow_pattern(const std::vector<std::array<int, 2>>& blocks) {
+  const int n = num_particles();
+  std::vector<std::array<int, 2>> all;
+  all.reserve(pattern_.col.size() + 2 * blocks.size() + n);
+  if (pattern_.n == n)
+    for (int i = 0; i < n; ++i)
+      for (int q = pattern_.row[i]; q < pattern_.row[i + 1]; ++q) all.push_back({i, pattern_.col[q]});
+  for (int i = 0; i < n; ++i) all.push_back({i, i});
+  for (const auto& [i, j] : blocks) all.push_back({i, j}), all.push_back({j, i});
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  BlockPattern p;
+  p.n = n;
+  p.row.assign(n + 1, 0);
+  p.col.resize(all.size());
+  for (std::size_t q = 0; q < all.size(); ++q) ++p.row[all[q][0] + 1], p.col[q] = all[q][1];
+  for (int i = 0; i < n; ++i) p.row[i + 1] += p.row[i];
+  p.diag.resize(n);
+  p.transpose.resize(all.size());
+  for (int i = 0; i < n; ++i)
+    for (int q = p.row[i]; q < p.row[i + 1]; ++q) {
+      if (p.col[q] == i) p.diag[i] = q;
+      p.transpose[q] = p.find(p.col[q], i);
+    }
+  p.version = ++pattern_versions_;
+  pattern_ = std::move(p);
+}
+
+// One assembly pass on the current pattern; false if some block was missing
+// (recorded in missing_: the caller grows the pattern and assembles again).
+bool System::assemble_blocks(const Eval& e, BlockJacobian& J) {
+  if (J.pattern.version != pattern_.version) J.pattern = pattern_;
+  const std::size_t size = 9 * (static_cast<std::size_t>(pattern_.blocks()) + 1);
+  J.dfdx.assign(size, 0.0);
+  J.dfdv.assign(size, 0.0);
+  missing_.clear();
+  JacobianAssembler out;
+  out.version_ = pattern_.version;
+  out.pattern_ = &pattern_;
+  out.rep_ = &rep_;
+  out.free_ = &free_;
+  out.dfdx_ = J.dfdx.data();
+  out.dfdv_ = J.dfdv.data();
+  out.missing_ = &missing_;
+  bool complete = true;
+  for (std::size_t i = 0; i < effects_.size(); ++i) {
+    if (!active_[i]) continue;
+    const auto t0 = Clock::now();
+    if (block_effects_[i]) {
+      complete = block_effects_[i]->add_jacobian_blocks(e, out) && complete;
+    } else {
+      dfdx_t_.clear();
+      dfdv_t_.clear();
+      complete = effects_[i]->add_jacobian(e, dfdx_t_, dfdv_t_) && complete;
+      // Triplets come in runs of one block (add_block): the slot is looked up once per run.
+      auto scatter = [&](const Triplets& ts, double* values) {
+        int bi = -1, bj = -1, q = -1;
+        for (const Triplet& tr : ts) {
+          const int i = tr.row() / 3, j = tr.col() / 3;
+          if (i != bi || j != bj) bi = i, bj = j, q = out.slot(i, j);
+          if (q >= 0) values[9 * q + 3 * (tr.row() % 3) + tr.col() % 3] += tr.value();
+        }
+      };
+      scatter(dfdx_t_, J.dfdx.data());
+      scatter(dfdv_t_, J.dfdv.data());
+    }
+    profile_[i].seconds += seconds_since(t0);
+  }
+  return complete;
+}
+
+bool System::jacobian(double t, const VecX& x, const VecX& v, BlockJacobian& J) {
+  if (merged_) {
+    expand_into(x, xf_);
+    expand_into(v, vf_);
+  }
+  const Eval e{model_, t, merged_ ? xf_ : x, merged_ ? vf_ : v};
+  if (pattern_.n != num_particles()) grow_pattern({});  // first call, or after a merge
+  bool complete = assemble_blocks(e, J);
+  if (!missing_.empty()) {  // new blocks: grow the pattern and place everything again
+    const auto blocks = missing_;
+    grow_pattern(blocks);
+    complete = assemble_blocks(e, J);
+    VGD_ASSERT(missing_.empty(), "block Jacobian assembly: the grown pattern still misses blocks");
+  }
+  for (std::size_t i = 0; i < effects_.size(); ++i)
+    if (active_[i]) ++profile_[i].jacobian_calls;
+  ++jacobian_evals_;
+  return complete;
+}
+
 // ---- prescribed motion, hooks ------------------------------------------------------
 
 void System::apply_prescribed(State& s) const {
@@ -337,6 +487,7 @@ bool System::apply_merges(State& s) {
   apply_prescribed(s);
 
   for (const auto& e : effects_) e->particles_merged(model_, rep_);
+  pattern_ = BlockPattern{};  // rebuilt on the next block Jacobian (new numbering)
   compute_stiffness();
 #ifndef NDEBUG
   // The restructured mesh stays a manifold with boundary: merging never

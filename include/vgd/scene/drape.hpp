@@ -26,7 +26,9 @@ namespace vgd::scene {
 struct DrapeOptions {
   std::filesystem::path garment;         // the XVC document (with SEAMs)
   std::string size;                      // "" = the document's sample size
+  std::vector<std::string> pieces;       // piece or block names to sew; empty = all of the size
   std::optional<AvatarDef> avatar;       // empty = the mannequin of the garment's size (else 38)
+  std::string mannequin_table;           // size table of that mannequin; "" = the default search order
   std::filesystem::path material_xvc;    // "" = the garment's own MATERIAL if it has one, else data/materials/shirting.xvc
   std::string material_id;               // MATERIAL id in material_xvc; "" = its first
   double spacing = 0.0;                  // m; 0 = the document's mesh.spacing, else 0.015

@@ -13,6 +13,7 @@
 // summing copies. A merged particle's mass is the sum of its copies' masses —
 // exactly what deleting a vertex and re-pointing its triangles does to lumped
 // masses. Before the first merge reduced = full and nothing is expanded.
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -32,6 +33,69 @@ struct EffectProfile {
 };
 
 // The stiffest place of the system, for the explicit stability limits.
+// A 3N × 3N matrix of 3 × 3 particle blocks in block-CSR form (full storage:
+// block (i, j) and (j, i) are both stored when either is), on a pattern that is
+// fixed between seam merges. System::jacobian fills ∂f/∂x and ∂f/∂v on one
+// shared pattern; the implicit integrators build their step matrix on it
+// without sorting, transposing or searching. Blocks are row-major, 9 doubles.
+struct BlockPattern {
+  int n = 0;                    // block rows and columns (reduced particles)
+  std::vector<int> row;         // n + 1: blocks of row i are row[i] .. row[i + 1) − 1
+  std::vector<int> col;         // per block, its column; sorted within a row
+  std::vector<int> diag;        // per row i, the slot of block (i, i)
+  std::vector<int> transpose;   // per block (i, j), the slot of (j, i)
+  long version = 0;             // changes whenever the slots are renumbered
+  int blocks() const { return static_cast<int>(col.size()); }
+  // Slot of block (i, j) (reduced particles) or −1 if not in the pattern.
+  int find(int i, int j) const;
+};
+
+// ∂f/∂x (N/m) and ∂f/∂v (N·s/m) as blocks on one pattern; rows and columns of
+// prescribed particles hold nothing. Value arrays have one extra block at the
+// end (slot blocks()): where assembly drops the contributions it cannot place.
+struct BlockJacobian {
+  BlockPattern pattern;
+  std::vector<double> dfdx, dfdv;  // 9 · (blocks() + 1)
+  // y = J x for a value array of this pattern (J: dfdx or dfdv); x, y of size 3n.
+  void multiply(const std::vector<double>& values, const VecX& x, VecX& y) const;
+  // The same matrix as an Eigen sparse matrix (tests, CVODE-style callers).
+  SparseMatrix to_sparse(const std::vector<double>& values) const;
+};
+
+// What effects with a block Jacobian write into (BlockJacobianEffect). Particle
+// indices are the Model's (original) ones: the assembler maps merged copies to
+// their reduced particle and drops blocks in prescribed rows or columns.
+class JacobianAssembler {
+ public:
+  // Changes whenever slots are renumbered: effects may cache slots per version.
+  long version() const { return version_; }
+  // The slot of block (i, j) (original particles), or −1 when the block is
+  // dropped (prescribed). A block not yet in the pattern is recorded, gets the
+  // scratch slot and the System assembles again on a grown pattern.
+  int slot(int i, int j);
+  double* dfdx(int slot) { return dfdx_ + 9 * slot; }
+  double* dfdv(int slot) { return dfdv_ + 9 * slot; }
+
+ private:
+  friend class System;
+  long version_ = 0;
+  const BlockPattern* pattern_ = nullptr;
+  const std::vector<int>* rep_ = nullptr;
+  const VecX* free_ = nullptr;
+  double* dfdx_ = nullptr;
+  double* dfdv_ = nullptr;
+  std::vector<std::array<int, 2>>* missing_ = nullptr;
+};
+
+// An effect that writes its Jacobian straight into the block pattern (no
+// triplets) implements this too; System::jacobian(…, BlockJacobian&) uses it
+// instead of Effect::add_jacobian. It must add exactly what add_jacobian adds.
+class BlockJacobianEffect {
+ public:
+  virtual ~BlockJacobianEffect() = default;
+  virtual bool add_jacobian_blocks(const Eval& e, JacobianAssembler& out) = 0;
+};
+
 struct Stiffness {
   double omega2 = 0.0;         // max_i k_i / m_i (1/s²): squared highest angular frequency bound
   double damping_rate = 0.0;   // max_i c_i / m_i (1/s)
@@ -70,6 +134,15 @@ class System {
   // df/dx (N/m) and df/dv (N·s/m), 3N x 3N, with prescribed rows and columns
   // removed (zero). Returns false if some force effect has no Jacobian.
   bool jacobian(double t, const VecX& x, const VecX& v, SparseMatrix& dfdx, SparseMatrix& dfdv);
+  // The same Jacobians as blocks on a pattern kept between calls: the union of
+  // every block effects have added since the last merge (blocks whose value
+  // became 0 stay, as explicit zeros). No sorting: triplets from effects are
+  // placed by a search in their block row, BlockJacobianEffects write their
+  // blocks into cached slots. J.pattern.version tells callers when the
+  // pattern changed (after a merge or a new block): the values are the sum
+  // of the same contributions as the SparseMatrix overload's, in the same
+  // order per entry.
+  bool jacobian(double t, const VecX& x, const VecX& v, BlockJacobian& J);
 
   // 1 for free degrees of freedom, 0 for prescribed ones (3N).
   const VecX& free_dofs() const { return free_; }
@@ -136,6 +209,14 @@ class System {
   Stiffness stiffness_;
   long force_evals_ = 0, jacobian_evals_ = 0;
   Triplets dfdx_t_, dfdv_t_;
+  // Block assembly: the pattern (reduced particles), effects with a block
+  // Jacobian (nullptr for the others), and blocks found missing in a pass.
+  BlockPattern pattern_;
+  long pattern_versions_ = 0;
+  std::vector<BlockJacobianEffect*> block_effects_;
+  std::vector<std::array<int, 2>> missing_;
+  void grow_pattern(const std::vector<std::array<int, 2>>& blocks);
+  bool assemble_blocks(const Eval& e, BlockJacobian& J);
 };
 
 }  // namespace vgd::sim

@@ -10,6 +10,8 @@
 //   [SECTION] The effect
 #include "vgd/sim/effects/mass_spring.hpp"
 
+#include "vgd/sim/system.hpp"  // BlockJacobianEffect
+
 #include <omp.h>
 
 #include <algorithm>
@@ -356,7 +358,7 @@ void spring_blocks(const Vec3& l, const Vec3& w, double k, double kd, double r, 
 // [SECTION] The effect
 // =============================================================================
 
-class MassSpring final : public Effect {
+class MassSpring final : public Effect, public BlockJacobianEffect {
  public:
   MassSpring(const Model& m, const SpringTopology& top, const MassSpringOptions& o) : opt_(o) {
     const int n = top.size();
@@ -444,6 +446,57 @@ class MassSpring final : public Effect {
     return true;
   }
 
+  // The same blocks as add_jacobian, added in the same order straight into
+  // the System's block pattern: each spring's four slots (aa, bb, ab, ba) are
+  // looked up once per pattern version.
+  bool add_jacobian_blocks(const Eval& e, JacobianAssembler& out) override {
+    const int n = static_cast<int>(k_.size());
+    if (slots_version_ != out.version()) {
+      slots_.resize(4 * static_cast<std::size_t>(n));
+      for (int s = 0; s < n; ++s) {
+        const int a = ia_[s] / 3, b = ib_[s] / 3;
+        slots_[4 * s] = out.slot(a, a), slots_[4 * s + 1] = out.slot(b, b);
+        slots_[4 * s + 2] = out.slot(a, b), slots_[4 * s + 3] = out.slot(b, a);
+      }
+      slots_version_ = out.version();
+    }
+    // spring_blocks written out (same blocks to rounding): with u = l/L,
+    // w = v_a − v_b, P = I − u uᵀ and c = max(0, 1 − r/L),
+    //   ∂f/∂x = α u uᵀ + β I − γ u (P w)ᵀ,  α = −k (1 − c) + γ u·w,
+    //   β = −k c − γ u·w,  γ = k_d / L;      ∂f/∂v = −k_d u uᵀ.
+    const double* x = e.x.data();
+    const double* v = e.v.data();
+    double kx[9], kv[9];
+    for (int s = 0; s < n; ++s) {
+      const int a = ia_[s], b = ib_[s];
+      const double l[3] = {x[a] - x[b], x[a + 1] - x[b + 1], x[a + 2] - x[b + 2]};
+      const double L2 = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+      if (L2 == 0.0) continue;
+      const double L = std::sqrt(L2);
+      const double u[3] = {l[0] / L, l[1] / L, l[2] / L};
+      const double w[3] = {v[a] - v[b], v[a + 1] - v[b + 1], v[a + 2] - v[b + 2]};
+      const double uw = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+      const double pw[3] = {w[0] - uw * u[0], w[1] - uw * u[1], w[2] - uw * u[2]};
+      const double c = std::max(0.0, 1.0 - r_[s] / L), gamma = kd_[s] / L;
+      const double alpha = -k_[s] * (1.0 - c) + gamma * uw, beta = -k_[s] * c - gamma * uw;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          kx[3 * i + j] = alpha * u[i] * u[j] - gamma * u[i] * pw[j] + (i == j ? beta : 0.0);
+          kv[3 * i + j] = -kd_[s] * u[i] * u[j];
+        }
+      const int* q = &slots_[4 * static_cast<std::size_t>(s)];
+      for (int t = 0; t < 4; ++t) {
+        if (q[t] < 0) continue;  // a prescribed end
+        double *dx = out.dfdx(q[t]), *dv = out.dfdv(q[t]);
+        if (t < 2)
+          for (int m = 0; m < 9; ++m) dx[m] += kx[m], dv[m] += kv[m];
+        else
+          for (int m = 0; m < 9; ++m) dx[m] -= kx[m], dv[m] -= kv[m];
+      }
+    }
+    return true;
+  }
+
   // ½ k (|l| − r)² per spring (J); the damping term stores no energy.
   double energy(const Eval& e) const override {
     double u = 0.0;
@@ -513,6 +566,7 @@ class MassSpring final : public Effect {
     };
     for (std::size_t q = 0; q < keep.size(); ++q) new_index[keep[q]] = static_cast<int>(q);
     pick(ia_), pick(ib_), pick(k_), pick(kd_), pick(r_);
+    slots_version_ = -1;  // other springs: block slots are looked up again
     std::size_t w = 0;
     for (std::size_t q = 0; q < lim_spring_.size(); ++q) {
       if (new_index[lim_spring_[q]] < 0) continue;
@@ -622,6 +676,8 @@ class MassSpring final : public Effect {
   // Springs, structure of arrays: 3 × end indices, k (N/m), k_d (N·s/m), rest length (m).
   std::vector<int> ia_, ib_;
   std::vector<double> k_, kd_, r_;
+  std::vector<int> slots_;   // per spring, block slots aa, bb, ab, ba (add_jacobian_blocks)
+  long slots_version_ = -1;  // the pattern version slots_ belong to
   // Limited springs: spring index, L_max (m), share of the correction each end takes.
   std::vector<int> lim_spring_;
   std::vector<double> lim_length_, lim_share_a_, lim_share_b_;

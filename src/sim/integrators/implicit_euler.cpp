@@ -46,15 +46,35 @@
 // - A linear solve that reaches cg_max_iterations is accepted as it stands
 //   (B&W use a fixed iteration budget too) and counted in
 //   stats.convergence_failures.
+// - Assembly: System::jacobian fills K and D as 3×3 blocks on a pattern kept
+//   between steps (rebuilt after seam merges or when an effect adds a new
+//   block); the step matrix is built on the same pattern, symmetrised block
+//   by block with the pattern's transpose map, and PCG multiplies in block
+//   CSR. Nothing is sorted per step (setFromTriplets, a transpose and a sum
+//   were half of the step time on the drapes).
 // - Preconditioner: the inverse of each particle's 3×3 diagonal block of the
 //   matrix (block Jacobi; B&W use the scalar diagonal); a block that is not
-//   positive definite falls back to the particle's mass.
-// - Single-threaded and deterministic (effects may use OpenMP internally).
+//   positive definite falls back to the particle's mass. Optionally
+//   (IntegratorSettings::preconditioner = cholesky) a lagged CHOLMOD factor
+//   of an earlier step's matrix: 7–13 PCG iterations instead of 30–60, but
+//   with the reference BLAS one triangular solve pair costs ~70 block SpMVs
+//   and a factorisation ~65 ms on 5 000 particles, so block Jacobi is the
+//   default (docs/performance.md, "Implicit Euler: where the time goes").
+// - Warm start: the first Newton iteration's PCG starts from the previous
+//   accepted step's Δv scaled by the step ratio (Δv ≈ h a varies slowly);
+//   the stopping test stays |b − A x| ≤ cg_tolerance |b|, so the accuracy
+//   asked for is unchanged; it halves the iterations of the drapes.
+// - Threads: the block products and the step matrix share block rows
+//   statically among OpenMP threads when omp_get_max_threads() > 1 (each
+//   row summed by one thread in a fixed order: results do not depend on the
+//   thread count); the rest is serial and deterministic.
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include <omp.h>
 
 #include "fixed_step.hpp"
 #include "implicit.hpp"
@@ -82,17 +102,14 @@ struct CgResult {
   int iterations = 0;
 };
 
-// Block-Jacobi preconditioner: inverses of A's 3×3 diagonal blocks.
-void block_jacobi(const SparseMatrix& a, const VecX& mass_dof, std::vector<Mat3>& inv) {
-  const int n = static_cast<int>(a.rows() / 3);
-  std::vector<Mat3> blocks(n, Mat3::Zero());
-  for (int c = 0; c < a.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(a, c); it; ++it)
-      if (it.row() / 3 == c / 3) blocks[c / 3](it.row() % 3, c % 3) = it.value();
-  inv.resize(n);
-  for (int i = 0; i < n; ++i) {
-    Eigen::LLT<Mat3> llt(blocks[i]);
-    if (llt.info() == Eigen::Success && blocks[i].allFinite())
+// Block-Jacobi preconditioner: inverses of A's 3×3 diagonal blocks (A on the
+// Jacobian's block pattern, row-major blocks).
+void block_jacobi(const BlockPattern& p, const std::vector<double>& a, const VecX& mass_dof, std::vector<Mat3>& inv) {
+  inv.resize(p.n);
+  for (int i = 0; i < p.n; ++i) {
+    const Mat3 b = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(a.data() + 9 * p.diag[i]);
+    Eigen::LLT<Mat3> llt(b);
+    if (llt.info() == Eigen::Success && b.allFinite())
       inv[i] = llt.solve(Mat3::Identity());
     else
       inv[i] = Mat3::Identity() / mass_dof[3 * i];
@@ -100,29 +117,51 @@ void block_jacobi(const SparseMatrix& a, const VecX& mass_dof, std::vector<Mat3>
 }
 
 // Solves A x = b for symmetric A by PCG from x = 0, with the filter S (1 for
-// free dofs, 0 for prescribed ones) applied to residuals and directions
-// (Baraff & Witkin §5.3). Stops when |r| ≤ tol |b|, at max_it (x then holds
-// the last iterate), or at a direction of non-positive curvature (x is then
-// meaningless: the step is retried).
+// free dofs, 0 for prescribed ones; nullptr when all are free) applied to
+// residuals and directions (Baraff & Witkin §5.3). apply_a(p, q): q = A p;
+// apply_p(r, z): z = P⁻¹ r. Stops when |r| ≤ tol |b|, at max_it (x then
+// holds the last iterate), or at a direction of non-positive curvature (x is
+// then meaningless: the step is retried).
 class Pcg {
  public:
-  CgResult solve(const SparseMatrix& a, const VecX& b, const std::vector<Mat3>& pinv, const VecX& filter, double tol,
-                 int max_it, VecX& x) {
+  template <class ApplyA, class ApplyP>
+  CgResult solve(ApplyA&& apply_a, ApplyP&& apply_p, const VecX& b, const VecX* filter, double tol, int max_it,
+                 const VecX* guess, VecX& x) {
     const auto n = b.size();
-    x.setZero(n);
-    r_ = b.cwiseProduct(filter);
+    auto mask = [&](VecX& y) {
+      if (filter) y.array() *= filter->array();
+    };
+    r_ = b;
+    mask(r_);
     const double bnorm = r_.norm();
     CgResult out;
     if (!std::isfinite(bnorm)) return {CgStatus::non_finite, 0};
+    if (bnorm == 0.0 || guess == nullptr || guess->size() != n) {
+      x.setZero(n);
+    } else {
+      // A warm start: r = b − A x0. The stopping test stays |r| ≤ tol |b|.
+      x = *guess;
+      mask(x);
+      apply_a(x, q_);
+      mask(q_);
+      r_ -= q_;
+      if (!r_.allFinite()) x.setZero(n), r_ = b, mask(r_);
+    }
     if (bnorm == 0.0) return out;
     // Solve for x / |b| so that nothing underflows on a system at rest.
     r_ /= bnorm;
-    precondition(pinv, r_, z_);
-    p_ = z_.cwiseProduct(filter);
+    x /= bnorm;
+    if (r_.norm() <= tol) {
+      x *= bnorm;
+      return out;
+    }
+    apply_p(r_, z_);
+    mask(z_);
+    p_ = z_;
     double rz = r_.dot(p_);
     for (int k = 0; k < max_it; ++k) {
-      q_.noalias() = a * p_;
-      q_ = q_.cwiseProduct(filter);
+      apply_a(p_, q_);
+      mask(q_);
       const double pq = p_.dot(q_);
       out.iterations = k + 1;
       if (!std::isfinite(pq)) return {CgStatus::non_finite, out.iterations};
@@ -131,22 +170,18 @@ class Pcg {
       x += alpha * p_;
       r_ -= alpha * q_;
       if (r_.norm() <= tol) break;
-      precondition(pinv, r_, z_);
-      z_ = z_.cwiseProduct(filter);
+      apply_p(r_, z_);
+      mask(z_);
       const double rz_new = r_.dot(z_);
       p_ = z_ + (rz_new / rz) * p_;
       rz = rz_new;
     }
-    if (r_.norm() > tol) out.status = CgStatus::max_iterations;
+    if (out.iterations == max_it && r_.norm() > tol) out.status = CgStatus::max_iterations;
     x *= bnorm;
     return out;
   }
 
  private:
-  static void precondition(const std::vector<Mat3>& pinv, const VecX& r, VecX& z) {
-    z.resize(r.size());
-    for (std::size_t i = 0; i < pinv.size(); ++i) at(z, static_cast<int>(i)) = pinv[i] * at(r, static_cast<int>(i));
-  }
   VecX r_, z_, p_, q_;
 };
 
@@ -159,6 +194,8 @@ class ImplicitEuler final : public FixedStepIntegrator {
   void prepare(System& sys, const State& s) override {
     FixedStepIntegrator::prepare(sys, s);
     mass_dof_.resize(0);  // rebuilt from the system's (possibly merged) masses on the next step
+    factor_valid_ = false;  // a lagged factor belongs to the old system
+    prev_h_ = 0.0;          // ... and so does the warm start
     if (settings_.newton_iterations < 1)
       throw SimulationError("implicit Euler needs at least 1 Newton iteration (got " +
                             std::to_string(settings_.newton_iterations) + ")");
@@ -216,13 +253,11 @@ class ImplicitEuler final : public FixedStepIntegrator {
   Outcome try_step(System& sys, State& s, double h) {
     const int n = sys.num_dofs();
     const VecX& filter = sys.free_dofs();
+    const VecX* mask = sys.has_prescribed() ? &filter : nullptr;
     if (mass_dof_.size() != n) {
       mass_dof_.resize(n);
       for (int i = 0; i < n / 3; ++i) at(mass_dof_, i).setConstant(sys.mass()[i]);
       inv_mass_dof_ = mass_dof_.cwiseInverse();
-      mass_matrix_.resize(n, n);
-      mass_matrix_.setIdentity();
-      mass_matrix_.diagonal() = mass_dof_;
     }
     // Largest |M⁻¹ r| over all dofs (m/s).
     auto velocity_max = [&](const VecX& r) { return r.cwiseProduct(inv_mass_dof_).lpNorm<Eigen::Infinity>(); };
@@ -254,18 +289,15 @@ class ImplicitEuler final : public FixedStepIntegrator {
         if (r > std::max({r0, scale, kResidualFloor})) return Outcome::diverged;
         if (k == iterations || r <= settings_.cg_tolerance * r0) break;
       }
-      sys.jacobian(it_.t, it_.x, it_.v, dfdx_, dfdv_);
+      sys.jacobian(it_.t, it_.x, it_.v, jac_);
       ++stats_.jacobian_evaluations;
       if (k == 0) {
-        rhs_ = h * f_;
-        rhs_.noalias() += (h * h) * (dfdx_ * s.v);
-        rhs_ = rhs_.cwiseProduct(filter);
+        jac_.multiply(jac_.dfdx, s.v, tmp_);  // K v0 (N/s)
+        rhs_ = h * f_ + (h * h) * tmp_;
+        if (mask) rhs_.array() *= filter.array();
         r0 = velocity_max(rhs_);
       }
-      // A = M − h D − h² K, symmetrised.
-      a_ = mass_matrix_ - h * dfdv_ - (h * h) * dfdx_;
-      at_ = a_.transpose();
-      a_ = 0.5 * (a_ + at_);
+      step_matrix(h);
       ++stats_.newton_iterations;
       if (settings_.linear_solver == IntegratorSettings::LinearSolver::cholesky) {
         // Prescribed dofs: their rows and columns hold M_ii only and their
@@ -276,8 +308,12 @@ class ImplicitEuler final : public FixedStepIntegrator {
         dv_ += delta_;
         continue;
       }
-      block_jacobi(a_, mass_dof_, pinv_);
-      const CgResult cg = pcg_.solve(a_, rhs_, pinv_, filter, settings_.cg_tolerance, settings_.cg_max_iterations, delta_);
+      // Warm start of the first Newton iteration: the last accepted step's
+      // velocity change, scaled to this step (Δv ∝ h for smooth motion).
+      // Newton corrections (k > 0) start from 0.
+      const bool warm = settings_.warm_start && k == 0 && prev_h_ > 0.0 && prev_dv_.size() == n;
+      if (warm) guess_ = prev_dv_ * (h / prev_h_);
+      const CgResult cg = pcg_solve(mask, warm ? &guess_ : nullptr);
       stats_.linear_iterations += cg.iterations;
       if (cg.status == CgStatus::non_finite) {
         nonfinite_ = "force Jacobian at t = " + fmt(it_.t) + " s";
@@ -289,24 +325,119 @@ class ImplicitEuler final : public FixedStepIntegrator {
     }
     s.v += dv_;
     s.x += h * s.v;
+    prev_dv_ = dv_, prev_h_ = h;
     return Outcome::accepted;
+  }
+
+  // a_ = ½ (A + Aᵀ) with A = M − h D − h² K, on the Jacobian's block pattern
+  // (which holds (j, i) whenever it holds (i, j), and every diagonal block):
+  // block (i, j) = ½ (A_ij + A_jiᵀ). Symmetric Jacobians (springs without
+  // damping, dampers, gravity) give A itself; for the others CG needs the
+  // symmetric part (the antisymmetric rest acts through Newton iterations).
+  void step_matrix(double h) {
+    const BlockPattern& p = jac_.pattern;
+    a_.resize(9 * static_cast<std::size_t>(p.blocks()));
+    const double* K = jac_.dfdx.data();
+    const double* D = jac_.dfdv.data();
+    double* A = a_.data();
+    const double ch = 0.5 * h, ch2 = 0.5 * h * h;
+    const int n = p.n;
+#pragma omp parallel for schedule(static) if (n >= 1024 && omp_get_max_threads() > 1)
+    for (int i = 0; i < n; ++i)
+      for (int q = p.row[i]; q < p.row[i + 1]; ++q) {
+        const int t = p.transpose[q];
+        const double *kq = K + 9 * q, *kt = K + 9 * t, *dq = D + 9 * q, *dt = D + 9 * t;
+        double* aq = A + 9 * q;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            aq[3 * r + c] = -ch * (dq[3 * r + c] + dt[3 * c + r]) - ch2 * (kq[3 * r + c] + kt[3 * c + r]);
+        if (p.col[q] == i) aq[0] += mass_dof_[3 * i], aq[4] += mass_dof_[3 * i], aq[8] += mass_dof_[3 * i];
+      }
+  }
+
+  // y = a_ x.
+  void multiply_a(const VecX& x, VecX& y) const { jac_.multiply(a_, x, y); }
+
+  // a_ as an Eigen sparse matrix (for CHOLMOD, which reads its lower
+  // triangle). The scalar pattern is built once per block pattern; a_ is
+  // symmetric, so its block-CSR rows read as CSC columns in the same order.
+  const SparseMatrix& sparse_a() {
+    const BlockPattern& p = jac_.pattern;
+    if (sparse_version_ != p.version) {
+      const int n = 3 * p.n;
+      a_sparse_ = SparseMatrix(n, n);
+      a_sparse_.resizeNonZeros(9 * p.blocks());
+      int* outer = a_sparse_.outerIndexPtr();
+      int* inner = a_sparse_.innerIndexPtr();
+      sparse_slot_.resize(9 * static_cast<std::size_t>(p.blocks()));
+      int k = 0;
+      outer[0] = 0;
+      for (int i = 0; i < p.n; ++i)
+        for (int r = 0; r < 3; ++r) {
+          for (int q = p.row[i]; q < p.row[i + 1]; ++q)
+            for (int c = 0; c < 3; ++c) {
+              inner[k] = 3 * p.col[q] + c;
+              sparse_slot_[k++] = 9 * q + 3 * r + c;
+            }
+          outer[3 * i + r + 1] = k;
+        }
+      sparse_version_ = p.version;
+    }
+    double* v = a_sparse_.valuePtr();
+    for (std::size_t k = 0; k < sparse_slot_.size(); ++k) v[k] = a_[sparse_slot_[k]];
+    return a_sparse_;
+  }
+
+  // delta_ = A⁻¹ rhs_ by PCG with the preconditioner of the settings.
+  CgResult pcg_solve(const VecX* mask, const VecX* guess) {
+    auto apply_a = [&](const VecX& x, VecX& y) { multiply_a(x, y); };
+    if (settings_.preconditioner == IntegratorSettings::Preconditioner::cholesky) {
+      // Lagged Cholesky: the factor of an earlier step's A. A changes slowly
+      // from step to step (the same springs, slightly rotated), so PCG with
+      // it needs a few iterations; it is refactorised when PCG needed more than
+      // refactor_iterations, after a reset, or when the pattern changed. A
+      // factorisation that fails (A not positive definite) leaves block Jacobi
+      // for this step. Either way PCG stops at the same tolerance, so the step
+      // is that of the exact solve to within cg_tolerance.
+      if (!factor_valid_ || refactor_ || factor_version_ != jac_.pattern.version) refactorise();
+      if (factor_valid_) {
+        const CgResult cg = pcg_.solve(
+            apply_a, [&](const VecX& r, VecX& z) { z = factor_.solve(r); }, rhs_, mask, settings_.cg_tolerance,
+            settings_.cg_max_iterations, guess, delta_);
+        refactor_ = cg.iterations > settings_.refactor_iterations;
+        return cg;
+      }
+    }
+    block_jacobi(jac_.pattern, a_, mass_dof_, pinv_);
+    auto apply_p = [&](const VecX& r, VecX& z) {
+      z.resize(r.size());
+      for (std::size_t i = 0; i < pinv_.size(); ++i) at(z, static_cast<int>(i)) = pinv_[i] * at(r, static_cast<int>(i));
+    };
+    return pcg_.solve(apply_a, apply_p, rhs_, mask, settings_.cg_tolerance, settings_.cg_max_iterations, guess, delta_);
+  }
+
+  void refactorise() {
+    const SparseMatrix& a = sparse_a();
+    if (factor_version_ != jac_.pattern.version) {
+      factor_.analyzePattern(a);
+      factor_version_ = jac_.pattern.version;
+    }
+    factor_.factorize(a);
+    factor_valid_ = factor_.info() == Eigen::Success;
+    refactor_ = false;
+    ++factorisations_;
   }
 
   // delta_ = A⁻¹ rhs_ by LDLᵀ; the fill-reducing ordering is recomputed only
   // when A's sparsity pattern changes. A pivot ≤ 0 means A is not positive
   // definite: the step is retried smaller, as for CG's negative curvature.
   Outcome cholesky_solve() {
-    const bool same = analysed_ && a_.nonZeros() == static_cast<Eigen::Index>(pattern_inner_.size()) &&
-                      std::equal(a_.outerIndexPtr(), a_.outerIndexPtr() + a_.outerSize() + 1, pattern_outer_.begin(),
-                                 pattern_outer_.end()) &&
-                      std::equal(a_.innerIndexPtr(), a_.innerIndexPtr() + a_.nonZeros(), pattern_inner_.begin());
-    if (!same) {
-      ldlt_.analyzePattern(a_);
-      pattern_outer_.assign(a_.outerIndexPtr(), a_.outerIndexPtr() + a_.outerSize() + 1);
-      pattern_inner_.assign(a_.innerIndexPtr(), a_.innerIndexPtr() + a_.nonZeros());
-      analysed_ = true;
+    const SparseMatrix& a = sparse_a();
+    if (analysed_version_ != jac_.pattern.version) {
+      ldlt_.analyzePattern(a);
+      analysed_version_ = jac_.pattern.version;
     }
-    ldlt_.factorize(a_);
+    ldlt_.factorize(a);
     if (ldlt_.info() != Eigen::Success) return Outcome::indefinite;
     delta_ = ldlt_.solve(rhs_);
     if (!delta_.allFinite()) {
@@ -322,15 +453,24 @@ class ImplicitEuler final : public FixedStepIntegrator {
     return -1;
   }
 
-  VecX mass_dof_, inv_mass_dof_, dv_, delta_, f_, rhs_;
+  VecX mass_dof_, inv_mass_dof_, dv_, delta_, f_, rhs_, tmp_;
+  VecX prev_dv_, guess_;  // the last accepted step's Δv (m/s), for the warm start
+  double prev_h_ = 0.0;   // ... and its step (s); 0: none
   std::string nonfinite_;
-  SparseMatrix mass_matrix_, dfdx_, dfdv_, a_, at_;
+  BlockJacobian jac_;
+  std::vector<double> a_;          // the step matrix on jac_.pattern (row-major 3×3 blocks)
+  SparseMatrix a_sparse_;          // ... as a scalar matrix, for CHOLMOD
+  std::vector<int> sparse_slot_;   // a_sparse_ value k = a_[sparse_slot_[k]]
+  long sparse_version_ = -1;       // the block pattern a_sparse_'s pattern was built for
   std::vector<Mat3> pinv_;
   State it_;
   Pcg pcg_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix> ldlt_;
-  bool analysed_ = false;
-  std::vector<int> pattern_outer_, pattern_inner_;
+  Eigen::CholmodSupernodalLLT<SparseMatrix> ldlt_;  // linear_solver = cholesky
+  long analysed_version_ = -1;
+  Eigen::CholmodSupernodalLLT<SparseMatrix> factor_;  // preconditioner = cholesky (lagged)
+  long factor_version_ = -1;
+  bool factor_valid_ = false, refactor_ = false;
+  long factorisations_ = 0;
 };
 
 }  // namespace

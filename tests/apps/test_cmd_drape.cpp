@@ -1,0 +1,126 @@
+// vgd drape end to end: the project's skirt on its default mannequin, and a
+// real imported garment (MEN_CLASSIC_TEE) sewn with the seam file written for
+// it in tests/data. Each test reads the certificate the drape writes and
+// checks the figures the issue asks for against their limits.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/run_vgd.hpp"
+#include "support/test_paths.hpp"
+
+namespace vgd::test {
+namespace {
+
+using nlohmann::json;
+
+json read_json(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+int closed_pairs(const json& cert) {
+  int n = 0;
+  for (const auto& s : cert["seams"]) n += s["closed"].get<int>();
+  return n;
+}
+int all_pairs(const json& cert) {
+  int n = 0;
+  for (const auto& s : cert["seams"]) n += s["pairs"].get<int>();
+  return n;
+}
+
+TEST(CliDrape, ShippedSkirtSewsAndComesToRestOnTheMannequin) {
+  const auto out = scratch_dir("drape-skirt");
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "-o", out.string(),
+                          "--time-limit", "6", "-q"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;  // 3: a QA check failed; the figures say which
+  ASSERT_TRUE(std::filesystem::exists(out / "garment.obj"));
+  ASSERT_TRUE(std::filesystem::exists(out / "avatar.obj"));
+  const json c = read_json(out / "certificate.json");
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_LT(c["stop"]["simulated_s"].get<double>(), 6.0);
+  // Every seam closed (side seams and the waist seam with its three hems).
+  ASSERT_EQ(c["seams"].size(), 3u);
+  EXPECT_GT(all_pairs(c), 100);
+  EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
+  // No particle inside the body by more than 1 mm (exact, against its triangles).
+  EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
+  // The skirt hangs from the waist: it touches the body and the body carries it.
+  EXPECT_GT(c["contact"]["particles"].get<int>(), 100);
+  EXPECT_GT(c["contact"]["force_n"].get<double>(), 0.0);
+  // The certificate holds the kinetic-energy history, one value per frame.
+  EXPECT_EQ(c["kinetic_energy"]["values"].size(), c["stop"]["frames"].get<std::size_t>());
+  // Strain stays that of a hanging garment, not of cloth pulled apart: p95
+  // under 15 % (the waistband, 1 cm of ease round the waist, sits near 10 %).
+  for (const auto& s : c["strain"]) {
+    EXPECT_LT(s["warp"]["p95"].get<double>(), 0.15) << s.dump();
+    EXPECT_LT(s["weft"]["p95"].get<double>(), 0.15) << s.dump();
+  }
+}
+
+TEST(CliDrape, ACutShortDrapeSaysWhyAndFailsItsChecks) {
+  const auto out = scratch_dir("drape-short");
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "-o", out.string(),
+                          "--time-limit", "0.2", "-q"});
+  EXPECT_EQ(r.code, 3) << r.err;  // ran, but not to rest with every seam closed
+  const json c = read_json(out / "certificate.json");
+  EXPECT_EQ(c["stop"]["reason"], "time limit");
+  EXPECT_FALSE(c["passed"].get<bool>());
+  EXPECT_NEAR(c["stop"]["simulated_s"].get<double>(), 0.2, 1e-9);
+  EXPECT_LT(closed_pairs(c), all_pairs(c));
+  // Inputs and settings are recorded.
+  EXPECT_NE(c["inputs"]["garment"].get<std::string>().find("a-line-skirt.xvc"), std::string::npos);
+  EXPECT_EQ(c["inputs"]["avatar"], "mannequin 38");
+  EXPECT_EQ(c["settings"]["integrator"], "implicit-euler");
+}
+
+TEST(CliDrape, BadInputIsNamed) {
+  const auto out = scratch_dir("drape-bad");
+  const auto missing = run_vgd({"drape", (out / "nope.xvc").string(), "-o", out.string()});
+  EXPECT_EQ(missing.code, 2);  // CLI11: the file does not exist
+  const auto doc = out / "empty.xvc";
+  std::ofstream(doc) << "<GARMENT";
+  const auto bad = run_vgd({"drape", doc.string(), "-o", out.string()});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("empty.xvc"), std::string::npos) << bad.err;
+}
+
+// MEN_CLASSIC_TEE (Gerber, ../shared): the front and back are half pieces on
+// the fold; imported unfolded, their shoulders and side seams sewn from
+// tests/data/men-classic-tee.unfolded.seams.json on the men's size-50
+// mannequin. The sleeves (a two-piece sleeve the seam suggestions have no
+// rule for) are left out.
+TEST(CliDrape, ImportedMenClassicTeeBodySews) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("drape-tee");
+  const auto xvc = out / "tee.xvc", sewn = out / "tee-sewn.xvc";
+  ASSERT_EQ(run_vgd({"import", shared_dxf("MEN_CLASSIC_TEE.DXF").string(), "--unfold-mirrored", "-o", xvc.string(),
+                     "-q"})
+                .code,
+            0);
+  const auto applied = run_vgd({"seams", "apply", xvc.string(),
+                                (source_dir() / "tests/data/men-classic-tee.unfolded.seams.json").string(), "--size",
+                                "50", "-o", sewn.string(), "-q"});
+  ASSERT_EQ(applied.code, 0) << applied.err;
+  const auto r = run_vgd({"drape", sewn.string(), "--size", "50", "--size-table", "en13402-men", "--pieces",
+                          "REGULAR TEEFR", "REGULAR TEEBK", "--time-limit", "1.2", "-o", out.string(), "-q"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  const json c = read_json(out / "certificate.json");
+  ASSERT_EQ(c["seams"].size(), 4u);  // two shoulders, two side seams
+  // The side seams close completely. The shoulders' outer ends straddle the
+  // A-posed arm of the men's 50 mannequin and stay open (the issue's "seams
+  // closed" is not met yet: see docs/drape.md, Limitations).
+  for (const auto& seam : c["seams"])
+    if (seam["name"].get<std::string>().find("side seam") != std::string::npos)
+      EXPECT_EQ(seam["closed"], seam["pairs"]) << seam.dump();
+  EXPECT_GE(closed_pairs(c), all_pairs(c) * 8 / 10) << c["seams"].dump();
+  EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
+  EXPECT_NE(c["stop"]["reason"], "error") << c["stop"].dump();
+  // It hangs on the shoulders: the body carries it.
+  EXPECT_GT(c["contact"]["particles"].get<int>(), 50);
+}
+
+}  // namespace
+}  // namespace vgd::test
