@@ -157,6 +157,11 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       for (const auto& st : c.stages)
         std::printf("  %-9s %7s s wall %7s s simulated\n", st.name.c_str(), fixed(st.wall_s, 2).c_str(),
                     fixed(st.simulated_s, 2).c_str());
+      std::string prof;
+      for (const auto& [name, sec] : c.effect_seconds) prof += " " + name + " " + fixed(sec, 2) + " s,";
+      if (!prof.empty()) prof.pop_back();
+      std::printf("  %ld steps, %ld force evaluations, %ld CG iterations; per effect:%s\n", c.steps,
+                  c.force_evaluations, c.linear_iterations, prof.c_str());
       std::printf("  %d particles, %d triangles; seams %d/%d pairs closed; max penetration %s mm; "
                   "%d crossing triangle pairs\n",
                   c.particles, c.triangles, closed, pairs, fixed(c.max_penetration * 1000, 2).c_str(),

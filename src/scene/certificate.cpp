@@ -188,6 +188,12 @@ std::string to_json(const Certificate& c) {
   json stages = json::array();
   for (const auto& s : c.stages) stages.push_back({{"name", s.name}, {"wall_s", s.wall_s}, {"simulated_s", s.simulated_s}});
   j["stages"] = stages;
+  json prof = json::object();
+  for (const auto& [name, sec] : c.effect_seconds) prof[name] = prof.value(name, 0.0) + sec;
+  j["profile"] = {{"effect_seconds", prof},
+                  {"steps", c.steps},
+                  {"force_evaluations", c.force_evaluations},
+                  {"linear_iterations", c.linear_iterations}};
   j["cloth"] = {{"particles", c.particles}, {"triangles", c.triangles}};
   j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
                       {"limit_m", c.penetration_limit}};

@@ -182,6 +182,10 @@ DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& s
   } else {
     c.stages.push_back({"sewing", run_wall, r.summary.simulated_s});
   }
+  for (const auto& p : sys.profile()) c.effect_seconds.emplace_back(p.name, p.seconds);
+  c.steps = r.summary.stats.steps;
+  c.force_evaluations = r.summary.stats.rhs_evaluations;
+  c.linear_iterations = r.summary.stats.linear_iterations;
   c.times = r.summary.times;
   c.kinetic_energy = r.summary.kinetic_energy;
   measure_state(r.scene, r.positions, merge_distance, contact, true, c);

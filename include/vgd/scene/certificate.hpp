@@ -62,6 +62,10 @@ struct Certificate {
   double simulated_s = 0, wall_s = 0;
   int frames = 0;
   std::vector<StageTime> stages;
+  // Where the time went: seconds per effect (System::profile, all verbs) and
+  // the integrator's counts.
+  std::vector<std::pair<std::string, double>> effect_seconds;
+  long steps = 0, force_evaluations = 0, linear_iterations = 0;
   // The state reached.
   int particles = 0, triangles = 0;
   double max_penetration = 0;   // m, exact
