@@ -546,6 +546,7 @@ Scene build(const SceneDef& def) {
     if (e.self_collision) {
       sim::SelfCollisionDef sc = *e.self_collision;
       sc.fixed = s.pinned;
+      for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
       effects.push_back(sim::make_self_collision(model, sc));
     }
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));

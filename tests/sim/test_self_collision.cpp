@@ -158,3 +158,64 @@ TEST(SelfCollision, CrossedParticleIsBroughtBack) {
 
 }  // namespace
 }  // namespace vgd::sim
+
+namespace vgd::sim {
+namespace {
+
+// A seam pair never collides: particle 3, joined to corner 0 of the triangle
+// it approaches, is left alone (a seam could not close otherwise); the same
+// particle not joined is stopped and pushed back.
+TEST(SelfCollision, JoinedParticlesDoNotCollide) {
+  Model m = test::particles(4, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0);
+  at(m.x0, 1) = Vec3(0.1, 0, 0);
+  at(m.x0, 2) = Vec3(0, 0.1, 0);
+  at(m.x0, 3) = Vec3(0.02, 0.02, 0.001);
+  m.triangles = {{0, 1, 2}};
+  m.triangle_piece = {0};
+  m.pieces = {"p"};
+  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(0.02, 0.02)};
+  for (const bool joined : {false, true}) {
+    SelfCollisionDef def;
+    def.thickness = 0.003;
+    if (joined) def.joined = {{3, 0}};
+    auto e = make_self_collision(m, def);
+    State s = initial_state(m);
+    at(s.v, 3) = Vec3(0, 0, -1.0);
+    VecX f = VecX::Zero(m.num_dofs());
+    e->add_forces({m, 0.0, s.x, s.v}, f);
+    e->after_step(m, s);
+    if (joined) {
+      EXPECT_EQ(at(f, 3).norm(), 0.0);
+      EXPECT_EQ(at(s.v, 3).z(), -1.0);
+      EXPECT_EQ(at(s.x, 3).z(), 0.001);
+    } else {
+      EXPECT_GT(at(f, 3).z(), 0.0);
+      EXPECT_GT(at(s.v, 3).z(), -0.5);
+    }
+  }
+}
+
+// After a merge the copies of one particle are one: no collision between them.
+TEST(SelfCollision, MergedCopiesDoNotCollide) {
+  Model m = test::particles(4, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0);
+  at(m.x0, 1) = Vec3(0.1, 0, 0);
+  at(m.x0, 2) = Vec3(0, 0.1, 0);
+  at(m.x0, 3) = Vec3(0.0, 0.0, 0.0005);  // a copy of particle 0, sitting on it
+  m.triangles = {{0, 1, 2}};
+  m.triangle_piece = {0};
+  m.pieces = {"p"};
+  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(0, 0)};
+  SelfCollisionDef def;
+  def.thickness = 0.003;
+  auto e = make_self_collision(m, def);
+  e->particles_merged(m, {0, 1, 2, 0});
+  State s = initial_state(m);
+  VecX f = VecX::Zero(m.num_dofs());
+  e->add_forces({m, 0.0, s.x, s.v}, f);
+  EXPECT_EQ(f.norm(), 0.0);
+}
+
+}  // namespace
+}  // namespace vgd::sim

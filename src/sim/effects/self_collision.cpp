@@ -155,6 +155,26 @@ class SelfCollision final : public Effect {
       }
     }
     stats_.min_distance = d.thickness;
+    group_.resize(n_);
+    for (int i = 0; i < n_; ++i) group_[i] = i;
+    for (const auto& [a, b] : d.joined) {
+      if (a < 0 || a >= n_ || b < 0 || b >= n_)
+        throw SimulationError("self collision: joined pair (" + std::to_string(a) + ", " + std::to_string(b) +
+                              ") names a particle that does not exist");
+      join(a, b);
+    }
+    flatten();
+  }
+
+  // Merged copies are one particle: never a collision between them.
+  void particles_merged(const Model&, const std::vector<int>& representative) override {
+    std::vector<int> first(n_, -1);
+    for (int i = 0; i < n_; ++i) {
+      int& f = first[representative[i]];
+      if (f < 0) f = i;
+      else join(f, i);
+    }
+    flatten();
   }
 
   const char* name() const override { return "self-collision"; }
@@ -221,7 +241,7 @@ class SelfCollision final : public Effect {
           if (q < p && in_box(at(s.x, q), lo, hi)) continue;  // the edge is met from q as well
           for (int k = 0; k < 3; ++k) {
             const int b0 = tr[k], b1 = tr[(k + 1) % 3];
-            if (p == b0 || p == b1 || q == b0 || q == b1) continue;
+            if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
             edge_pair(s, p, q, b0, b1, th, motion);
           }
         }
@@ -261,8 +281,22 @@ class SelfCollision final : public Effect {
   const SelfCollisionStats& stats() const { return stats_; }
 
  private:
+  // Union–find over particles that are one (or will be): seam pairs, merges.
+  int root(int i) {
+    while (group_[i] != i) i = group_[i] = group_[group_[i]];
+    return i;
+  }
+  void join(int a, int b) {
+    a = root(a), b = root(b);
+    if (a != b) group_[std::max(a, b)] = std::min(a, b);
+  }
+  void flatten() {
+    for (int i = 0; i < n_; ++i) group_[i] = root(i);
+  }
+  bool same(int a, int b) const { return group_[a] == group_[b]; }
+
   bool skip(int p, const std::array<int, 3>& tr) const {
-    if (p == tr[0] || p == tr[1] || p == tr[2]) return true;
+    if (same(p, tr[0]) || same(p, tr[1]) || same(p, tr[2])) return true;
     if (!ring_.empty())
       for (int q : tr)
         for (int r : ring_[q])
@@ -359,6 +393,7 @@ class SelfCollision final : public Effect {
   std::vector<EdgePair> edge_pairs_;
   std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
   VecX x_prev_;
+  std::vector<int> group_;  // per particle: the lowest particle it is one with
   SelfCollisionStats stats_;
 };
 

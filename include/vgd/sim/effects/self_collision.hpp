@@ -20,6 +20,7 @@
 // through each other with no corner near a face (found by the fold test).
 // The repulsion force is point–triangle only.
 // The scene switches this effect on only when it asks for self-collisions.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct SelfCollisionDef {
   bool skip_one_ring = false;  // also skip particles sharing an edge with the triangle
   int passes = 4;              // Gauss–Seidel passes of the after-step correction
   std::vector<int> fixed;      // particles never moved (the scene's pins)
+  // Particles that are, or are about to become, one (seam pairs): a particle
+  // never collides with a triangle or an edge holding its partner, or seams
+  // could not close. Merged particles (System::apply_merges) are joined too.
+  std::vector<std::array<int, 2>> joined;
 };
 
 struct SelfCollisionStats {
