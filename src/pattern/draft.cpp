@@ -160,17 +160,7 @@ std::vector<Piece> draft_skirt(const SkirtMeasurements& m) {
 }
 
 Style draft_skirt_style(const std::vector<SkirtMeasurements>& sizes) {
-  Style s;
-  s.name = "VGD A-LINE SKIRT";
-  s.producer = "vgd";
-  s.flavour = "AAMA";
-  s.units = "mm";
-  for (const auto& m : sizes) {
-    for (auto& p : draft_skirt(m)) s.pieces.push_back(std::move(p));
-    s.sizes.push_back(m.size);
-  }
-  s.sample_size = s.sizes.empty() ? "" : (std::find(s.sizes.begin(), s.sizes.end(), "38") != s.sizes.end() ? "38" : s.sizes.front());
-  return s;
+  return graded_style("VGD A-LINE SKIRT", sizes, draft_skirt);
 }
 
 std::vector<SeamPlan> skirt_seams() {

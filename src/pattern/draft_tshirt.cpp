@@ -281,17 +281,7 @@ std::vector<Piece> draft_tshirt(const TShirtMeasurements& m) {
 }
 
 Style draft_tshirt_style(const std::vector<TShirtMeasurements>& sizes) {
-  Style s;
-  s.name = "VGD T-SHIRT";
-  s.producer = "vgd";
-  s.flavour = "AAMA";
-  s.units = "mm";
-  for (const auto& m : sizes) {
-    for (auto& p : draft_tshirt(m)) s.pieces.push_back(std::move(p));
-    s.sizes.push_back(m.size);
-  }
-  s.sample_size = s.sizes.empty() ? "" : (std::find(s.sizes.begin(), s.sizes.end(), "38") != s.sizes.end() ? "38" : s.sizes.front());
-  return s;
+  return graded_style("VGD T-SHIRT", sizes, draft_tshirt);
 }
 
 std::vector<SeamPlan> tshirt_seams() {

@@ -136,6 +136,12 @@ class Object {
   void string(const std::string& key, std::string& out) {
     if (const json* v = find(key)) out = text(*v, at(key), c_);
   }
+  void strings(const std::string& key, std::vector<std::string>& out) {
+    if (const json* v = find(key)) {
+      const auto& l = list(*v, at(key), c_);
+      for (std::size_t i = 0; i < l.size(); ++i) out.push_back(text(l[i], index_path(at(key), i), c_));
+    }
+  }
   void vector(const std::string& key, Vec3& out, const Dimension& d) {
     if (const json* v = find(key)) out = vec3(*v, at(key), d, c_);
   }
@@ -192,10 +198,7 @@ XvcPiecesDef read_xvc_pieces(Object o) {
   XvcPiecesDef x;
   x.file = text(o.need("file", "the XVC document"), o.at("file"), o.context());
   o.string("size", x.size);
-  if (const json* p = o.find("pieces")) {
-    const auto& l = list(*p, o.at("pieces"), o.context());
-    for (std::size_t i = 0; i < l.size(); ++i) x.pieces.push_back(text(l[i], index_path(o.at("pieces"), i), o.context()));
-  }
+  o.strings("pieces", x.pieces);
   o.number("spacing", x.spacing, dim::length);
   if (const json* a = o.find("min_angle")) {
     // Degrees as a plain number; "25 deg" also reads (the quantity is in radians).
@@ -216,10 +219,7 @@ GarmentDef read_garment(Object o) {
   GarmentDef g;
   g.file = text(o.need("file", "the XVC document"), o.at("file"), o.context());
   o.string("size", g.size);
-  if (const json* p = o.find("pieces")) {
-    const auto& l = list(*p, o.at("pieces"), o.context());
-    for (std::size_t i = 0; i < l.size(); ++i) g.pieces.push_back(text(l[i], index_path(o.at("pieces"), i), o.context()));
-  }
+  o.strings("pieces", g.pieces);
   o.number("spacing", g.spacing, dim::length);
   o.finish();
   return g;
@@ -369,10 +369,7 @@ PinGroupDef read_pins(Object o, bool& on) {
     const auto& a = list(*l, o.at("particles"), o.context());
     for (std::size_t i = 0; i < a.size(); ++i) p.particles.push_back(whole(a[i], index_path(o.at("particles"), i), o.context()));
   }
-  if (const json* l = o.find("sets")) {
-    const auto& a = list(*l, o.at("sets"), o.context());
-    for (std::size_t i = 0; i < a.size(); ++i) p.sets.push_back(text(a[i], index_path(o.at("sets"), i), o.context()));
-  }
+  o.strings("sets", p.sets);
   if (const json* r = o.find("region")) {
     Object b(*r, o.at("region"), o.context());
     Box box;

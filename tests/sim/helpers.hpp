@@ -74,4 +74,26 @@ std::vector<std::unique_ptr<Effect>> effects(std::unique_ptr<E>... e) {
   return v;
 }
 
+// Two nu × nv grids of 0.1 m cells side by side, `gap` (m) apart along x, as
+// one model of two pieces (A, B); particle masses mass_a and mass_b (kg).
+// The seams tests sew A's right column to B's left one.
+inline Model two_grids(int nu, int nv, double gap, double mass_a = 0.01, double mass_b = 0.01) {
+  const double d = 0.1;
+  Model a = make_grid(nu, nv, d, d, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), mass_a);
+  Model b = make_grid(nu, nv, d, d, Vec3((nu - 1) * d + gap, 0, 0), Vec3::UnitX(), Vec3::UnitY(), mass_b);
+  const int na = a.num_particles(), nb = b.num_particles();
+  Model m = a;
+  m.x0.conservativeResize(3 * (na + nb));
+  m.x0.tail(3 * nb) = b.x0;
+  m.v0 = VecX::Zero(3 * (na + nb));
+  m.mass.conservativeResize(na + nb);
+  m.mass.tail(nb) = b.mass;
+  for (auto uv : b.uv) m.uv.push_back(uv + Vec2((nu - 1) * d, 0));
+  for (auto t : b.triangles) m.triangles.push_back({t[0] + na, t[1] + na, t[2] + na});
+  m.triangle_piece.assign(m.triangles.size(), 0);
+  for (std::size_t t = a.triangles.size(); t < m.triangles.size(); ++t) m.triangle_piece[t] = 1;
+  m.pieces = {"A", "B"};
+  return m;
+}
+
 }  // namespace vgd::sim::test

@@ -20,25 +20,7 @@ namespace {
 
 // Two 4 × 3 grids 1 mm apart (below the seam's merge distance), sewn along
 // A's right and B's left column; particle 0 pinned.
-Model two_grids() {
-  const int nu = 4, nv = 3;
-  const double d = 0.1;
-  Model a = make_grid(nu, nv, d, d, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 0.01);
-  Model b = make_grid(nu, nv, d, d, Vec3((nu - 1) * d + 0.001, 0, 0), Vec3::UnitX(), Vec3::UnitY(), 0.02);
-  const int na = a.num_particles(), nb = b.num_particles();
-  Model m = a;
-  m.x0.conservativeResize(3 * (na + nb));
-  m.x0.tail(3 * nb) = b.x0;
-  m.v0 = VecX::Zero(3 * (na + nb));
-  m.mass.conservativeResize(na + nb);
-  m.mass.tail(nb) = b.mass;
-  for (auto uv : b.uv) m.uv.push_back(uv + Vec2((nu - 1) * d, 0));
-  for (auto t : b.triangles) m.triangles.push_back({t[0] + na, t[1] + na, t[2] + na});
-  m.triangle_piece.assign(m.triangles.size(), 0);
-  for (std::size_t t = a.triangles.size(); t < m.triangles.size(); ++t) m.triangle_piece[t] = 1;
-  m.pieces = {"A", "B"};
-  return m;
-}
+Model two_grids() { return test::two_grids(4, 3, 0.001, 0.01, 0.02); }
 
 System sewn_system(const Model& m) {
   SeamDef def;

@@ -22,24 +22,6 @@ namespace {
 // Two nu × nv grids (cells of 0.1 m) in the z = 0 plane, B to the right of A
 // with `gap` (m) between A's right column and B's left column. B's material
 // coordinates continue A's (u from (nu − 1) · 0.1 m). Particles: A's first.
-Model two_grids(int nu, int nv, double gap, double mass_a = 0.01, double mass_b = 0.01) {
-  const double d = 0.1;
-  Model a = make_grid(nu, nv, d, d, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), mass_a);
-  Model b = make_grid(nu, nv, d, d, Vec3((nu - 1) * d + gap, 0, 0), Vec3::UnitX(), Vec3::UnitY(), mass_b);
-  const int na = a.num_particles(), nb = b.num_particles();
-  Model m = a;
-  m.x0.conservativeResize(3 * (na + nb));
-  m.x0.tail(3 * nb) = b.x0;
-  m.v0 = VecX::Zero(3 * (na + nb));
-  m.mass.conservativeResize(na + nb);
-  m.mass.tail(nb) = b.mass;
-  for (auto uv : b.uv) m.uv.push_back(uv + Vec2((nu - 1) * d, 0));
-  for (auto t : b.triangles) m.triangles.push_back({t[0] + na, t[1] + na, t[2] + na});
-  m.triangle_piece.assign(m.triangles.size(), 0);
-  for (std::size_t t = a.triangles.size(); t < m.triangles.size(); ++t) m.triangle_piece[t] = 1;
-  m.pieces = {"A", "B"};
-  return m;
-}
 
 // A's right column with B's left column.
 SeamPairs side_seam(int nu, int nv) {
@@ -155,7 +137,7 @@ TEST(Seam, BadDefinitionsAreRefusedNamingTheSeamAndPair) {
 
 TEST(SeamMerge, MergeKeepsMassFirstMomentAndMomentumExactly) {
   const int nu = 3, nv = 4;
-  const Model m = two_grids(nu, nv, 0.001, 0.01, 0.03);  // the gap is below merge_distance
+  const Model m = test::two_grids(nu, nv, 0.001, 0.01, 0.03);  // the gap is below merge_distance
   SeamDef def;
   def.seams = {side_seam(nu, nv)};
   System sys(m, effects(make_mass_spring(m, {soft()}), make_seam(m, def)));
@@ -198,7 +180,7 @@ TEST(SeamMerge, MergedSystemGivesTheAccelerationsOfAModelBuiltMerged) {
   MassSpringMaterial mat = soft();
   mat.bend_warp = mat.bend_weft = 0.0;
   mat.damping = 0.0;
-  const Model m = two_grids(2, 2, 0.001, 0.01, 0.02);
+  const Model m = test::two_grids(2, 2, 0.001, 0.01, 0.02);
   SeamDef def;
   def.seams = {side_seam(2, 2)};  // (1, 4), (3, 6)
   System sys(m, effects(make_mass_spring(m, {mat}), make_damping(m, {0.3}), make_gravity({}), make_seam(m, def)));
@@ -307,7 +289,7 @@ struct Sewn {
 };
 
 Sewn sew(const IntegratorSettings& st, int nu = 3, int nv = 4, double gap = 0.05) {
-  const Model m = two_grids(nu, nv, gap);
+  const Model m = test::two_grids(nu, nv, gap);
   SeamDef def;
   def.law = SeamLaw::linear;
   def.stiffness = 1.0;
@@ -368,7 +350,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, SeamRun,
 
 TEST(SeamRun, ProgressCountsOpenPairsAndTheirGapsWhenMergingIsOff) {
   const int nu = 3, nv = 4;
-  const Model m = two_grids(nu, nv, 0.05);
+  const Model m = test::two_grids(nu, nv, 0.05);
   SeamDef def;
   def.merge = false;
   def.damping = 0.25;

@@ -17,6 +17,20 @@ namespace {
 
 using test::sci;
 
+// One triangle in z = 0 (particles 0, 1, 2, 1 g each) and particle 3 at p.
+Model triangle_and_particle(const Vec3& p) {
+  Model m = test::particles(4, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0);
+  at(m.x0, 1) = Vec3(0.1, 0, 0);
+  at(m.x0, 2) = Vec3(0, 0.1, 0);
+  at(m.x0, 3) = p;
+  m.triangles = {{0, 1, 2}};
+  m.triangle_piece = {0};
+  m.pieces = {"p"};
+  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(p.x(), p.y())};
+  return m;
+}
+
 std::vector<mesh::Vec3> positions(const VecX& x) {
   std::vector<mesh::Vec3> out;
   for (int i = 0; i < x.size() / 3; ++i) out.push_back(at(x, i));
@@ -107,15 +121,7 @@ TEST(SelfCollision, WithoutItTheSameClothPassesThroughItself) {
 
 TEST(SelfCollision, ImpulseStopsAnApproachingParticle) {
   // One triangle in z = 0 and a particle 1 mm above it moving down at 1 m/s.
-  Model m = test::particles(4, 0.001);
-  at(m.x0, 0) = Vec3(0, 0, 0);
-  at(m.x0, 1) = Vec3(0.1, 0, 0);
-  at(m.x0, 2) = Vec3(0, 0.1, 0);
-  at(m.x0, 3) = Vec3(0.02, 0.02, 0.001);
-  m.triangles = {{0, 1, 2}};
-  m.triangle_piece = {0};
-  m.pieces = {"p"};
-  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(0.02, 0.02)};
+  Model m = triangle_and_particle(Vec3(0.02, 0.02, 0.001));
   SelfCollisionDef def;
   def.thickness = 0.003;
   auto e = make_self_collision(m, def);
@@ -166,15 +172,7 @@ namespace {
 // it approaches, is left alone (a seam could not close otherwise); the same
 // particle not joined is stopped and pushed back.
 TEST(SelfCollision, JoinedParticlesDoNotCollide) {
-  Model m = test::particles(4, 0.001);
-  at(m.x0, 0) = Vec3(0, 0, 0);
-  at(m.x0, 1) = Vec3(0.1, 0, 0);
-  at(m.x0, 2) = Vec3(0, 0.1, 0);
-  at(m.x0, 3) = Vec3(0.02, 0.02, 0.001);
-  m.triangles = {{0, 1, 2}};
-  m.triangle_piece = {0};
-  m.pieces = {"p"};
-  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(0.02, 0.02)};
+  Model m = triangle_and_particle(Vec3(0.02, 0.02, 0.001));
   for (const bool joined : {false, true}) {
     SelfCollisionDef def;
     def.thickness = 0.003;
@@ -198,15 +196,7 @@ TEST(SelfCollision, JoinedParticlesDoNotCollide) {
 
 // After a merge the copies of one particle are one: no collision between them.
 TEST(SelfCollision, MergedCopiesDoNotCollide) {
-  Model m = test::particles(4, 0.001);
-  at(m.x0, 0) = Vec3(0, 0, 0);
-  at(m.x0, 1) = Vec3(0.1, 0, 0);
-  at(m.x0, 2) = Vec3(0, 0.1, 0);
-  at(m.x0, 3) = Vec3(0.0, 0.0, 0.0005);  // a copy of particle 0, sitting on it
-  m.triangles = {{0, 1, 2}};
-  m.triangle_piece = {0};
-  m.pieces = {"p"};
-  m.uv = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), Vec2(0, 0)};
+  Model m = triangle_and_particle(Vec3(0.0, 0.0, 0.0005));
   SelfCollisionDef def;
   def.thickness = 0.003;
   auto e = make_self_collision(m, def);

@@ -127,4 +127,24 @@ Style draft_tshirt_style(const std::vector<TShirtMeasurements>& sizes = tshirt_s
 // (stretch 3 forward, stretch 1 reverse).
 std::vector<SeamPlan> tshirt_seams();
 
+// A graded style from one drafter over a size table: every size's pieces in
+// table order, producer "vgd", AAMA in mm; sample size 38 when drafted, else
+// the first.
+template <class Measurements, class Drafter>
+Style graded_style(std::string name, const std::vector<Measurements>& sizes, Drafter draft) {
+  Style s;
+  s.name = std::move(name);
+  s.producer = "vgd";
+  s.flavour = "AAMA";
+  s.units = "mm";
+  for (const auto& m : sizes) {
+    for (auto& p : draft(m)) s.pieces.push_back(std::move(p));
+    s.sizes.push_back(m.size);
+  }
+  if (!s.sizes.empty()) s.sample_size = s.sizes.front();
+  for (const auto& size : s.sizes)
+    if (size == "38") s.sample_size = size;
+  return s;
+}
+
 }  // namespace vgd::pattern
