@@ -112,7 +112,8 @@ TEST(AvatarImport, BadFilesSayWhatIsWrong) {
   EXPECT_NE(error_of(dir / "missing.obj").find("no such file"), std::string::npos);
   write_file_atomic(dir / "empty.obj", "");
   EXPECT_NE(error_of(dir / "empty.obj").find("empty"), std::string::npos);
-  write_file_atomic(dir / "garbage.glb", std::string("\x01\x02 this is not a model \xff\xfe", 28));
+  static const char kGarbage[] = "\x01\x02 this is not a model \xff\xfe";
+  write_file_atomic(dir / "garbage.glb", std::string(kGarbage, sizeof kGarbage - 1));
   const std::string garbage = error_of(dir / "garbage.glb");
   EXPECT_NE(garbage.find("not a 3-D model"), std::string::npos) << garbage;
   EXPECT_NE(garbage.find("garbage.glb"), std::string::npos) << garbage;
