@@ -5,8 +5,8 @@
 //
 // Writes into the output folder: garment.obj (the draped garment, one group
 // per piece), avatar.obj (the body), certificate.json (why it stopped,
-// penetration, seams, strain, contact pressure, kinetic-energy history),
-// scene.json is not written: --save-scene writes the scene it ran.
+// penetration, seams, strain, contact pressure, per-effect profile,
+// kinetic-energy history), and with --frames every frame in frames/.
 // Progress per stage (placing, sewing, settling) goes to stderr.
 #include <unistd.h>
 
