@@ -579,6 +579,11 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
     std::string what = e.what();
     if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
     throw Error(c.file, "", "not valid JSON: " + what, line_of(json_text, e.byte));
+  } catch (const json::exception& e) {
+    // A number too large for a double ("1e999") and the like: out_of_range.
+    std::string what = e.what();
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw Error(c.file, "", "not valid JSON: " + what);
   }
 
   SceneDef def;

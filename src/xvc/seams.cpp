@@ -575,13 +575,28 @@ std::vector<Node> plan_seam_nodes(const Document& doc, const std::vector<pattern
   return out;
 }
 
+namespace {
+std::vector<pattern::SeamPlan> read_seam_plans(const nlohmann::json& j, const std::string& file);
+}
+
 std::vector<pattern::SeamPlan> parse_seam_plans(std::string_view text, const std::string& file) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range for a number too large for a double.
     throw Error(file, "", std::string("not valid JSON: ") + e.what());
   }
+  try {
+    return read_seam_plans(j, file);
+  } catch (const nlohmann::json::exception& e) {
+    // A value of the wrong type somewhere the checks below did not look.
+    throw Error(file, "", std::string("not a seam file: ") + e.what());
+  }
+}
+
+namespace {
+std::vector<pattern::SeamPlan> read_seam_plans(const nlohmann::json& j, const std::string& file) {
   if (!j.is_object() || !j.contains("seams") || !j["seams"].is_array())
     throw Error(file, "", "a seam file is an object with an array \"seams\"");
   std::vector<pattern::SeamPlan> out;
@@ -610,6 +625,7 @@ std::vector<pattern::SeamPlan> parse_seam_plans(std::string_view text, const std
   }
   return out;
 }
+}  // namespace
 
 std::string seam_plans_to_json(const std::vector<pattern::SeamPlan>& plans) {
   nlohmann::json seams = nlohmann::json::array();
