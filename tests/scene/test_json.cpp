@@ -229,3 +229,21 @@ TEST(SceneFile, TheExamplesInTheDocsRead) {
   }
   EXPECT_EQ(scenes, 2);
 }
+
+namespace vgd::scene {
+namespace {
+
+// A number no double holds is bad JSON with a message, not a crash (fuzzing found it).
+TEST(SceneFileErrors, ANumberTooLargeForADoubleIsNamed) {
+  try {
+    parse_scene(R"({"cloth": [{"grid": {"particles": [2, 2], "size": [1e999, 1]}}]})", "huge.json");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("huge.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("not valid JSON"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace vgd::scene
