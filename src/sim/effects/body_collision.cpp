@@ -157,6 +157,7 @@ class BodyCollision final : public Effect {
   }
 
   const BodyCollisionStats& stats() const { return stats_; }
+  const SignedDistanceGrid* grid() const { return grid_ ? &*grid_ : nullptr; }
 
  private:
   static constexpr unsigned char kSeam = 1, kSticky = 2, kFixed = 4;
@@ -217,6 +218,11 @@ const BodyCollisionStats& body_collision_stats(const Effect& effect) {
   const auto* b = dynamic_cast<const BodyCollision*>(&effect);
   VGD_ASSERT(b != nullptr, "body_collision_stats: the effect is not a body collision");
   return b->stats();
+}
+
+const SignedDistanceGrid* body_collision_grid(const Effect& effect) {
+  const auto* b = dynamic_cast<const BodyCollision*>(&effect);
+  return b ? b->grid() : nullptr;
 }
 
 }  // namespace vgd::sim

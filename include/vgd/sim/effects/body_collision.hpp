@@ -75,5 +75,9 @@ std::unique_ptr<Effect> make_body_collision(const Model& model, const BodyCollis
 
 // The statistics of an effect made by make_body_collision (asserts otherwise).
 const BodyCollisionStats& body_collision_stats(const Effect& effect);
+// The distance grid of a body-collision effect (BodyQuery::grid), so that
+// measurements after a run need not build another; nullptr for any other
+// effect or for the exact query.
+const SignedDistanceGrid* body_collision_grid(const Effect& effect);
 
 }  // namespace vgd::sim
