@@ -6,7 +6,8 @@ Standard library only.
   render_obj.py OUT.png VIEWS MESH.obj [MESH.obj ...]
   VIEWS: comma-separated front, side, back (one panel each, side by side)
 """
-import math, struct, sys, zlib
+import math
+import os, struct, sys, zlib
 
 COLOURS = [(205, 190, 170), (60, 100, 190), (190, 70, 70), (70, 160, 80)]
 PANEL_W, PANEL_H = 300, 520
@@ -75,6 +76,9 @@ def main():
     panels = []
     for view in views:
         pts = [turn(v, view) for verts, _ in meshes for v in verts]
+        if 'RENDER_Y' in os.environ:  # crop to a height range (m), e.g. RENDER_Y=1.0,1.6
+            lo, hi = map(float, os.environ['RENDER_Y'].split(','))
+            pts = [p for p in pts if lo <= p[1] <= hi]
         box = (min(p[0] for p in pts), max(p[0] for p in pts), min(p[1] for p in pts), max(p[1] for p in pts))
         panels.append(render(meshes, view, box))
     rows = [b''.join(bytes(c for px in panel[y] for c in px) for panel in panels) for y in range(PANEL_H)]

@@ -1,6 +1,7 @@
 // Exact surface measurements (include/vgd/mesh/surface_checks.hpp): the second
 // CGAL translation unit of vgd, kept apart from the mesher so that each
 // compiles once.
+#include <algorithm>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -47,7 +48,8 @@ std::vector<double> penetration_depths(const SurfaceMesh& body, const std::vecto
   return out;
 }
 
-int count_triangle_intersections(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+std::vector<std::array<int, 2>> find_triangle_intersections(const std::vector<Vec3>& vertices,
+                                                            const std::vector<std::array<int, 3>>& triangles) {
   using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, std::size_t,
                                                           CGAL::Box_intersection_d::ID_EXPLICIT>;
   std::vector<K::Triangle_3> tri;
@@ -59,16 +61,22 @@ int count_triangle_intersections(const std::vector<Vec3>& vertices, const std::v
     tri.emplace_back(pt(vertices[tr[0]]), pt(vertices[tr[1]]), pt(vertices[tr[2]]));
     boxes.emplace_back(tri.back().bbox(), t);
   }
-  int count = 0;
+  std::vector<std::array<int, 2>> out;
   auto report = [&](const Box& a, const Box& b) {
     const auto &ta = triangles[a.handle()], &tb = triangles[b.handle()];
     for (int i : ta)
       for (int j : tb)
         if (i == j) return;  // neighbours
-    if (CGAL::do_intersect(tri[a.handle()], tri[b.handle()])) ++count;
+    if (CGAL::do_intersect(tri[a.handle()], tri[b.handle()]))
+      out.push_back({static_cast<int>(std::min(a.handle(), b.handle())), static_cast<int>(std::max(a.handle(), b.handle()))});
   };
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), report);
-  return count;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+int count_triangle_intersections(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  return static_cast<int>(find_triangle_intersections(vertices, triangles).size());
 }
 
 }  // namespace vgd::mesh

@@ -4,7 +4,10 @@
 //   W  = (bust + bust_ease) / 4       half-width of a body piece at the chest
 //   NP = (nw, L)                      neck point, nw = neck / 6 + 5 mm
 //   SP = (nw + √(shoulder² − drop²), L − drop)   shoulder point
-//   UA = (W, L − armhole_depth)       underarm point; the side seam is straight
+//   UA = (W, L − armhole_depth)       underarm point
+//   HM = (max(W, (hip + hip_ease) / 4), 0)   hem corner; the side seam UA–HM is
+//                                     straight (it flares when the hips are wider
+//                                     than the chest with its ease)
 // The right half of each body piece is built, the left half is its exact mirror
 // (x → −x), so the two side seams and the two shoulders are equal bit for bit,
 // and FRONT and BACK share NP, SP, UA and the hem, so their side seams and
@@ -23,19 +26,21 @@
 namespace vgd::pattern {
 
 std::vector<TShirtMeasurements> tshirt_size_table() {
-  // size, bust, neck, upper arm (m): the skirt's chart (German DOB), one row per size.
-  const struct { const char* size; double bust, neck, arm; } rows[] = {
-      {"34", 0.80, 0.34, 0.26}, {"36", 0.84, 0.35, 0.27}, {"38", 0.88, 0.36, 0.28},
-      {"40", 0.92, 0.37, 0.29}, {"42", 0.96, 0.38, 0.30}};
+  // size, bust, hip, neck, upper arm (m): bust and hip of EN 13402-3 (data/bodies),
+  // neck and upper arm from the skirt's chart (German DOB), one row per size.
+  const struct { const char* size; double bust, hip, neck, arm; } rows[] = {
+      {"34", 0.80, 0.88, 0.34, 0.26}, {"36", 0.84, 0.92, 0.35, 0.27}, {"38", 0.88, 0.97, 0.36, 0.28},
+      {"40", 0.92, 1.00, 0.37, 0.29}, {"42", 0.96, 1.04, 0.38, 0.30}};
   std::vector<TShirtMeasurements> out;
   int step = -2;
   for (const auto& r : rows) {
     TShirtMeasurements m;
     m.size = r.size;
     m.bust = r.bust;
+    m.hip = r.hip;
     m.neck = r.neck;
     m.upper_arm = r.arm;
-    m.shoulder = 0.125 + 0.0025 * step;
+    m.shoulder = 0.135 + 0.0025 * step;
     m.length = 0.62 + 0.01 * step;
     m.armhole_depth = 0.20 + 0.005 * step;
     out.push_back(m);
@@ -92,12 +97,14 @@ void add_notch(Piece& piece, const Vec2& at, const Vec2& edge_dir) {
 
 struct BodyFrame {
   double W, L, yu, nw;
+  double Wh;  // half-width at the hem
   Vec2 NP, SP, UA;
 };
 
 BodyFrame body_frame(const TShirtMeasurements& m) {
   BodyFrame f;
   f.W = (m.bust + m.bust_ease) / 4.0;
+  f.Wh = std::max(f.W, (m.hip + m.hip_ease) / 4.0);
   f.L = m.length;
   f.yu = m.length - m.armhole_depth;
   f.nw = m.neck / 6.0 + 0.005;
@@ -132,8 +139,8 @@ Piece body(const TShirtMeasurements& m, bool back) {
   const auto arm = armhole(f, back);
   const auto neck = cubic(f.NP, Vec2(f.nw, f.L - 0.55 * depth), Vec2(0.55 * f.nw, f.L - depth), Vec2(0.0, f.L - depth), 10);
   auto& o = p.boundary;
-  o.push_back({Vec2(-f.W, 0.0), PointKind::turn});                 // 0 hem
-  o.push_back({Vec2(f.W, 0.0), PointKind::turn});                  // 1 right side seam
+  o.push_back({Vec2(-f.Wh, 0.0), PointKind::turn});                // 0 hem
+  o.push_back({Vec2(f.Wh, 0.0), PointKind::turn});                 // 1 right side seam
   o.push_back({f.UA, PointKind::turn});                            // 2 right armhole
   for (std::size_t i = 0; i + 1 < arm.size(); ++i) o.push_back({arm[i], PointKind::curve});
   o.push_back({f.SP, PointKind::turn});                            // 3 right shoulder

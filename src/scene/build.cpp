@@ -539,7 +539,9 @@ Scene build(const SceneDef& def) {
       sim::BodyCollisionDef cd = *e.collision;
       cd.body = s.avatar->surface;
       if (e.collision_seam_response != "body") cd.seam_particles = seam_particles;
-      cd.seam_keep_magnitude = e.collision_seam_response == "seed";
+      cd.seam_contact = e.collision_seam_response == "seed"    ? sim::SeamContact::seed
+                        : e.collision_seam_response == "slide" ? sim::SeamContact::slide
+                                                               : sim::SeamContact::glide;
       cd.fixed = s.pinned;
       effects.push_back(sim::make_body_collision(model, cd));
     }

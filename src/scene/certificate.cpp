@@ -97,7 +97,9 @@ void measure_state(const Scene& scene, const sim::VecX& x, double merge_distance
   out.particles_inside = 0;
   if (scene.avatar) {
     const std::vector<double> depth = mesh::penetration_depths(scene.avatar->surface, points);
-    for (double d : depth) {
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+      const double d = depth[i];
+      if (d > out.max_penetration) out.deepest_at = points[i];
       out.max_penetration = std::max(out.max_penetration, d);
       out.particles_inside += d > 0;
     }
@@ -107,13 +109,30 @@ void measure_state(const Scene& scene, const sim::VecX& x, double merge_distance
   if (intersections) {
     const std::vector<int> first = first_copies(scene.system->representative(), m.num_particles());
     std::vector<std::array<int, 3>> sewn;
+    std::vector<int> original;  // the model triangle of each sewn one
     sewn.reserve(m.triangles.size());
-    for (const auto& t : m.triangles) {
-      std::array<int, 3> q = t;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      std::array<int, 3> q = m.triangles[t];
       for (int& k : q) k = first[k];
-      if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) sewn.push_back(q);
+      if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) {
+        sewn.push_back(q);
+        original.push_back(static_cast<int>(t));
+      }
     }
-    out.triangle_intersections = mesh::count_triangle_intersections(points, sewn);
+    const auto crossing = mesh::find_triangle_intersections(points, sewn);
+    out.triangle_intersections = static_cast<int>(crossing.size());
+    // Where: per pair of pieces (a piece with itself: a fold through itself).
+    auto piece_of = [&](int t) -> std::string {
+      for (const auto& p : scene.pieces)
+        if (t >= p.first_triangle && t < p.first_triangle + p.triangles) return p.name;
+      return "?";
+    };
+    out.crossings_by_pieces.clear();
+    for (const auto& [a, b] : crossing) {
+      std::string pa = piece_of(original[a]), pb = piece_of(original[b]);
+      if (pb < pa) std::swap(pa, pb);
+      ++out.crossings_by_pieces[pa + " / " + pb];
+    }
   } else {
     out.triangle_intersections = -1;
   }
@@ -130,6 +149,7 @@ void measure_state(const Scene& scene, const sim::VecX& x, double merge_distance
       const bool merged = !rep.empty() && rep[a] == rep[b];
       const double gap = merged ? 0.0 : (points[a] - points[b]).norm();
       st.closed += merged || gap <= merge_distance;
+      if (gap > st.max_gap) st.widest_at = 0.5 * (points[a] + points[b]);
       st.max_gap = std::max(st.max_gap, gap);
       sum += gap;
     }
@@ -203,12 +223,18 @@ std::string to_json(const Certificate& c) {
                   {"linear_iterations", c.linear_iterations}};
   j["cloth"] = {{"particles", c.particles}, {"triangles", c.triangles}};
   j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
+                      {"deepest_at_m", json::array({c.deepest_at.x(), c.deepest_at.y(), c.deepest_at.z()})},
                       {"limit_m", c.penetration_limit}};
-  if (c.triangle_intersections >= 0) j["triangle_intersections"] = c.triangle_intersections;
+  if (c.triangle_intersections >= 0) {
+    j["triangle_intersections"] = c.triangle_intersections;
+    if (!c.crossings_by_pieces.empty()) j["triangle_intersections_by_pieces"] = c.crossings_by_pieces;
+  }
   json seams = json::array();
-  for (const auto& s : c.seams)
+  for (const auto& s : c.seams) {
     seams.push_back({{"name", s.name}, {"pairs", s.pairs}, {"closed", s.closed}, {"max_gap_m", s.max_gap},
                      {"mean_gap_m", s.mean_gap}});
+    if (s.max_gap > 0) seams.back()["widest_at_m"] = json::array({s.widest_at.x(), s.widest_at.y(), s.widest_at.z()});
+  }
   j["seams"] = seams;
   json strain = json::array();
   for (const auto& s : c.strain)

@@ -442,9 +442,10 @@ EffectsDef read_effects(Object o) {
     c.number("grid_band", d.grid.band, dim::length);
     c.string("seam_response", e.collision_seam_response);
     if (e.collision_seam_response != "seed" && e.collision_seam_response != "slide" &&
+        e.collision_seam_response != "glide" &&
         e.collision_seam_response != "body")
       o.context().fail(c.at("seam_response"), "unknown seam response '" + e.collision_seam_response +
-                                                  "' (use seed, slide or body)");
+                                                  "' (use glide, seed, slide or body)");
     if (c.enabled()) e.collision = d;
     c.finish();
   }
@@ -465,6 +466,7 @@ EffectsDef read_effects(Object o) {
     c.number("max_force", d.effect.max_force, dim::force);
     c.number("damping", d.effect.damping, dim::damping);
     c.number("merge_distance", d.effect.merge_distance, dim::length);
+    c.number("zip_distance", d.effect.zip_distance, dim::length);
     c.flag("merge", d.effect.merge);
     std::string law = "saturating";
     c.string("law", law);

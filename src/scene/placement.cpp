@@ -117,21 +117,39 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   if (nodes.empty()) smin = smax = s_ref;
 
   // Envelope of the rings over [smin, smax] around the reference ring's centre line.
+  // The reference ring is clamped to the segment's ends; the reference point is
+  // not: a piece may reach above the torso's top ring (a bodice's shoulders).
   const SegmentRing ref = ring_local(*seg, s_ref);
-  const Vec3 axis_point = ref.centre;
-  double a = 0, b = 0;  // along e1 (depth), e2 (width)
-  auto take = [&](const SegmentRing& r) {
-    Vec3 d = r.centre - axis_point;
-    d -= d.dot(axis) * axis;
-    b = std::max(b, r.half_width + std::abs(d.dot(e2)));
-    a = std::max(a, r.half_depth + std::abs(d.dot(e1)));
+  const Vec3 axis_point = ref.centre + (s_ref - ref.s) * axis;
+  // The envelope (semi-axes along e1 = depth and e2 = width) of the rings
+  // whose heights fall in [lo, hi], around the reference centre line.
+  auto envelope = [&](double lo, double hi) {
+    double a = 0, b = 0;
+    auto take = [&](const SegmentRing& r) {
+      Vec3 d = r.centre - axis_point;
+      d -= d.dot(axis) * axis;
+      b = std::max(b, r.half_width + std::abs(d.dot(e2)));
+      a = std::max(a, r.half_depth + std::abs(d.dot(e1)));
+    };
+    take(ring_local(*seg, lo));
+    take(ring_local(*seg, hi));
+    for (const auto& r : seg->rings)
+      if (r.s > lo && r.s < hi) take(r);
+    // A piece on the trunk may reach above its segment's top (a waistband above
+    // the hips): the rings of the trunk segments above at those heights bound
+    // it too, or it would start inside them. (Below, a bodice's hem over the
+    // hips is left to the drape.)
+    if (!limb && !seg->rings.empty())
+      for (const auto& other : avatar.segments) {
+        if (&other == seg || (other.name != "neck" && other.name != "torso" && other.name != "hips")) continue;
+        for (const auto& r : other.rings) {
+          const double s = (r.centre - seg->start).dot(axis);
+          if (s > seg->rings.back().s && s > lo && s < hi) take(r);
+        }
+      }
+    return std::pair{std::max(a, 1e-3), std::max(b, 1e-3)};
   };
-  take(ring_local(*seg, smin));
-  take(ring_local(*seg, smax));
-  for (const auto& r : seg->rings)
-    if (r.s > smin && r.s < smax) take(r);
-  a = std::max(a, 1e-3);
-  b = std::max(b, 1e-3);
+  const auto [a, b] = envelope(smin, smax);
 
   OffsetCurve curve;
   curve.a = a;
@@ -161,8 +179,73 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   if ((ar.side == "left" || ar.side == "right") && up.y() < 0) theta0 = -theta0;
   const double arc0 = curve.arc_at_theta(theta0);
 
+  // A half piece on the trunk (front or back, at most half way round) follows
+  // the body's taper: each height gets the offset curve of the rings near it,
+  // with the clearance grown where the piece is wider there than a quarter of
+  // that curve on each side of its centre, so front and back meet at the
+  // sides, not overlap. One cylinder at the largest ring of the whole piece put
+  // a bodice's sides (as wide as the shoulders) into the A-posed arms below
+  // the armpits, and the sleeves were sewn round them. Vertical lengths
+  // stretch by √(1 + (dr/ds)²) where the radius r changes along the axis.
+  const bool follow = !limb && (ar.side == "front" || ar.side == "back") && !nodes.empty() &&
+                      width <= 0.5 * curve.perimeter;
+  constexpr double kBin = 0.01, kWindow = 0.03;  // m: height step of the curves, rings looked at around each
+  std::vector<OffsetCurve> bins;
+  std::vector<double> bin_arc0;
+  double clearance_used = curve.c;
+  if (follow) {
+    const int nb = static_cast<int>(std::ceil((smax - smin) / kBin)) + 1;
+    std::vector<double> half(nb, 0.0);  // the piece's largest |u| near each bin
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+      const double s = s_ref + sign_s * uv[i].y();
+      const int lo = std::max(0, static_cast<int>(std::floor((s - smin - 2 * kBin) / kBin)));
+      const int hi = std::min(nb - 1, static_cast<int>(std::ceil((s - smin + 2 * kBin) / kBin)));
+      for (int k = lo; k <= hi; ++k) half[k] = std::max(half[k], std::abs(uv[i].x()));
+    }
+    std::vector<double> c(nb);
+    std::vector<std::pair<double, double>> ab(nb);
+    for (int k = 0; k < nb; ++k) {
+      const double s = smin + k * kBin;
+      ab[k] = envelope(s - kWindow, s + kWindow);
+      // An offset curve of a convex curve is longer by c times the angle turned:
+      // a quarter (side to front) is the ellipse's quarter plus c·π/2.
+      OffsetCurve e;
+      e.a = ab[k].first;
+      e.b = ab[k].second;
+      e.c = 0;
+      e.build();
+      const double quarter = 0.25 * e.perimeter;
+      c[k] = std::max(std::max(0.0, ar.clearance), (half[k] + 0.5 * gap - quarter) / (0.5 * M_PI));
+    }
+    // Grown clearances spread a few centimetres up and down, so the surface has
+    // no kinks.
+    std::vector<double> cs = c;
+    for (int k = 0; k < nb; ++k)
+      for (int j = std::max(0, k - 3); j <= std::min(nb - 1, k + 3); ++j) cs[k] = std::max(cs[k], c[j]);
+    bins.resize(nb);
+    bin_arc0.resize(nb);
+    clearance_used = 0;
+    for (int k = 0; k < nb; ++k) {
+      bins[k].a = ab[k].first;
+      bins[k].b = ab[k].second;
+      bins[k].c = cs[k];
+      bins[k].build();
+      bin_arc0[k] = bins[k].arc_at_theta(theta0);
+      clearance_used = std::max(clearance_used, cs[k]);
+    }
+  }
+  // The point of the surface at arc u from the side's direction, height s along the axis.
+  auto surface_point = [&](double u, double s_abs) -> Eigen::Vector2d {
+    if (!follow) return curve.point_at_arc(arc0 + u);
+    const double t = std::clamp((s_abs - smin) / kBin, 0.0, static_cast<double>(bins.size() - 1));
+    const int k = std::min(static_cast<int>(t), static_cast<int>(bins.size()) - 2 < 0 ? 0 : static_cast<int>(bins.size()) - 2);
+    if (bins.size() == 1) return bins[0].point_at_arc(bin_arc0[0] + u);
+    const double w = t - k;
+    return (1 - w) * bins[k].point_at_arc(bin_arc0[k] + u) + w * bins[k + 1].point_at_arc(bin_arc0[k + 1] + u);
+  };
+
   PiecePlacement out;
-  out.clearance = curve.c;
+  out.clearance = clearance_used;
   out.half_depth = a;
   out.half_width = b;
   out.axis_point = axis_point;
@@ -170,8 +253,8 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   out.reverses_winding = ar.flip;
   out.points.reserve(nodes.size());
   for (const auto& q : uv) {
-    const Eigen::Vector2d p = curve.point_at_arc(arc0 + q.x());
     const double s = sign_s * q.y();  // along the axis from the reference ring
+    const Eigen::Vector2d p = surface_point(q.x(), s_ref + s);
     out.points.push_back(axis_point + s * axis + p.x() * e1 + p.y() * e2);
   }
   return out;

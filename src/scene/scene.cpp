@@ -194,6 +194,7 @@ class Checker {
       positive("effects.seams.max_force", e.seams->effect.max_force);
       non_negative("effects.seams.damping", e.seams->effect.damping);
       non_negative("effects.seams.merge_distance", e.seams->effect.merge_distance);
+      non_negative("effects.seams.zip_distance", e.seams->effect.zip_distance);
     }
     if (e.gravity) finite("effects.gravity.g", e.gravity->g);
     if (e.viscosity) {

@@ -111,6 +111,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
   const bool sleeve = has(n, "SLEEVE") || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
   if (sleeve) {
     a.height = 0.0;  // the cap top at the shoulder end of the arm
+    a.clearance = opts.sleeve_clearance;
     Arrangement l = a, r = a;
     l.segment = "left-arm";
     l.side = "left";
@@ -138,7 +139,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
   if (!front && !back) return {};
   a.segment = lower_body ? "hips" : "torso";
   a.side = front ? "front" : "back";
-  a.height = lower_body ? opts.waist_height : opts.neck_point_height;
+  a.height = lower_body ? opts.waist_height : opts.neck_point_height + opts.bodice_lift;
   return {a};
 }
 

@@ -35,11 +35,14 @@ TEST(CliDrape, ShippedSkirtSewsAndComesToRestOnTheMannequin) {
   const auto out = scratch_dir("drape-skirt");
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "-o", out.string(),
                           "--time-limit", "6", "-q"});
-  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;  // 3: a QA check failed; the figures say which
+  EXPECT_EQ(r.code, 0) << r.err;  // every check passed (3 would say one failed)
   ASSERT_TRUE(std::filesystem::exists(out / "garment.obj"));
   ASSERT_TRUE(std::filesystem::exists(out / "avatar.obj"));
   const json c = read_json(out / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>());
   EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  // No cloth triangle passes through another (exact test, sewn topology).
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
   EXPECT_LT(c["stop"]["simulated_s"].get<double>(), 6.0);
   // Every seam closed (side seams and the waist seam with its three hems).
   ASSERT_EQ(c["seams"].size(), 3u);
@@ -63,12 +66,12 @@ TEST(CliDrape, ShippedSkirtSewsAndComesToRestOnTheMannequin) {
 TEST(CliDrape, ACutShortDrapeSaysWhyAndFailsItsChecks) {
   const auto out = scratch_dir("drape-short");
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "-o", out.string(),
-                          "--time-limit", "0.2", "-q"});
+                          "--time-limit", "0.04", "-q"});
   EXPECT_EQ(r.code, 3) << r.err;  // ran, but not to rest with every seam closed
   const json c = read_json(out / "certificate.json");
   EXPECT_EQ(c["stop"]["reason"], "time limit");
   EXPECT_FALSE(c["passed"].get<bool>());
-  EXPECT_NEAR(c["stop"]["simulated_s"].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(c["stop"]["simulated_s"].get<double>(), 0.04, 1e-9);
   EXPECT_LT(closed_pairs(c), all_pairs(c));
   // Inputs and settings are recorded.
   EXPECT_NE(c["inputs"]["garment"].get<std::string>().find("a-line-skirt.xvc"), std::string::npos);
@@ -91,7 +94,7 @@ TEST(CliDrape, BadInputIsNamed) {
 // the fold; imported unfolded, their shoulders and side seams sewn from
 // tests/data/men-classic-tee.unfolded.seams.json on the men's size-50
 // mannequin. The sleeves (a two-piece sleeve the seam suggestions have no
-// rule for) are left out.
+// rule for, and no seam in the file) are left out.
 TEST(CliDrape, ImportedMenClassicTeeBodySews) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("drape-tee");
@@ -105,21 +108,41 @@ TEST(CliDrape, ImportedMenClassicTeeBodySews) {
                                 "50", "-o", sewn.string(), "-q"});
   ASSERT_EQ(applied.code, 0) << applied.err;
   const auto r = run_vgd({"drape", sewn.string(), "--size", "50", "--size-table", "en13402-men", "--pieces",
-                          "REGULAR TEEFR", "REGULAR TEEBK", "--time-limit", "1.2", "-o", out.string(), "-q"});
-  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+                          "REGULAR TEEFR", "REGULAR TEEBK", "--time-limit", "4", "-o", out.string(), "-q"});
+  EXPECT_EQ(r.code, 0) << r.err;
   const json c = read_json(out / "certificate.json");
   ASSERT_EQ(c["seams"].size(), 4u);  // two shoulders, two side seams
-  // The side seams close completely. The shoulders' outer ends straddle the
-  // A-posed arm of the men's 50 mannequin and stay open (the issue's "seams
-  // closed" is not met yet: see docs/drape.md, Limitations).
-  for (const auto& seam : c["seams"])
-    if (seam["name"].get<std::string>().find("side seam") != std::string::npos)
-      EXPECT_EQ(seam["closed"], seam["pairs"]) << seam.dump();
-  EXPECT_GE(closed_pairs(c), all_pairs(c) * 8 / 10) << c["seams"].dump();
+  EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
   EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
-  EXPECT_NE(c["stop"]["reason"], "error") << c["stop"].dump();
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0);
   // It hangs on the shoulders: the body carries it.
   EXPECT_GT(c["contact"]["particles"].get<int>(), 50);
+  EXPECT_GT(c["contact"]["force_n"].get<double>(), 0.0);
+}
+
+// The drafted T-shirt (front, back, two sleeves) sews every pair and comes to
+// rest on the size-38 mannequin. Not yet met (docs/drape.md, Limitations):
+// its sleeves cross the bodice near the armholes (hundreds of triangle
+// pairs) and a few particles end up to 2 mm inside the A-posed arms' roots,
+// so vgd drape exits 3; the test pins what holds and bounds the rest.
+TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
+  const auto out = scratch_dir("drape-tshirt");
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "-o", out.string(),
+                          "--time-limit", "6", "-q"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  const json c = read_json(out / "certificate.json");
+  ASSERT_EQ(c["seams"].size(), 8u);  // sides, shoulders, armholes, underarms
+  EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_LE(c["penetration"]["max_m"].get<double>(), 3e-3);
+  EXPECT_GT(c["contact"]["particles"].get<int>(), 200);
+  // The bodice hangs without being pulled apart: strain p95 under 15 %.
+  for (const auto& s : c["strain"])
+    if (s["piece"].get<std::string>().find("SLEEVE") == std::string::npos) {
+      EXPECT_LT(s["warp"]["p95"].get<double>(), 0.15) << s.dump();
+      EXPECT_LT(s["weft"]["p95"].get<double>(), 0.15) << s.dump();
+    }
 }
 
 }  // namespace

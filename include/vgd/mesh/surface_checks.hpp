@@ -20,5 +20,7 @@ std::vector<double> penetration_depths(const SurfaceMesh& body, const std::vecto
 // mesh, not crossings, and are not tested. Box intersection (CGAL
 // box_intersection_d) then exact triangle–triangle predicates.
 int count_triangle_intersections(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
+// The same pairs, each (smaller index, larger), sorted.
+std::vector<std::array<int, 2>> find_triangle_intersections(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
 
 }  // namespace vgd::mesh

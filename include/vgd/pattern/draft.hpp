@@ -95,14 +95,16 @@ std::vector<SeamPlan> skirt_seams();
 struct TShirtMeasurements {
   std::string size = "38";
   double bust = 0.88;            // bust girth, m
+  double hip = 0.97;             // hip girth, m: the hem must pass over it
   double neck = 0.36;            // neck base girth, m
-  double shoulder = 0.125;       // shoulder length, neck point to shoulder point, m
+  double shoulder = 0.135;       // shoulder length, neck point to shoulder point, m (a jersey tee's shoulder drops just past the body's)
   double shoulder_drop = 0.04;   // shoulder point below the neck point, m
   double length = 0.62;          // neck point to hem, vertically, m
   double armhole_depth = 0.20;   // neck point to the underarm line, vertically, m
   double upper_arm = 0.28;       // upper-arm girth, m
   double sleeve_length = 0.20;   // cap top to sleeve hem, m
   double bust_ease = 0.10;       // added to the bust girth (loose jersey fit), m
+  double hip_ease = 0.08;        // added to the hip girth at the hem (the side seams flare when the hips need it), m
   double arm_ease = 0.06;        // added to the upper-arm girth, m
   double front_neck_depth = 0.08;  // neck point level to centre-front neck, m
   double back_neck_depth = 0.02;   // neck point level to centre-back neck, m

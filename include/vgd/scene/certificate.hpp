@@ -15,6 +15,7 @@
 //   contact        particles touching the body, their area and the pressure
 //                  the cloth puts on it (normal force / particle area, Pa);
 //   energy         the mean kinetic energy per particle at every frame, J.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct SeamState {
   std::string name;
   int pairs = 0, closed = 0;  // closed: merged, or within the merge distance
   double max_gap = 0, mean_gap = 0;  // m over all pairs
+  Vec3 widest_at = Vec3::Zero();     // m: midpoint of the pair with the largest gap (where to look)
 };
 
 struct ContactState {
@@ -70,8 +72,10 @@ struct Certificate {
   int particles = 0, triangles = 0;
   double max_penetration = 0;   // m, exact
   int particles_inside = 0;     // deeper than 0
+  Vec3 deepest_at = Vec3::Zero();  // m: the deepest particle (where to look)
   double penetration_limit = 0.001;  // m: what the drape promises
   int triangle_intersections = -1;   // -1 when not measured
+  std::map<std::string, int> crossings_by_pieces;  // "A / B" (A ≤ B by name) → crossing pairs between them
   std::vector<SeamState> seams;
   std::vector<PieceStrain> strain;
   ContactState contact;

@@ -20,6 +20,11 @@
 // mirrors the piece, which reverses that: `reverses_winding` is true and the caller
 // must reverse its triangles (or its normals) for the outward face.
 //
+// A half piece on the trunk (front or back, at most half way round) follows the
+// body's taper instead of one cylinder: each height gets the offset curve of the
+// rings near it, arc length round the body kept, lengths along it stretched by
+// √(1 + (dr/ds)²) (docs/placement.md).
+//
 // A piece wider than the offset curve's perimeter (less 2 cm) cannot wrap without
 // overlapping itself: the clearance is then increased until it fits, and the result
 // reports the clearance used.

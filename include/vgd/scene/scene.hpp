@@ -163,10 +163,11 @@ struct EffectsDef {
   std::vector<PinGroupDef> pins;
   // Cloth against the avatar (the scene's `avatar` must exist). body is filled by build().
   std::optional<sim::BodyCollisionDef> collision;
-  // How seam particles touching the body respond while seams close: "seed"
-  // (seed 002: slide keeping |F| and |v|), "slide" (frictionless, inward parts
-  // of force and velocity removed) or "body" (like any particle, the default).
-  // Both force-constraining responses blow up implicit Euler on the shipped
+  // How seam particles touching the body respond until their pair merges:
+  // "glide" (frictionless, inward normal velocity removed, force untouched),
+  // "seed" (seed 002: slide keeping |F| and |v|), "slide" (frictionless,
+  // inward parts of force and velocity removed) or "body" (like any particle,
+  // the default). seed and slide blow up implicit Euler on the shipped
   // garments (the constrained force is unknown to the Jacobian): use them with
   // explicit methods (docs/collisions.md).
   std::string collision_seam_response = "body";

@@ -52,10 +52,18 @@ struct ArrangementOptions {
   double neck_point_height = 1.42;  // world height of the neck point (shoulder at the neck)
   double waist_height = 1.05;       // world height of the natural waist
   double clearance = 0.03;          // m
+  // Bodices hang this far above the neck point, so their shoulder edges start
+  // above the body's shoulders and the shoulder seams close over them in free
+  // air (started level with the neck point they had to be dragged up over the
+  // shoulders against friction and stalled).
+  double bodice_lift = 0.05;        // m
+  // Sleeves fit an arm closely: at 3 cm their underarm edges started in the
+  // gap between arm and torso and could not meet.
+  double sleeve_clearance = 0.01;   // m
 };
 
 // From the piece's name and category: FRONT -> torso front, BACK -> torso back (top
-// edge at the neck point), SLEEVE -> the arms (LEFT/RIGHT in the name picks one; a
+// edge bodice_lift above the neck point), SLEEVE -> the arms (LEFT/RIGHT in the name picks one; a
 // sleeve cut twice gives the right arm and the left arm flipped; cap top at s = 0),
 // COLLAR/NECK -> neck front; in a lower-body garment FRONT/BACK -> hips front/back with
 // their top at the waist and WAISTBAND -> hips front around the waist. Empty when no

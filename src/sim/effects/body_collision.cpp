@@ -51,7 +51,8 @@ class BodyCollision final : public Effect {
     contact_.assign(n_, 0);
     normal_.assign(n_, Vec3::Zero());
     anchor_.assign(n_, Vec3::Zero());
-    constrains_ = d.response == ContactResponse::slide || !d.seam_particles.empty() || !d.sticky_particles.empty();
+    constrains_ = d.response == ContactResponse::slide || !d.sticky_particles.empty() ||
+                  (!d.seam_particles.empty() && d.seam_contact != SeamContact::glide);
   }
 
   const char* name() const override { return "body-collision"; }
@@ -73,8 +74,8 @@ class BodyCollision final : public Effect {
       const Vec3& nrm = normal_[i];
       const double fn = fi.dot(nrm);
       if (fn >= 0.0) continue;  // pulling away from the body: free to leave
-      if (role_[i] & kSeam) {
-        fi = def_.seam_keep_magnitude ? keep_magnitude_tangential(fi, nrm, fn) : Vec3(fi - fn * nrm);
+      if ((role_[i] & kSeam) && def_.seam_contact != SeamContact::glide) {
+        fi = def_.seam_contact == SeamContact::seed ? keep_magnitude_tangential(fi, nrm, fn) : Vec3(fi - fn * nrm);
       } else if (def_.response == ContactResponse::slide) {
         fi -= fn * nrm;
       }
@@ -128,7 +129,7 @@ class BodyCollision final : public Effect {
       const double vn = vi.dot(nrm);
       if (vn >= 0.0) continue;  // already leaving
       if (role_[i] & kSeam) {
-        vi = def_.seam_keep_magnitude ? keep_magnitude_tangential(vi, nrm, vn) : Vec3(vi - vn * nrm);
+        vi = def_.seam_contact == SeamContact::seed ? keep_magnitude_tangential(vi, nrm, vn) : Vec3(vi - vn * nrm);
         continue;
       }
       const Vec3 vt = vi - vn * nrm;
@@ -154,6 +155,16 @@ class BodyCollision final : public Effect {
     stats_.max_penetration = max_pen;
     stats_.max_clearance_violation = max_viol;
     stats_.queries += n_;
+  }
+
+  // A merged seam particle has no partner left to slide towards: it takes the
+  // ordinary response from now on.
+  void particles_merged(const Model&, const std::vector<int>& representative) override {
+    const int n = std::min<int>(n_, static_cast<int>(representative.size()));
+    std::vector<int> copies(n, 0);  // original particles per reduced particle
+    for (int i = 0; i < n; ++i) ++copies[representative[i]];
+    for (int i = 0; i < n; ++i)
+      if (copies[representative[i]] > 1) role_[i] &= static_cast<unsigned char>(~kSeam);
   }
 
   const BodyCollisionStats& stats() const { return stats_; }

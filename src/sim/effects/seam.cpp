@@ -51,7 +51,8 @@ struct Pair {
 class Seam final : public Effect {
  public:
   Seam(const Model& m, const SeamDef& d)
-      : law_{d.law, d.stiffness, d.max_force}, c_(d.damping), merge_distance_(d.merge_distance), merge_(d.merge) {
+      : law_{d.law, d.stiffness, d.max_force}, c_(d.damping), merge_distance_(d.merge_distance),
+        zip_distance_(d.zip_distance), merge_(d.merge) {
     auto bad = [](const std::string& what) { throw SimulationError("seam: " + what); };
     auto check = [&](const char* field, double v, const char* unit) {
       if (!std::isfinite(v) || v < 0.0)
@@ -60,6 +61,7 @@ class Seam final : public Effect {
     check("stiffness", d.stiffness, " N/m");
     check("damping", d.damping, " N·s/m");
     check("merge_distance", d.merge_distance, " m");
+    check("zip_distance", d.zip_distance, " m");
     if (d.law == SeamLaw::saturating && !(d.max_force > 0.0 && std::isfinite(d.max_force)))
       bad("max_force = " + fmt(d.max_force) + " N; the saturating law needs a finite force > 0");
     const int n = m.num_particles();
@@ -141,9 +143,21 @@ class Seam final : public Effect {
 
   // Measures every open pair's gap (the progress) and asks for the close ones to merge.
   void merge_requests(const Model&, const State& full, std::vector<std::array<int, 2>>& out) override {
+    // The zipper looks at the neighbours' state before this frame's merges, so
+    // it advances at most one pair per seam end per frame.
+    auto sewn_neighbour = [&](int p) {
+      const int n = static_cast<int>(pairs_.size());
+      return (p > 0 && closed_[p - 1] && pairs_[p - 1].seam == pairs_[p].seam) ||
+             (p + 1 < n && closed_[p + 1] && pairs_[p + 1].seam == pairs_[p].seam);
+    };
     for (int p : open_) {
+      const double before = gap_[p];
       gap_[p] = (at(full.x, pairs_[p].a) - at(full.x, pairs_[p].b)).norm();
-      if (merge_ && gap_[p] < merge_distance_) out.push_back({pairs_[p].a, pairs_[p].b});
+      // Only a pair that has stopped closing (less than 2 % nearer than a frame
+      // ago) zips: one still closing on its own is left to do so gently.
+      const bool stalled = gap_[p] > 0.98 * before;
+      if (merge_ && (gap_[p] < merge_distance_ || (gap_[p] < zip_distance_ && stalled && sewn_neighbour(p))))
+        out.push_back({pairs_[p].a, pairs_[p].b});
     }
     summarise();
   }
@@ -194,7 +208,7 @@ class Seam final : public Effect {
   }
 
   Law law_;
-  double c_, merge_distance_;
+  double c_, merge_distance_, zip_distance_;
   bool merge_;
   std::vector<Pair> pairs_;
   std::vector<int> open_;      // pairs not yet merged

@@ -14,9 +14,11 @@
 //    contact loses the inward normal component of its force (constrain_forces)
 //    and of its velocity, and slides.
 //
-// Seam particles (seed 002 §3.2.2, while seams are being closed): in contact,
-// their force and velocity are turned tangential keeping their magnitude, so
-// they slide on the body while still pulled towards their partner.
+// Seam particles (seed 002 §3.2.2, while seams are being closed), three ways
+// (SeamContact): seed 002's rule (force and velocity turned tangential keeping
+// their magnitude), a frictionless slide on force and velocity, or a glide on
+// the velocity only (frictionless, the force left to the integrator). A seam
+// particle becomes an ordinary one when its pair merges.
 // Sticky particles (seed 002's belt and sleeve points): once they touch the
 // body they stay where they touched, on the surface, with zero velocity.
 //
@@ -36,6 +38,16 @@ enum class ContactResponse {
   slide,   // inelastic, frictionless slide (seed 002)
 };
 
+// How seam particles in contact respond until their pair merges.
+enum class SeamContact {
+  seed,   // seed 002 §3.2.2: force and velocity tangential, magnitudes kept
+  slide,  // force and velocity lose their inward normal parts; no friction
+  // Velocity only: the inward normal velocity is removed, no friction. The
+  // force is not touched, so implicit steps (whose Jacobian knows nothing of a
+  // redirected force) stay stable; the default of drapes (docs/collisions.md).
+  glide,
+};
+
 enum class BodyQuery {
   grid,   // SignedDistanceGrid: O(1), tens of ns per particle (default; docs/collisions.md)
   exact,  // TriangleBvh: exact closest point, ~10x the cost
@@ -51,11 +63,8 @@ struct BodyCollisionDef {
   // only that it sets the bouncing; read as e = 0.3 (docs/collisions.md).
   double restitution = 0.3;
   double min_bounce_speed = 0.1;  // m/s: slower impacts are inelastic (no micro-bounces at rest)
-  std::vector<int> seam_particles;    // seed 002 §3.2.2: slide keeping |F| and |v|
-  // false: seam particles slide without friction and lose the inward normal
-  // parts of force and velocity (no magnitude kept). Stable with implicit
-  // steps, whose Jacobian knows nothing of a redirected force.
-  bool seam_keep_magnitude = true;
+  std::vector<int> seam_particles;    // respond as seam_contact says until their pair merges
+  SeamContact seam_contact = SeamContact::seed;
   std::vector<int> sticky_particles;  // belt and sleeve points: stay where they touch
   std::vector<int> fixed;             // particles never moved (the scene's pins)
   BodyQuery query = BodyQuery::grid;

@@ -54,6 +54,12 @@ struct SeamDef {
   double max_force = 0.05;        // N per pair: F of the saturating law (the pull of a far pair)
   double damping = 0.01;          // N·s/m per pair: c, on the pair's relative velocity
   double merge_distance = 0.002;  // m: a pair closer than this merges (seed 002: "below a given threshold")
+  // m: a pair next to an already merged pair of its seam (its neighbour along
+  // the hems) that has stopped closing (its gap shrank by less than 2 % since
+  // the last frame) merges once closer than this, so a seam closes like a
+  // zipper from its sewn end instead of stalling a few millimetres open where
+  // the cloth is tight (a sleeve cap's ease, an armpit). 0 = off.
+  double zip_distance = 0.0;
   bool merge = true;              // false: pairs are pulled together but never merged
 };
 
