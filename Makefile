@@ -49,10 +49,13 @@ demo: build
 	@$(VGD) mannequin --size 38 -o $(DEMO_OUT)/mannequin-38.obj
 	@echo "== 6/7 sew and drape the skirt on it (certificate: penetration, seams, strain, contact, energy)"
 	@$(VGD) drape $(DEMO_OUT)/a-line-skirt.xvc --size 38 -o $(DEMO_OUT)/drape-skirt || test $$? -eq 3
+	@echo "== 6b/7 headless previews of the draped skirt (OpenGL off-screen, docs/render.md)"
+	@$(VGD) render $(DEMO_OUT)/drape-skirt --views front,back,left,right,three-quarter --size 1024x1024 -o $(DEMO_OUT)/previews
 	@echo "== 7/7 simulate the seed's flag in the wind for 2 s (data/scenes/flag.json)"
 	@$(VGD) simulate data/scenes/flag.json --duration 2 -o $(DEMO_OUT)/flag
 	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf a-line-skirt.xvc skirt.svg mannequin-38.obj"
 	@echo "  drape-skirt/ (garment.obj avatar.obj certificate.json) flag/ (OBJ frames)"
+	@echo "  previews/ (front.png back.png left.png right.png three-quarter.png: the draped skirt, 1024 x 1024)"
 
 asan:
 	@$(MAKE) test BUILD=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_ARGS="-DVGD_SANITIZE=ON -DVGD_BUILD_BENCHMARKS=OFF"

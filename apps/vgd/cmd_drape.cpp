@@ -17,13 +17,14 @@
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
+#include "vgd/io/trj/trj.hpp"
 #include "vgd/scene/avatar_io.hpp"
 #include "vgd/scene/drape.hpp"
 
 namespace {
 
 struct Options {
-  std::string garment, size, avatar, output = "out", material, material_id, table;
+  std::string garment, size, avatar, output = "out", material, material_id, table, trj;
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
   bool self_collision = false, frames = false, json = false;
@@ -72,9 +73,9 @@ class StageBar {
 // Keeps the last frame only (the garment as draped).
 class LastFrame : public vgd::sim::FrameSink {
  public:
-  void frame(int, double t, const vgd::sim::VecX& x) override {
-    this->t = t;
-    this->x = x;
+  void frame(int, double time, const vgd::sim::VecX& positions) override {
+    t = time;
+    x = positions;
   }
   double t = 0;
   vgd::sim::VecX x;
@@ -100,6 +101,8 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::PositiveNumber);
   sub->add_flag("--self-collision", o->self_collision, "Also keep the cloth from passing through itself");
   sub->add_flag("--frames", o->frames, "Also write every frame as OBJ into OUTPUT/frames/");
+  sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
+                                   "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
   sub->footer("Exit codes: 0 draped to rest and every check passed, 1 bad input or the run failed, "
               "3 the drape ended but a check failed (see certificate.json).");
@@ -131,6 +134,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     sinks.push_back(last.get());
     if (o->frames) {
       owned.push_back(std::make_unique<vgd::io::obj::ObjSequenceSink>(out / "frames"));
+      sinks.push_back(owned.back().get());
+    }
+    if (!o->trj.empty()) {
+      owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(o->trj));
       sinks.push_back(owned.back().get());
     }
     StageBar bar(!common.quiet && !o->json);
@@ -168,6 +175,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
                   c.triangle_intersections);
       std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s\n", out.string().c_str(),
                   o->frames ? ", frames/" : "");
+      if (!o->trj.empty()) std::printf("  trajectory: %s\n", o->trj.c_str());
       std::fflush(stdout);
     }
     if (c.stop_reason == "error") {

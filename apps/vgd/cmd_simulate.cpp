@@ -14,6 +14,7 @@
 #include "cli.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
+#include "vgd/io/trj/trj.hpp"
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/json.hpp"
 #include "vgd/scene/units.hpp"
@@ -21,7 +22,7 @@
 namespace {
 
 struct Options {
-  std::string scene, output, integrator, step, duration;
+  std::string scene, output, integrator, step, duration, trj;
   bool profile = false, json = false;
 };
 
@@ -87,6 +88,8 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
       ->check(time_text);
   sub->add_option("--duration", o->duration, "Simulated time, s (e.g. 2 or 500ms); replaces the scene's")
       ->check(time_text);
+  sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
+                                   "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--profile", o->profile, "Print calls and time per effect (System::profile)");
   sub->add_flag("--json", o->json, "Print the summary (and profile) as JSON on stdout");
   sub->footer("Exit codes: 0 the run finished, 1 the scene is bad or the run stopped early (frames so far are kept).");
@@ -127,6 +130,11 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
         owned.push_back(std::make_unique<vgd::sim::MemorySink>());
       }
       sinks.push_back(owned.back().get());
+    }
+    if (!o->trj.empty()) {
+      owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(o->trj));
+      sinks.push_back(owned.back().get());
+      folders.push_back(o->trj);
     }
 
     // Run.

@@ -56,21 +56,29 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   };
   // Seam merges at frame boundaries only: the integrator then starts afresh
   // on the smaller system.
-  auto merge = [&](bool prepared) {
+  // Sinks hear of it in original indices (a reduced particle's lowest original one).
+  auto merge = [&](bool prepared, int index) {
     if (!sys.apply_merges(s)) return;
     if (prepared) integrator.reset(sys, s);
+    const std::vector<int>& rep = sys.representative();
+    std::vector<int> first(sys.num_particles(), -1), copy_of(rep.size());
+    for (std::size_t i = 0; i < rep.size(); ++i) {
+      if (first[rep[i]] < 0) first[rep[i]] = static_cast<int>(i);
+      copy_of[i] = first[rep[i]];
+    }
+    for (auto* sink : sinks) sink->merged(index, copy_of);
   };
   int calm = 0;  // frames in a row below the rest energy
   try {
     sys.apply_prescribed(s);
-    merge(false);
+    merge(false, 0);
     integrator.prepare(sys, s);
     sys.check_state(s, std::numeric_limits<double>::infinity());
     emit(0);
     for (int k = 1; k <= frames; ++k) {
       // A failing step throws before its frame is emitted: sinks only ever see checked states.
       integrator.advance(sys, s, t0 + k / settings.fps);
-      merge(true);
+      merge(true, k);
       emit(k);
       const double ke = summary.kinetic_energy.back();
       calm = settings.rest_energy > 0.0 && ke < settings.rest_energy && sys.may_rest() ? calm + 1 : 0;

@@ -17,6 +17,10 @@ class FrameSink {
   virtual void begin(const Model& model) {}
   // Frame `index` at time t (s) with positions x (3N, m); index 0 is the start.
   virtual void frame(int index, double t, const VecX& x) = 0;
+  // Seams merged particles just before frame `index` (called before that
+  // frame): for every original particle, the original particle it is now a
+  // copy of (itself when not merged; a group's lowest index otherwise).
+  virtual void merged(int index, const std::vector<int>& representative) {}
   // The run ended (normally or not); `ok` false means summary.error says why.
   virtual void end(bool ok) {}
 };

@@ -1,0 +1,135 @@
+#pragma once
+// VRML97 (ISO/IEC 14772-1) export of a draped garment, in three flavours
+// (seed 000 §4.2, docs/vrml.md):
+//
+//   static    the final drape: one Shape per piece, IndexedFaceSets sharing one
+//             Coordinate (merged seams welded) and one Normal, texCoords from
+//             the pieces' material coordinates, the body as its own Shape.
+//   animated  every (kept) frame: a CoordinateInterpolator driven by a looping
+//             TimeSensor rewrites the shared Coordinate.
+//   live      the file carries the simulation instead of frames: the seed's
+//             Garment, ObjectCollider and SimulationScript PROTOs with an
+//             ECMAScript mass-spring engine (gravity, viscosity, wind, pins,
+//             sphere/box colliders) that runs in the viewer.
+//
+// Each function returns the file's text; write it with write_vrml (atomic).
+// Numbers are written with a fixed number of decimals (metres), trailing zeros
+// dropped. A body, when the garment has one, is written by every flavour.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vgd/io/vrml/garment.hpp"
+
+namespace vgd::io::vrml {
+
+struct StaticOptions {
+  int frame = -1;           // frame to write; -1 = the last (the final drape)
+  int precision = 4;        // decimals of coordinates (m): 4 = 0.1 mm
+  bool normals = true;      // explicit per-vertex normals (smooth across seams)
+  bool body = true;         // write the garment's body when it has one
+  int body_precision = 3;   // decimals of the body's coordinates (1 mm)
+  double crease_angle = -1; // rad; < 0 = crease_angle(median_edge_length) (the seed's rule)
+};
+
+struct AnimatedOptions {
+  int decimate = 1;          // keep every Nth frame (the last frame is always kept)
+  int precision = 3;         // decimals of coordinates (m): 3 = 1 mm
+  double speed = 1.0;        // playback speed: cycleInterval = duration / speed
+  bool loop = true;          // TimeSensor loop
+  bool body = true;
+  int body_precision = 3;
+  double crease_angle = -1;  // rad; < 0 = the seed's rule
+};
+
+// A collider of the live simulation: an ellipsoid (a sphere when the three
+// radii are equal) or a box, axis-aligned.
+struct Collider {
+  enum class Shape { sphere, box };
+  Shape shape = Shape::sphere;
+  std::array<double, 3> centre{0, 0, 0};  // m
+  std::array<double, 3> size{0.1, 0.1, 0.1};  // m: radii (sphere) or half extents (box)
+  double friction = 0.5;  // tangential velocity removed on contact, fraction per step (seed: objectcloth_friction_const)
+  double bounce = 0.3;    // normal velocity kept (reversed) on contact, fraction (seed: objectcloth_damping_const)
+  bool visible = true;    // drawn (grey) or invisible
+};
+
+// The live simulation's parameters (the seed's Garment and SimulationScript
+// fields; the defaults are the seed's flag, data/scenes/flag.json).
+struct LiveOptions {
+  // Garment: springs along the mesh edges (warp, weft or shear by their
+  // direction in material space) and across neighbouring triangles (bending).
+  double particle_mass = 0.1;       // kg; <= 0: from density × area (lumped)
+  double density = 0.2;             // kg/m², used when particle_mass <= 0
+  double warp_constant = 1800;      // N/m, edges along u (the grain)
+  double weft_constant = 1800;      // N/m, edges along v
+  double shear_constant = 400;      // N/m, diagonal edges
+  double warp_bend_constant = 400;  // N/m, bending springs along u
+  double weft_bend_constant = 400;  // N/m, bending springs along v
+  double spring_damping = 0.1;      // kg/s, along every spring
+  // SimulationScript: environment and integration.
+  std::array<double, 3> gravity{0, -9.81, 0};  // m/s²
+  double viscosity = 0.2;                      // N·s/m per particle (f = -k v)
+  double viscosity_rate = 0.0;                 // 1/s, mass-proportional drag (f = -α m v)
+  std::array<double, 3> wind{10, 10, -100};    // m/s (the seed's x/y/z_wind_intensity)
+  double wind_coefficient = 40;                // N·s/m³: f_face = c A ((w - v)·n) n
+  double wind_turbulence = 0.1;                // relative gust amplitude
+  double max_strain = 0.1;                     // Provot's limit on edge stretch (0 = off); seed-flag.xvc spring.max_strain
+  double step = 0.0025;                        // s, integration step (symplectic Euler)
+  double max_frame_time = 0.04;                // s of simulation per displayed frame at most
+  int max_steps = 40;                          // steps per displayed frame at most (slow motion beyond)
+  std::vector<int> pinned;                     // particles held where they start
+  std::vector<Collider> colliders;
+  int precision = 4;                           // decimals of the initial coordinates
+  bool body = true;                            // draw the garment's body (not a collider)
+  double crease_angle = -1;                    // rad; < 0 = the seed's rule
+};
+
+// The seed's flag: a grid of warp × weft particles generated by the script
+// itself, so the file holds no coordinates.
+struct FlagOptions {
+  int warp_particles = 30;                    // along u (away from the staff)
+  int weft_particles = 30;                    // along v (down the staff)
+  std::array<double, 2> size{1.5, 1.0};       // m, along u and v
+  std::array<double, 3> origin{0, 3, 0};      // m, the top corner at the staff
+  std::array<double, 3> u_axis{0, 0, -1};     // unit vectors of the flag's plane
+  std::array<double, 3> v_axis{0, -1, 0};
+  Rgba colour{0.8, 0.1, 0.1, 1.0};            // data/materials/seed-flag.xvc
+  bool staff = true;                          // a box collider for the staff and a sphere on top
+  LiveOptions live;                           // pinned is ignored: the two staff corners are pinned
+};
+
+std::string static_vrml(const Garment& garment, const StaticOptions& options = {});
+std::string animated_vrml(const Garment& garment, const AnimatedOptions& options = {});
+// The live flavour of a garment: starts from `frame` (default the last, the
+// drape at rest) with springs at their material-space rest lengths.
+std::string live_vrml(const Garment& garment, const LiveOptions& options = {}, int frame = -1);
+std::string live_flag_vrml(const FlagOptions& options = {});
+
+// Colliders standing in for the body in a live file: one ellipsoid per height
+// band the garment covers, its horizontal radii the half extents of the
+// body's vertices in the band inside the garment's horizontal extent (the
+// trunk, the legs together) plus `clearance` (m), its vertical radius 1.5
+// bands (neighbours overlap). Empty when the garment has no body.
+std::vector<Collider> body_colliders(const Garment& garment, int bands = 12, double clearance = 0.003);
+// Particles to pin in a live file: those within `band` (m) of the garment's
+// highest point at `frame` (a waistband on its hanger).
+std::vector<int> top_particles(const Garment& garment, double band = 0.01, int frame = -1);
+
+// The ECMAScript engine the live flavour embeds (for docs and tests).
+std::string_view live_script_source();
+
+// Writes VRML text atomically (vgd::write_file_atomic); gzip-compressed when
+// the path ends in .gz or .wrz (VRML97 §4.1 allows it; X_ITE reads it).
+void write_vrml(const std::filesystem::path& path, std::string_view text);
+// The gzip (RFC 1952) form of `text`.
+std::string gzip(std::string_view text);
+
+// ---- number formatting shared by the text writers ----------------------------
+
+// `v` with `decimals` decimals, trailing zeros and a lone "-0" removed ("0.1", "-2", "0").
+void append_number(std::string& out, double v, int decimals);
+
+}  // namespace vgd::io::vrml

@@ -1,0 +1,15 @@
+#!/bin/sh
+# Regenerates the golden previews in tests/golden/ (docs/qa.md) after an
+# intended change to the drape or the renderer. Builds the qa test and runs
+# its golden test with VGD_UPDATE_GOLDENS=1: it drapes the A-line skirt and
+# renders it exactly as the comparison does, then writes the PNGs here.
+#
+#   tests/golden/regenerate.sh [BUILD_DIR]      (default: build)
+#
+# Look at the new images (and `git diff --stat`) before committing them.
+set -eu
+root=$(cd "$(dirname "$0")/../.." && pwd)
+build=${1:-$root/build}
+cmake --build "$build" --target vgd_test_qa
+VGD_UPDATE_GOLDENS=1 "$build/tests/qa/vgd_test_qa" --gtest_filter='Golden.TheRedrapedSkirtMatchesItsGoldenPreviews'
+ls -l "$root/tests/golden/a-line-skirt/"
