@@ -7,6 +7,13 @@
 // model x integrator, with 1 thread and with every core, then the cost of each
 // listed effect (the flag with one effect switched off at a time).
 //
+// vgd bench effects (issue 7): the step cost of a scene against the effects it
+// calls for — the flag with and without wind, drape-sphere with and without
+// self-collision, sew-cylinder while its seams work and after their last merge.
+//
+// vgd bench accuracy (issue 7, cmd_accuracy.cpp): error against CPU time for
+// every integrator on problems with a known answer.
+//
 // Explicit methods run with automatic sub-stepping, so each takes its own
 // stable step; implicit Euler takes the scene's step, BDF its own adaptive
 // ones. A model or integrator this build lacks is reported as unavailable, a
@@ -18,6 +25,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <span>
 
 #include "cli.hpp"
 #include "vgd/core/strings.hpp"
@@ -150,6 +159,8 @@ struct Reference {
   double one_thread, two_threads;
 };
 constexpr Reference kBlender[] = {{"drape-sphere", 11.4, 8.1}, {"sew-cylinder", 13.0, 9.0}};
+// The same peer's drape-sphere with Blender's self-collision on.
+constexpr Reference kBlenderSelf[] = {{"drape-sphere", 13.9, 9.4}};
 
 struct SceneRecord {
   std::string scene, status = "ok", message;
@@ -158,18 +169,22 @@ struct SceneRecord {
   double simulated_s = 0, wall_s = 0, blender_s = 0;
   double max_penetration = 0;  // m, exact, over every frame
   int seam_pairs = 0, seams_closed = 0;
+  bool self_collision = false;
+  int crossings = -1;  // cloth triangle pairs passing through each other at the last frame (sewn topology)
   double per_simulated_s() const { return simulated_s > 0 ? wall_s / simulated_s : 0.0; }
 };
 
 // Runs a shipped benchmark scene; frames are kept in memory and measured
 // after the clock stops (exact penetration against the body's triangles).
-SceneRecord run_scene(const std::string& name, int threads, double duration) {
+SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision) {
   SceneRecord r;
   r.scene = name;
   r.threads = threads;
+  r.self_collision = self_collision;
   omp_set_num_threads(threads);
   scene::SceneDef def = scene::load_scene(scene::shipped_scene(name));
   if (duration > 0) def.run.duration = duration;
+  if (self_collision) def.effects.self_collision = sim::SelfCollisionDef{};
   def.outputs.clear();
   scene::Scene s = scene::build(def);
   auto integ = sim::make_integrator(s.integrator);
@@ -186,7 +201,7 @@ SceneRecord run_scene(const std::string& name, int threads, double duration) {
     r.status = "failed";
     r.message = sum.error;
   }
-  for (const auto& ref : kBlender)
+  for (const auto& ref : self_collision ? std::span<const Reference>(kBlenderSelf) : std::span<const Reference>(kBlender))
     if (name == ref.scene) r.blender_s = threads > 1 ? ref.two_threads : ref.one_thread;
   if (s.avatar)
     for (const auto& x : frames.frames) {
@@ -194,11 +209,12 @@ SceneRecord run_scene(const std::string& name, int threads, double duration) {
       for (int i = 0; i < sys.model().num_particles(); ++i) pts[i] = sim::at(x, i);
       for (double d : vgd::mesh::penetration_depths(s.avatar->surface, pts)) r.max_penetration = std::max(r.max_penetration, d);
     }
-  if (!frames.frames.empty() && !s.seams.empty()) {
+  if (!frames.frames.empty()) {
     scene::Certificate c;
     const double merge = def.effects.seams ? def.effects.seams->effect.merge_distance : 0.0;
-    scene::measure_state(s, frames.frames.back(), merge, 0.004, false, c);
+    scene::measure_state(s, frames.frames.back(), merge, 0.004, true, c);
     for (const auto& seam : c.seams) r.seam_pairs += seam.pairs, r.seams_closed += seam.closed;
+    r.crossings = c.triangle_intersections;
   }
   return r;
 }
@@ -217,33 +233,175 @@ nlohmann::json to_json(const SceneRecord& r) {
                    {"max_penetration_m", r.max_penetration},
                    {"seam_pairs", r.seam_pairs},
                    {"seams_closed", r.seams_closed},
+                   {"self_collision", r.self_collision},
+                   {"crossing_triangle_pairs", r.crossings},
                    {"status", r.status}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;
 }
 
 // `vgd bench drape-sphere` / `sew-cylinder`: 1 thread, then every core.
-int scene_bench(const std::string& name, bool json, double duration) {
+int scene_bench(const std::string& name, bool json, double duration, bool self_collision) {
   const int cores = std::max(1, omp_get_num_procs());
   std::vector<int> thread_counts{1};
   if (cores > 1) thread_counts.push_back(cores);
   std::vector<SceneRecord> records;
   if (!json)
-    std::printf("%-13s %3s %9s %9s %7s %8s %12s %12s %8s %9s %7s  %s\n", "scene", "thr", "particles", "body tris",
-                "sim s", "wall s", "wall/sim-s", "Blender", "speedup", "pen. mm", "seams", "status");
+    std::printf("%-13s %3s %9s %9s %7s %8s %12s %12s %8s %9s %7s %9s  %s\n", "scene", "thr", "particles", "body tris",
+                "sim s", "wall s", "wall/sim-s", "Blender", "speedup", "pen. mm", "seams", "crossings", "status");
   for (const int t : thread_counts) {
-    SceneRecord r = run_scene(name, t, duration);
+    SceneRecord r = run_scene(name, t, duration, self_collision);
     if (!json) {
-      std::printf("%-13s %3d %9d %9d %7.2f %8.2f %12.3f %12.1f %7.1fx %9.3f %7s  %s%s%s\n", r.scene.c_str(), r.threads,
+      std::printf("%-13s %3d %9d %9d %7.2f %8.2f %12.3f %12.1f %7.1fx %9.3f %7s %9d  %s%s%s\n",
+                  (r.scene + (self_collision ? "+self" : "")).c_str(), r.threads,
                   r.particles, r.body_triangles, r.simulated_s, r.wall_s, r.per_simulated_s(), r.blender_s,
                   r.per_simulated_s() > 0 ? r.blender_s / r.per_simulated_s() : 0.0, r.max_penetration * 1000,
                   r.seam_pairs ? (std::to_string(r.seams_closed) + "/" + std::to_string(r.seam_pairs)).c_str() : "-",
-                  r.status.c_str(), r.message.empty() ? "" : ": ", r.message.substr(0, 80).c_str());
+                  r.crossings, r.status.c_str(), r.message.empty() ? "" : ": ", r.message.substr(0, 80).c_str());
       std::fflush(stdout);
     }
     records.push_back(std::move(r));
   }
   omp_set_num_threads(cores);
+  if (json) {
+    auto list = nlohmann::json::array();
+    for (const auto& r : records) list.push_back(to_json(r));
+    vgd::cli::print_json(list);
+  }
+  return vgd::cli::kOk;
+}
+
+// ---- effects on demand (issue 7) ------------------------------------------------
+
+// One run of a scene variant, 1 thread, no outputs: cost per step and per effect.
+struct EffectsRecord {
+  std::string scene, variant, status = "ok", message;
+  std::vector<std::string> effects;                     // the effects the variant lists (System::profile)
+  std::vector<std::pair<std::string, double>> profile;  // seconds per effect
+  int particles = 0;
+  long steps = 0, rhs = 0;
+  double simulated_s = 0, wall_s = 0;
+  double ms_per_step() const { return steps > 0 ? 1000 * wall_s / steps : 0.0; }
+  double per_simulated_s() const { return simulated_s > 0 ? wall_s / simulated_s : 0.0; }
+};
+
+// Where a run stood at one frame: enough to split it into phases.
+struct Mark {
+  double t = 0, wall_s = 0;
+  long steps = 0, rhs = 0;
+  std::vector<double> seconds;  // per effect (System::profile)
+};
+
+Mark mark(const sim::System& sys, const sim::Integrator& integ, double t, double wall_s) {
+  Mark m{t, wall_s, integ.stats().steps, integ.stats().rhs_evaluations, {}};
+  for (const auto& p : sys.profile()) m.seconds.push_back(p.seconds);
+  return m;
+}
+
+// The part of a run between two marks.
+EffectsRecord phase(const EffectsRecord& base, const std::string& variant, const Mark& a, const Mark& b) {
+  EffectsRecord r = base;
+  r.variant = variant;
+  r.simulated_s = b.t - a.t;
+  r.wall_s = b.wall_s - a.wall_s;
+  r.steps = b.steps - a.steps;
+  r.rhs = b.rhs - a.rhs;
+  for (std::size_t i = 0; i < r.profile.size(); ++i) r.profile[i].second = b.seconds[i] - a.seconds[i];
+  return r;
+}
+
+// Runs `def` for its duration with 1 thread. With `split_at_seams`, returns
+// two phases: while the seam effect works, and after it finished (its last
+// merge); else one record for the whole run.
+std::vector<EffectsRecord> effects_run(const std::string& variant, const scene::SceneDef& def, bool split_at_seams) {
+  EffectsRecord r;
+  r.scene = def.name;
+  r.variant = variant;
+  omp_set_num_threads(1);
+  scene::Scene s = scene::build(def);
+  auto& sys = *s.system;
+  auto integ = sim::make_integrator(s.integrator);
+  r.particles = sys.model().num_particles();
+  for (const auto& p : sys.profile()) {
+    r.effects.push_back(p.name);
+    r.profile.emplace_back(p.name, 0.0);
+  }
+  const sim::Effect* seam = nullptr;
+  for (const auto& e : sys.effects())
+    if (std::string(e->name()) == "seam") seam = e.get();
+  sim::State st = sim::initial_state(sys.model());
+  std::optional<Mark> closed;
+  const sim::RunSummary sum = sim::run(sys, *integ, st, s.run, {}, [&](const sim::Progress& p) {
+    if (seam && !closed && seam->finished()) closed = mark(sys, *integ, p.t, p.wall_s);
+  });
+  if (!sum.ok) {
+    r.status = "failed";
+    r.message = sum.error;
+  }
+  const Mark end = mark(sys, *integ, sum.simulated_s, sum.wall_s);
+  const Mark start{0.0, 0.0, 0, 0, std::vector<double>(r.profile.size(), 0.0)};
+  if (!split_at_seams) return {phase(r, variant, start, end)};
+  if (!closed) {
+    r.status = "partial";
+    r.message = "the seams did not close within " + vgd::format_fixed(def.run.duration, 1) + " s";
+    return {phase(r, variant + ", seams open", start, end)};
+  }
+  return {phase(r, variant + ", seams open", start, *closed), phase(r, variant + ", seams closed", *closed, end)};
+}
+
+nlohmann::json to_json(const EffectsRecord& r) {
+  auto prof = nlohmann::json::object();
+  for (const auto& [name, sec] : r.profile) prof[name] = prof.value(name, 0.0) + sec;
+  nlohmann::json j{{"scene", r.scene},         {"variant", r.variant},     {"effects", r.effects},
+                   {"particles", r.particles}, {"simulated_s", r.simulated_s}, {"steps", r.steps},
+                   {"rhs", r.rhs},             {"wall_s", r.wall_s},       {"ms_per_step", r.ms_per_step()},
+                   {"wall_per_simulated_s", r.per_simulated_s()}, {"effect_seconds", prof}, {"status", r.status}};
+  if (!r.message.empty()) j["message"] = r.message;
+  return j;
+}
+
+// `vgd bench effects`: the step cost of a scene against the effects it calls for.
+int effects_bench(bool json, bool quick) {
+  std::vector<EffectsRecord> records;
+  if (!json)
+    std::printf("1 thread; %s\n%-13s %-30s %6s %6s %7s %8s %9s %10s  %s\n",
+                quick ? "--quick: 0.4 s of flag and drape-sphere" : "each scene's own duration", "scene", "variant",
+                "parts", "sim s", "steps", "wall s", "ms/step", "wall/sim-s", "seconds per effect (System::profile)");
+  auto add = [&](std::vector<EffectsRecord> rs) {
+    for (auto& r : rs) {
+      if (!json) {
+        std::string prof;
+        for (const auto& [effect, sec] : r.profile) prof += effect + " " + vgd::format_fixed(sec, 3) + "  ";
+        std::printf("%-13s %-30s %6d %6.2f %7ld %8.3f %9.3f %10.3f  %s%s%s\n", r.scene.c_str(), r.variant.c_str(),
+                    r.particles, r.simulated_s, r.steps, r.wall_s, r.ms_per_step(), r.per_simulated_s(), prof.c_str(),
+                    r.status == "ok" ? "" : r.status.c_str(), r.message.empty() ? "" : (": " + r.message).c_str());
+        std::fflush(stdout);
+      }
+      records.push_back(std::move(r));
+    }
+  };
+  auto shipped = [&](const char* name) {
+    scene::SceneDef def = scene::load_scene(scene::shipped_scene(name));
+    def.outputs.clear();
+    if (quick && def.name != "sew-cylinder") def.run.duration = 0.4;
+    return def;
+  };
+  // The flag with and without its wind.
+  const scene::SceneDef flag = shipped("flag");
+  add(effects_run("with wind", flag, false));
+  add(effects_run("no wind", [&] { auto d = flag; d.effects.wind.reset(); return d; }(), false));
+  // The drape with and without self-collision.
+  const scene::SceneDef drape = shipped("drape-sphere");
+  add(effects_run("no self-collision", drape, false));
+  add(effects_run("self-collision", [&] { auto d = drape; d.effects.self_collision = sim::SelfCollisionDef{}; return d; }(),
+                  false));
+  // The sewing scene while its seams work and after the last merge (seam
+  // effect gone), and without seams at all.
+  scene::SceneDef sew = shipped("sew-cylinder");
+  sew.run.duration += 1.0;  // a second after the scene's end, for the closed phase
+  add(effects_run("seams", sew, true));
+  add(effects_run("no seams listed", [&] { auto d = sew; d.effects.seams.reset(); return d; }(), false));
+  omp_set_num_threads(std::max(1, omp_get_num_procs()));
   if (json) {
     auto list = nlohmann::json::array();
     for (const auto& r : records) list.push_back(to_json(r));
@@ -262,6 +420,11 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
   engine->add_flag("--quick", o->quick, "0.2 s of simulated time instead of 2 s (a smoke test)");
   engine->add_option("--scene", o->scene_file, "Another scene file instead of the shipped flag");
   auto scene_duration = std::make_shared<double>(0.0);
+  auto scene_self = std::make_shared<bool>(false);
+  auto* effects = sub->add_subcommand(
+      "effects", "Step cost against the effects a scene calls for: flag +/- wind, drape +/- self-collision, seams open/closed");
+  effects->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
+  effects->add_flag("--quick", o->quick, "0.4 s of the flag and the drape instead of their full durations");
   std::vector<CLI::App*> scene_cmds;
   for (const auto& [name, what] :
        {std::pair{"drape-sphere", "A 71 x 71 cloth dropped on a 4 992-triangle sphere, 2.4 s (data/scenes/drape-sphere.json)"},
@@ -270,11 +433,14 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
     c->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
     c->add_option("--duration", *scene_duration, "Simulated seconds instead of the scene's (a smoke test)")
         ->check(CLI::PositiveNumber);
+    c->add_flag("--self-collision", *scene_self,
+                "Also keep the cloth from passing through itself (against Blender's self-collision figures where known)");
     scene_cmds.push_back(c);
   }
-  return vgd::cli::Command{sub, [o, &common, engine, scene_cmds, scene_duration]() -> int {
+  return vgd::cli::Command{sub, [o, &common, engine, effects, scene_cmds, scene_duration, scene_self]() -> int {
+    if (effects->parsed()) return effects_bench(o->json, o->quick);
     for (auto* c : scene_cmds)
-      if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration);
+      if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self);
     if (!engine->parsed()) return vgd::cli::kUsage;
     const auto file = o->scene_file.empty() ? scene::shipped_scene("flag") : std::filesystem::path(o->scene_file);
     scene::SceneDef base = scene::load_scene(file);

@@ -525,6 +525,8 @@ Scene build(const SceneDef& def) {
     if (e.wind) effects.push_back(sim::make_wind(*e.wind));
     for (std::size_t i = 0; i < pin_groups.size(); ++i)
       effects.push_back(sim::make_pins(model, {pin_groups[i], e.pins[i].velocity}));
+    // The speed limit before the contacts, so their tests see limited motion.
+    if (e.speed_limit) effects.push_back(sim::make_speed_limit(model, *e.speed_limit));
     // Seams, then contacts: the contact effects constrain the total force,
     // seams' pull included (seed 002 §3.2.2).
     std::vector<int> seam_particles;
@@ -535,6 +537,14 @@ Scene build(const SceneDef& def) {
         for (const auto& pr : sp.pairs) seam_particles.insert(seam_particles.end(), pr.begin(), pr.end());
       effects.push_back(sim::make_seam(model, sd));
     }
+    // Self-collision before the body: its corrections move particles, and the
+    // body's projection after it has the last word (no particle left inside).
+    if (e.self_collision) {
+      sim::SelfCollisionDef sc = *e.self_collision;
+      sc.fixed = s.pinned;
+      for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
+      effects.push_back(sim::make_self_collision(model, sc));
+    }
     if (e.collision) {
       sim::BodyCollisionDef cd = *e.collision;
       cd.body = s.avatar->surface;
@@ -544,12 +554,6 @@ Scene build(const SceneDef& def) {
                                                                : sim::SeamContact::glide;
       cd.fixed = s.pinned;
       effects.push_back(sim::make_body_collision(model, cd));
-    }
-    if (e.self_collision) {
-      sim::SelfCollisionDef sc = *e.self_collision;
-      sc.fixed = s.pinned;
-      for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
-      effects.push_back(sim::make_self_collision(model, sc));
     }
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));
   } catch (const sim::SimulationError& err) {

@@ -400,6 +400,13 @@ EffectsDef read_effects(Object o) {
     if (v.enabled()) e.viscosity = d;
     v.finish();
   }
+  if (const json* j = o.find("speed_limit")) {
+    Object v(*j, o.at("speed_limit"), o.context());
+    sim::SpeedLimitDef d;
+    v.number("max_speed", d.max_speed, dim::velocity);
+    if (v.enabled()) e.speed_limit = d;
+    v.finish();
+  }
   if (const json* j = o.find("damping")) {
     Object v(*j, o.at("damping"), o.context());
     sim::DampingDef d;

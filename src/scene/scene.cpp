@@ -197,6 +197,7 @@ class Checker {
       non_negative("effects.seams.zip_distance", e.seams->effect.zip_distance);
     }
     if (e.gravity) finite("effects.gravity.g", e.gravity->g);
+    if (e.speed_limit) positive("effects.speed_limit.max_speed", e.speed_limit->max_speed);
     if (e.viscosity) {
       non_negative("effects.viscosity.k", e.viscosity->k);
       non_negative("effects.viscosity.alpha", e.viscosity->alpha);

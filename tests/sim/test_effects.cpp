@@ -139,3 +139,34 @@ TEST(Wind, GustsOnTheClothMatchTheWindFieldAtTheFaces) {
   VecX fw = forces(*make_wind(d), wide, wide.x0, wide.v0, 0.5);
   EXPECT_GT((at(fw, 0) - at(fw, 2)).norm(), 1e-3);
 }
+
+// The speed limit clamps the velocity to max_speed and the step's
+// displacement to max_speed × h, along the motion; slower particles are
+// untouched; after a merge the next step has nothing to limit against.
+TEST(SpeedLimit, ClampsVelocityAndDisplacementAlongTheMotion) {
+  Model m = particles(2, 0.001);
+  auto e = make_speed_limit(m, {1.0});
+  State s = initial_state(m);
+  e->after_step(m, s);  // first call: remembers the positions
+  const Vec3 x0 = at(s.x, 0), x1 = at(s.x, 1);
+  s.t = 0.01;
+  at(s.v, 0) = Vec3(30, 40, 0);          // 50 m/s
+  at(s.x, 0) = x0 + Vec3(0.3, 0.4, 0);   // 0.5 m in 10 ms
+  at(s.v, 1) = Vec3(0, 0.5, 0);          // under the limit
+  at(s.x, 1) = x1 + Vec3(0, 0.005, 0);
+  e->after_step(m, s);
+  EXPECT_NEAR(at(s.v, 0).norm(), 1.0, 1e-12);
+  EXPECT_NEAR(at(s.v, 0).normalized().dot(Vec3(0.6, 0.8, 0)), 1.0, 1e-12);
+  EXPECT_NEAR((at(s.x, 0) - x0).norm(), 0.01, 1e-12);  // 1 m/s × 10 ms
+  EXPECT_NEAR((at(s.x, 0) - x0).normalized().dot(Vec3(0.6, 0.8, 0)), 1.0, 1e-12);
+  EXPECT_EQ(at(s.v, 1), Vec3(0, 0.5, 0));
+  EXPECT_EQ(at(s.x, 1), x1 + Vec3(0, 0.005, 0));
+  // A merge moved particle 0 by 0.2 m: the next step does not pull it back.
+  e->particles_merged(m, {0, 1});
+  at(s.x, 0) += Vec3(0.2, 0, 0);
+  const Vec3 jumped = at(s.x, 0);
+  s.t = 0.02;
+  e->after_step(m, s);
+  EXPECT_EQ(at(s.x, 0), jumped);
+  EXPECT_THROW(make_speed_limit(m, {0.0}), SimulationError);
+}

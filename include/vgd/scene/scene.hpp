@@ -160,6 +160,10 @@ struct EffectsDef {
   std::optional<sim::ViscosityDef> viscosity;
   std::optional<sim::DampingDef> damping;
   std::optional<sim::WindDef> wind;
+  // A cap on particle speed (m/s), not a physical force: drapes switch it on
+  // so seams pulling pieces together keep contact and self-collision tests
+  // local (sim/effects/basic.hpp).
+  std::optional<sim::SpeedLimitDef> speed_limit;
   std::vector<PinGroupDef> pins;
   // Cloth against the avatar (the scene's `avatar` must exist). body is filled by build().
   std::optional<sim::BodyCollisionDef> collision;

@@ -22,6 +22,9 @@ namespace {
 // over a shared edge belongs to both triangles rather than to neither.
 constexpr double kInsideTolerance = 0.02;
 
+// Below this many triangles the threads cost more than the detection they share.
+constexpr int kParallelMinTriangles = 2000;
+
 class SpatialHash {
  public:
   void build(const VecX& x, int n, double cell) {
@@ -30,17 +33,62 @@ class SpatialHash {
     while (size < 2 * static_cast<std::size_t>(n)) size <<= 1;
     mask_ = size - 1;
     start_.assign(size + 1, 0);
-    cell_.resize(n);
+    key_.resize(n);
     bucket_.resize(n);
     for (int i = 0; i < n; ++i) {
-      cell_[i] = cell_of(at(x, i));
-      bucket_[i] = hash(cell_[i]);
+      const auto c = cell_of(at(x, i));
+      key_[i] = key(c);
+      bucket_[i] = hash(c);
       ++start_[bucket_[i] + 1];
     }
     for (std::size_t b = 0; b < size; ++b) start_[b + 1] += start_[b];
     items_.resize(n);
+    item_key_.resize(n);
     fill_.assign(start_.begin(), start_.end() - 1);
-    for (int i = 0; i < n; ++i) items_[fill_[bucket_[i]]++] = i;
+    for (int i = 0; i < n; ++i) {
+      const std::size_t e = fill_[bucket_[i]]++;
+      items_[e] = i;
+      item_key_[e] = key_[i];
+    }
+    boxes_ = false;
+  }
+
+  // Every particle's box [lo_i, hi_i] (its motion over the step, grown by a
+  // pad) into every cell it meets: entries (particle, cell key), counting-sorted
+  // into buckets. A query may then meet a particle more than once.
+  void build_boxes(const VecX& x0, const VecX& x1, int n, double cell, double pad) {
+    inv_cell_ = 1.0 / cell;
+    entries_.clear();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 lo = at(x0, i).cwiseMin(at(x1, i)) - Vec3::Constant(pad);
+      const Vec3 hi = at(x0, i).cwiseMax(at(x1, i)) + Vec3::Constant(pad);
+      const auto a = cell_of(lo), b = cell_of(hi);
+      for (int k = a[2]; k <= b[2]; ++k)
+        for (int j = a[1]; j <= b[1]; ++j)
+          for (int l = a[0]; l <= b[0]; ++l) entries_.push_back({i, {l, j, k}});
+    }
+    const std::size_t m = entries_.size();
+    std::size_t size = 1;
+    while (size < 2 * std::max<std::size_t>(m, 1)) size <<= 1;
+    mask_ = size - 1;
+    start_.assign(size + 1, 0);
+    key_.resize(m);
+    bucket_.resize(m);
+    for (std::size_t e = 0; e < m; ++e) {
+      key_[e] = key(entries_[e].second);
+      bucket_[e] = hash(entries_[e].second);
+      ++start_[bucket_[e] + 1];
+    }
+    for (std::size_t b = 0; b < size; ++b) start_[b + 1] += start_[b];
+    items_.resize(m);
+    item_key_.resize(m);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (std::size_t e = 0; e < m; ++e) {
+      const std::size_t at_ = fill_[bucket_[e]]++;
+      items_[at_] = entries_[e].first;
+      item_key_[at_] = key_[e];
+    }
+    boxes_ = true;
   }
 
   std::array<int, 3> cell_of(const Vec3& p) const {
@@ -57,10 +105,9 @@ class SpatialHash {
         for (int i = a[0]; i <= b[0]; ++i) {
           const std::array<int, 3> c{i, j, k};
           const std::size_t h = hash(c);
-          for (std::size_t s = start_[h]; s < start_[h + 1]; ++s) {
-            const int p = items_[s];
-            if (cell_[p] == c) f(p);  // other cells sharing the bucket: skip
-          }
+          const std::uint64_t kc = key(c);
+          for (std::size_t s = start_[h]; s < start_[h + 1]; ++s)
+            if (item_key_[s] == kc) f(items_[s]);  // other cells sharing the bucket: skip
         }
   }
 
@@ -70,11 +117,20 @@ class SpatialHash {
                             static_cast<std::uint64_t>(c[2]) * 83492791u;
     return static_cast<std::size_t>(h) & mask_;
   }
+  // The cell as one integer (21 bits per axis: ±10⁶ cells, ±17 km at 1.7 cm),
+  // compared instead of three ints.
+  static std::uint64_t key(const std::array<int, 3>& c) {
+    constexpr std::uint64_t m = (1u << 21) - 1;
+    return (static_cast<std::uint64_t>(c[0]) & m) | ((static_cast<std::uint64_t>(c[1]) & m) << 21) |
+           ((static_cast<std::uint64_t>(c[2]) & m) << 42);
+  }
   double inv_cell_ = 1.0;
   std::size_t mask_ = 0;
   std::vector<std::size_t> start_, fill_, bucket_;
   std::vector<int> items_;
-  std::vector<std::array<int, 3>> cell_;
+  std::vector<std::uint64_t> key_, item_key_;
+  std::vector<std::pair<int, std::array<int, 3>>> entries_;
+  bool boxes_ = false;
 };
 
 struct Pair {
@@ -168,6 +224,10 @@ class SelfCollision final : public Effect {
 
   // Merged copies are one particle: never a collision between them.
   void particles_merged(const Model&, const std::vector<int>& representative) override {
+    // Merged copies jumped to their common position: the positions before the
+    // next step are the ones after the merge, not the last after-step's.
+    x_prev_.resize(0);
+    merged_once_ = true;
     std::vector<int> first(n_, -1);
     for (int i = 0; i < n_; ++i) {
       int& f = first[representative[i]];
@@ -179,74 +239,130 @@ class SelfCollision final : public Effect {
 
   const char* name() const override { return "self-collision"; }
 
+  // The repulsion acts on the pairs the last after-step found near (within
+  // the thickness plus their motion over that step): the positions a step
+  // tries stay within about that motion of them. A full search at every force
+  // evaluation cost more than the rest of the step.
   void add_forces(const Eval& e, VecX& f) override {
-    if (def_.stiffness <= 0.0 || tris_.empty()) return;
-    hash_.build(e.x, n_, cell_);
+    if (def_.stiffness <= 0.0) return;
+    if (!searched_) find_near(e.x);  // before the first after-step
     const double th = def_.thickness, k = def_.stiffness;
-    for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
-      const auto& tr = tris_[t];
-      const Vec3 a = at(e.x, tr[0]), b = at(e.x, tr[1]), c = at(e.x, tr[2]);
-      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(th), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(th);
-      hash_.for_each_in_box(lo, hi, [&](int p) {
-        if (skip(p, tr)) return;
-        Vec3 nrm, w;
-        double dn;
-        if (!project(at(e.x, p), a, b, c, nrm, dn, w) || std::abs(dn) >= th || !inside(w)) return;
-        const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
-        at(f, p) += fp;
-        for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
-      });
+    for (const Pair& pr : near_) {
+      const auto& tr = tris_[pr.t];
+      Vec3 nrm, w;
+      double dn;
+      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) || std::abs(dn) >= th ||
+          !inside(w))
+        continue;
+      const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
+      at(f, pr.p) += fp;
+      for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
     }
   }
   bool add_jacobian(const Eval&, Triplets&, Triplets&) override { return false; }  // contact springs enter explicitly
   void add_stiffness_bound(const Model&, VecX& k, VecX&) const override { k.array() += 2.0 * def_.stiffness; }
 
   void after_step(const Model& m, State& s) override {
+    searched_ = true;
     if (tris_.empty()) return;
-    if (x_prev_.size() != s.x.size()) x_prev_ = m.x0.size() == s.x.size() ? m.x0 : s.x;
+    if (x_prev_.size() != s.x.size()) x_prev_ = m.x0.size() == s.x.size() && !merged_once_ ? m.x0 : s.x;
     const double th = def_.thickness;
-    // How far any particle moved this step: a particle that went through a
-    // triangle is at most that far on the wrong side.
-    double motion = 0.0;
-    for (int i = 0; i < n_; ++i) motion = std::max(motion, (at(s.x, i) - at(x_prev_, i)).squaredNorm());
-    motion = std::sqrt(motion);
-    hash_.build(s.x, n_, cell_);
+    // How far each particle moved this step. A pair can only have crossed, or
+    // come within th, if it is within th plus their two motions now: the
+    // particles are hashed by their swept boxes grown by th, each triangle
+    // looks in its own swept box, and every bound below is per pair. (One
+    // global motion grew every query by the fastest particle's: a cloth
+    // falling at 2.4 m/s made each triangle meet dozens of particles.)
+    disp_.resize(n_);
+    for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
+    hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
     pairs_.clear();
     edge_pairs_.clear();
+    std::vector<Pair> near;
     int crossings = 0;
-    for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
-      const auto& tr = tris_[t];
-      const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
-      const Vec3 grow = Vec3::Constant(th + motion);
-      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - grow, hi = a.cwiseMax(b).cwiseMax(c) + grow;
-      hash_.for_each_in_box(lo, hi, [&](int p) {
-        if (skip(p, tr)) return;
-        Vec3 nrm, w;
-        double dn;
-        if (!project(at(s.x, p), a, b, c, nrm, dn, w) || !inside(w) || std::abs(dn) >= th + motion) return;
-        // The side before the step.
-        Vec3 nrm0, w0;
-        double dn0;
-        double side = dn >= 0.0 ? 1.0 : -1.0;
-        if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0, dn0, w0) &&
-            std::abs(dn0) > 1e-12)
-          side = dn0 > 0.0 ? 1.0 : -1.0;
-        if (side * dn >= th) return;  // on its side and far enough
-        if (side * dn < 0.0) ++crossings;
-        pairs_.push_back({p, t, side});
-      });
-      // Edge–edge: the edges at the particles near this triangle against its edges.
-      hash_.for_each_in_box(lo, hi, [&](int p) {
-        for (int q : adj_[p]) {
-          if (q < p && in_box(at(s.x, q), lo, hi)) continue;  // the edge is met from q as well
-          for (int k = 0; k < 3; ++k) {
-            const int b0 = tr[k], b1 = tr[(k + 1) % 3];
-            if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
-            edge_pair(s, p, q, b0, b1, th, motion);
-          }
+    const int nt = static_cast<int>(tris_.size());
+#pragma omp parallel if (nt >= kParallelMinTriangles) reduction(+ : crossings)
+    {
+      std::vector<Pair> my_pairs, my_near;
+      std::vector<EdgePair> my_edges;
+      std::vector<int> stamp(n_, -1);  // the triangle that last met each particle (dedupe)
+#pragma omp for schedule(dynamic, 256) nowait
+      for (int t = 0; t < nt; ++t) {
+        const auto& tr = tris_[t];
+        const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
+        Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+        for (int q : tr) {
+          lo = lo.cwiseMin(at(x_prev_, q));
+          hi = hi.cwiseMax(at(x_prev_, q));
         }
-      });
+        const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
+        const Vec3 tn = (b - a).cross(c - a);
+        const double tn_len = tn.norm();
+        const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
+        hash_.for_each_in_box(lo, hi, [&](int p) {
+          if (stamp[p] == t) return;
+          stamp[p] = t;
+          // The particle's swept box, grown by th, must meet the triangle's.
+          const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
+          const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
+          if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
+          const double lim = th + disp_[p] + tri_motion;
+          // Point–triangle.
+          if (!skip(p, tr)) {
+            Vec3 nrm, w;
+            double dn;
+            if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
+              my_near.push_back({p, t, 0.0});
+              // The side before the step.
+              Vec3 nrm0, w0;
+              double dn0;
+              double side = dn >= 0.0 ? 1.0 : -1.0;
+              if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0, dn0, w0) &&
+                  std::abs(dn0) > 1e-12)
+                side = dn0 > 0.0 ? 1.0 : -1.0;
+              if (side * dn < th) {
+                if (side * dn < 0.0) ++crossings;
+                my_pairs.push_back({p, t, side});
+              }
+            }
+          }
+          // Edge–edge: the edges at p against the triangle's edges. An edge
+          // with both ends on one side of the triangle's plane, farther than
+          // the pair's bound, cannot come that close to the triangle's edges
+          // (they lie in the plane), nor can one whose box, grown by the
+          // bound, misses the other edge's: both cheap tests go first.
+          if (tn_len <= 0.0) return;
+          const double hp = (at(s.x, p) - a).dot(unit);
+          for (int q : adj_[p]) {
+            if (q < p && stamp[q] == t) continue;  // the edge was met from q already
+            const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
+            const double hq = (at(s.x, q) - a).dot(unit);
+            if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
+            const Vec3 elo = at(s.x, p).cwiseMin(at(s.x, q)) - Vec3::Constant(elim);
+            const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
+            for (int k = 0; k < 3; ++k) {
+              const int b0 = tr[k], b1 = tr[(k + 1) % 3];
+              const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
+              if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
+              if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
+              edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
+            }
+          }
+        });
+      }
+#pragma omp critical(vgd_self_collision_merge)
+      {
+        pairs_.insert(pairs_.end(), my_pairs.begin(), my_pairs.end());
+        near.insert(near.end(), my_near.begin(), my_near.end());
+        edge_pairs_.insert(edge_pairs_.end(), my_edges.begin(), my_edges.end());
+      }
     }
+    // Threads finish in any order: sort, so the Gauss–Seidel passes below see
+    // the pairs in one order whatever the thread count.
+    auto by_triangle = [](const Pair& x, const Pair& y) { return std::tie(x.t, x.p) < std::tie(y.t, y.p); };
+    std::sort(pairs_.begin(), pairs_.end(), by_triangle);
+    std::sort(near.begin(), near.end(), by_triangle);
+    near_ = std::move(near);
     std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
       return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
     });
@@ -281,6 +397,25 @@ class SelfCollision final : public Effect {
   const SelfCollisionStats& stats() const { return stats_; }
 
  private:
+  // The point–triangle pairs within the thickness at x (no motion known yet).
+  void find_near(const VecX& x) {
+    searched_ = true;
+    near_.clear();
+    const double th = def_.thickness;
+    hash_.build(x, n_, cell_);
+    for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
+      const auto& tr = tris_[t];
+      const Vec3 a = at(x, tr[0]), b = at(x, tr[1]), c = at(x, tr[2]);
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(th), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(th);
+      hash_.for_each_in_box(lo, hi, [&](int p) {
+        Vec3 nrm, w;
+        double dn;
+        if (!skip(p, tr) && project(at(x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < th)
+          near_.push_back({p, t, 0.0});
+      });
+    }
+  }
+
   // Union–find over particles that are one (or will be): seam pairs, merges.
   int root(int i) {
     while (group_[i] != i) i = group_[i] = group_[group_[i]];
@@ -304,13 +439,11 @@ class SelfCollision final : public Effect {
     return false;
   }
 
-  static bool in_box(const Vec3& x, const Vec3& lo, const Vec3& hi) {
-    return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
-  }
 
   // Records edges (a0, a1) and (b0, b1) if closer than the thickness now, or
   // crossed during the step (their closest-point direction reversed).
-  void edge_pair(const State& s, int a0, int a1, int b0, int b1, double th, double motion) {
+  void edge_pair(const State& s, int a0, int a1, int b0, int b1, double th, double motion,
+                 std::vector<EdgePair>& out) const {
     double u, w;
     if (!closest_segments(at(s.x, a0), at(s.x, a1), at(s.x, b0), at(s.x, b1), u, w)) return;
     if (u <= 0.0 || u >= 1.0 || w <= 0.0 || w >= 1.0) return;  // an end point: the point tests see it
@@ -324,8 +457,7 @@ class SelfCollision final : public Effect {
     else if (dist > 1e-12) dir = r / dist;
     else return;
     if (r.dot(dir) >= th) return;
-    EdgePair ep{std::min(a0, a1), std::max(a0, a1), std::min(b0, b1), std::max(b0, b1), dir};
-    edge_pairs_.push_back(ep);
+    out.push_back({std::min(a0, a1), std::max(a0, a1), std::min(b0, b1), std::max(b0, b1), dir});
   }
 
   bool resolve(State& s, const EdgePair& ep) {
@@ -390,9 +522,13 @@ class SelfCollision final : public Effect {
   std::vector<std::vector<int>> ring_;
   SpatialHash hash_;
   std::vector<Pair> pairs_;
+  std::vector<Pair> near_;  // point–triangle pairs near at the last after-step (the repulsion's candidates)
+  bool searched_ = false;   // near_ has been filled once
+  bool merged_once_ = false;  // after a merge, x0 is no longer the previous position
   std::vector<EdgePair> edge_pairs_;
   std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
   VecX x_prev_;
+  std::vector<double> disp_;  // m: per particle, how far it moved in the last step
   std::vector<int> group_;  // per particle: the lowest particle it is one with
   SelfCollisionStats stats_;
 };
