@@ -24,7 +24,8 @@
 namespace {
 
 struct Options {
-  std::string garment, size, avatar, output = "out", material, material_id, table, trj;
+  std::vector<std::string> garments;
+  std::string size, avatar, output = "out", material, material_id, table, trj;
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
   bool self_collision = false, frames = false, json = false;
@@ -84,7 +85,11 @@ class LastFrame : public vgd::sim::FrameSink {
 vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
   auto* sub = app.add_subcommand("drape", "Sew a garment document and drape it on a body");
   auto o = std::make_shared<Options>();
-  sub->add_option("GARMENT", o->garment, "XVC document with seams (docs/xvc.md)")->required()->check(CLI::ExistingFile);
+  sub->add_option("GARMENT", o->garments,
+                  "XVC document with seams (docs/xvc.md); more documents are worn over it, in order (a T-shirt over "
+                  "a skirt), each starting 15 mm further out")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("--size", o->size, "Garment size to sew, and the mannequin's size (default: the sample size)");
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
       ->check(CLI::ExistingFile);
@@ -110,7 +115,13 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     namespace scene = vgd::scene;
     namespace fs = std::filesystem;
     scene::DrapeOptions d;
-    d.garment = o->garment;
+    d.garment = o->garments.front();
+    d.over.assign(o->garments.begin() + 1, o->garments.end());
+    const std::string garment_names = [&] {
+      std::string n;
+      for (const auto& g : o->garments) n += (n.empty() ? "" : " + ") + g;
+      return n;
+    }();
     d.size = o->size;
     d.pieces = o->pieces;
     d.mannequin_table = o->table;
@@ -159,7 +170,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     } else if (!common.quiet) {
       int pairs = 0, closed = 0;
       for (const auto& s : c.seams) pairs += s.pairs, closed += s.closed;
-      std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", o->garment.c_str(), c.stop_reason.c_str(),
+      std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", garment_names.c_str(), c.stop_reason.c_str(),
                   fixed(c.simulated_s, 2).c_str(), fixed(c.wall_s, 2).c_str());
       for (const auto& st : c.stages)
         std::printf("  %-9s %7s s wall %7s s simulated\n", st.name.c_str(), fixed(st.wall_s, 2).c_str(),
@@ -179,7 +190,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       std::fflush(stdout);
     }
     if (c.stop_reason == "error") {
-      std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", o->garment.c_str(), c.stop_message.c_str());
+      std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", garment_names.c_str(), c.stop_message.c_str());
       return vgd::cli::kFailed;
     }
     return c.passed() ? vgd::cli::kOk : vgd::cli::kCheckFailed;

@@ -238,7 +238,9 @@ std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in
   const GarmentDef& gd = *c.garment;
   const std::string p = cloth_path(ci) + ".garment";
   const auto& doc = in.document(gd.file, p + ".file");
-  const auto arrangements = garment_arrangements(doc, avatar, diag);
+  auto arrangements = garment_arrangements(doc, avatar, diag);
+  for (auto& [id, list] : arrangements)
+    for (auto& a : list) a.clearance += gd.layer * GarmentDef::kLayerGap;
   AssemblyOptions ao;
   ao.size = gd.size;
   ao.spacing = gd.spacing;
@@ -325,8 +327,12 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       parts = xvc_pieces(def, ci, in, m, diag);
     } else {
       if (!avatar) throw Error(def.source.string(), cloth_path(ci) + ".garment", "a garment needs the scene's avatar");
+      // Two garments may both have a FRONT_38: with more than one garment the
+      // pieces carry their garment's name.
+      const int garments = static_cast<int>(
+          std::count_if(def.cloth.begin(), def.cloth.end(), [](const ClothDef& x) { return x.garment.has_value(); }));
       for (auto& d : garment_pieces(def, ci, in, m, diag, *avatar, garment_seams))
-        parts.emplace_back(std::move(d.name), std::move(d.model));
+        parts.emplace_back(garments > 1 && !c.name.empty() ? c.name + "/" + d.name : std::move(d.name), std::move(d.model));
     }
     const int first_piece = static_cast<int>(pieces.size());
     for (auto& [name, part] : parts) {

@@ -1,6 +1,8 @@
 #include "vgd/scene/drape.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "vgd/core/version.hpp"
 #include "vgd/core/strings.hpp"
@@ -43,37 +45,52 @@ SceneDef drape_scene(const DrapeOptions& o) {
     def.avatar = a;
   }
 
-  // The fabric: the garment's own MATERIAL, else vgd's shirting.
-  MaterialSource fabric;
-  if (!o.material_xvc.empty()) {
-    fabric.xvc = fs::absolute(o.material_xvc);
-    fabric.id = o.material_id;
-  } else if (const auto* mats = doc.container("MATERIALS"); mats && !mats->children.empty()) {
-    fabric.xvc = garment;
-    fabric.id = std::string(mats->children.front().id());
-  } else {
-    fabric.xvc = data_file("materials/shirting.xvc");
-    fabric.id = "shirting";
+  // Each garment's fabric: its own MATERIAL, else vgd's shirting (or the
+  // --material given, for every garment).
+  std::vector<fs::path> garments{garment};
+  for (const auto& p : o.over) {
+    if (fs::absolute(p) == garment || std::find(garments.begin(), garments.end(), fs::absolute(p)) != garments.end())
+      throw Error(p.string(), "", "the same garment is given twice");
+    if (!fs::is_regular_file(p, ec)) throw Error(p.string(), "", "no such garment document");
+    garments.push_back(fs::absolute(p));
   }
-  if (fabric.id.empty()) {
-    const xvc::Document mdoc = xvc::load_file(fabric.xvc);
-    const auto* mats = mdoc.container("MATERIALS");
-    if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
-    fabric.id = std::string(mats->children.front().id());
-  }
-  def.materials["fabric"] = fabric;
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    std::optional<xvc::Document> loaded;
+    if (k > 0) loaded = xvc::load_file(garments[k]);
+    const xvc::Document& gdoc = k == 0 ? doc : *loaded;
+    MaterialSource fabric;
+    if (!o.material_xvc.empty()) {
+      fabric.xvc = fs::absolute(o.material_xvc);
+      fabric.id = o.material_id;
+    } else if (const auto* mats = gdoc.container("MATERIALS"); mats && !mats->children.empty()) {
+      fabric.xvc = garments[k];
+      fabric.id = std::string(mats->children.front().id());
+    } else {
+      fabric.xvc = data_file("materials/shirting.xvc");
+      fabric.id = "shirting";
+    }
+    if (fabric.id.empty()) {
+      const xvc::Document mdoc = xvc::load_file(fabric.xvc);
+      const auto* mats = mdoc.container("MATERIALS");
+      if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
+      fabric.id = std::string(mats->children.front().id());
+    }
+    const std::string mat = k == 0 ? "fabric" : "fabric" + std::to_string(k + 1);
+    def.materials[mat] = fabric;
 
-  ClothDef cloth;
-  cloth.name = garment.stem().string();
-  GarmentDef g;
-  g.file = garment;
-  g.size = o.size;
-  g.spacing = o.spacing;
-  g.pieces = o.pieces;
-  cloth.garment = g;
-  cloth.model = ClothModel::mass_spring;
-  cloth.material = "fabric";
-  def.cloth.push_back(cloth);
+    ClothDef cloth;
+    cloth.name = garments[k].stem().string();
+    GarmentDef g;
+    g.file = garments[k];
+    g.size = o.size;
+    g.spacing = o.spacing;
+    if (k == 0) g.pieces = o.pieces;
+    g.layer = static_cast<int>(k);
+    cloth.garment = g;
+    cloth.model = ClothModel::mass_spring;
+    cloth.material = mat;
+    def.cloth.push_back(cloth);
+  }
 
   auto& e = def.effects;
   e.gravity = sim::GravityDef{};
@@ -160,11 +177,14 @@ DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& s
 
   // The certificate.
   c.version = std::string(kVersion);
+  int garment_count = 0;
   for (const auto& cl : def.cloth)
-    if (cl.garment) c.inputs.emplace_back("garment", cl.garment->file.string());
+    if (cl.garment)
+      c.inputs.emplace_back(garment_count++ == 0 ? "garment" : "garment_" + std::to_string(garment_count),
+                            cl.garment->file.string());
   if (r.scene.avatar) c.inputs.emplace_back("avatar", r.scene.avatar->source);
   for (const auto& [k, m] : def.materials)
-    if (!m.xvc.empty()) c.inputs.emplace_back("material", m.xvc.string() + "#" + m.id);
+    if (!m.xvc.empty()) c.inputs.emplace_back(k == "fabric" ? "material" : "material_" + k.substr(6), m.xvc.string() + "#" + m.id);
   c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
   c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
   c.settings.emplace_back("fps", format_double(def.run.fps));

@@ -221,6 +221,8 @@ GarmentDef read_garment(Object o) {
   o.string("size", g.size);
   o.strings("pieces", g.pieces);
   o.number("spacing", g.spacing, dim::length);
+  o.integer("layer", g.layer);
+  if (g.layer < 0) o.context().fail(o.at("layer"), "must be >= 0 (0: next to the body)");
   o.finish();
   return g;
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "support/run_vgd.hpp"
@@ -88,6 +89,29 @@ TEST(CliDrape, BadInputIsNamed) {
   const auto bad = run_vgd({"drape", doc.string(), "-o", out.string()});
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("empty.xvc"), std::string::npos) << bad.err;
+}
+
+// Two garments: the T-shirt worn over the skirt. Both are assembled, each
+// with its own pieces (named after their garment), the outer one placed a
+// layer further out; the same garment twice is refused.
+TEST(CliDrape, TwoGarmentsAreDressedInLayers) {
+  const auto out = scratch_dir("drape-two");
+  const auto skirt = (source_dir() / "data/garments/a-line-skirt.xvc").string();
+  const auto tee = (source_dir() / "data/garments/t-shirt.xvc").string();
+  const auto r = run_vgd({"drape", skirt, tee, "-o", out.string(), "--spacing", "0.02", "--time-limit", "0.04", "-q"});
+  EXPECT_EQ(r.code, 3) << r.err;  // a frame only: not at rest
+  const json c = read_json(out / "certificate.json");
+  EXPECT_NE(c["inputs"]["garment"].get<std::string>().find("a-line-skirt.xvc"), std::string::npos);
+  EXPECT_NE(c["inputs"]["garment_2"].get<std::string>().find("t-shirt.xvc"), std::string::npos);
+  EXPECT_EQ(c["seams"].size(), 3u + 8u);  // the skirt's and the T-shirt's
+  std::set<std::string> pieces;
+  for (const auto& s : c["strain"]) pieces.insert(s["piece"].get<std::string>());
+  EXPECT_TRUE(pieces.count("a-line-skirt/FRONT_38")) << c["strain"].dump();
+  EXPECT_TRUE(pieces.count("t-shirt/FRONT_38")) << c["strain"].dump();
+  EXPECT_EQ(pieces.size(), 7u);  // 3 skirt pieces + 4 T-shirt pieces
+  const auto twice = run_vgd({"drape", skirt, skirt, "-o", out.string(), "-q"});
+  EXPECT_EQ(twice.code, 1);
+  EXPECT_NE(twice.err.find("twice"), std::string::npos) << twice.err;
 }
 
 // MEN_CLASSIC_TEE (Gerber, ../shared): the front and back are half pieces on

@@ -25,6 +25,9 @@ namespace vgd::scene {
 
 struct DrapeOptions {
   std::filesystem::path garment;         // the XVC document (with SEAMs)
+  // Garments worn over it, in order (layer 1, 2, ...: each starts 15 mm
+  // further out), each with its own MATERIAL or vgd's shirting; same size.
+  std::vector<std::filesystem::path> over;
   std::string size;                      // "" = the document's sample size
   std::vector<std::string> pieces;       // piece or block names to sew; empty = all of the size
   std::optional<AvatarDef> avatar;       // empty = the mannequin of the garment's size (else 38)

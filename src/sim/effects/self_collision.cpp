@@ -213,11 +213,13 @@ class SelfCollision final : public Effect {
     stats_.min_distance = d.thickness;
     group_.resize(n_);
     for (int i = 0; i < n_; ++i) group_[i] = i;
+    hem_.assign(n_, 0);
     for (const auto& [a, b] : d.joined) {
       if (a < 0 || a >= n_ || b < 0 || b >= n_)
         throw SimulationError("self collision: joined pair (" + std::to_string(a) + ", " + std::to_string(b) +
                               ") names a particle that does not exist");
       join(a, b);
+      hem_[a] = hem_[b] = 1;
     }
     flatten();
   }
@@ -345,6 +347,7 @@ class SelfCollision final : public Effect {
               const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
               if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
               if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
+            if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
               edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
             }
           }
@@ -432,6 +435,7 @@ class SelfCollision final : public Effect {
 
   bool skip(int p, const std::array<int, 3>& tr) const {
     if (same(p, tr[0]) || same(p, tr[1]) || same(p, tr[2])) return true;
+    if (hem_[p] && (hem_[tr[0]] || hem_[tr[1]] || hem_[tr[2]])) return true;
     if (!ring_.empty())
       for (int q : tr)
         for (int r : ring_[q])
@@ -529,7 +533,11 @@ class SelfCollision final : public Effect {
   std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
   VecX x_prev_;
   std::vector<double> disp_;  // m: per particle, how far it moved in the last step
-  std::vector<int> group_;  // per particle: the lowest particle it is one with
+  std::vector<int> group_;
+  // Per particle: on a seam's hem. Hems approach each other edge on while a
+  // seam closes: a hem particle never collides with a triangle or edge
+  // touching a hem, or the strips along the seam would block it.
+  std::vector<unsigned char> hem_;  // per particle: the lowest particle it is one with
   SelfCollisionStats stats_;
 };
 

@@ -38,8 +38,10 @@ struct SelfCollisionDef {
   int passes = 4;              // Gauss–Seidel passes of the after-step correction
   std::vector<int> fixed;      // particles never moved (the scene's pins)
   // Particles that are, or are about to become, one (seam pairs): a particle
-  // never collides with a triangle or an edge holding its partner, or seams
-  // could not close. Merged particles (System::apply_merges) are joined too.
+  // never collides with a triangle or an edge holding its partner, and a
+  // particle on a seam's hem never with a triangle or edge touching a hem (the
+  // strips along a seam meet edge on while it closes), or seams could not
+  // close. Merged particles (System::apply_merges) are joined too.
   std::vector<std::array<int, 2>> joined;
 };
 

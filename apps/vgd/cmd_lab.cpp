@@ -1,0 +1,151 @@
+// vgd lab: one virtual textile test on a fabric (issue 6, docs/fabric-lab.md):
+// builds the specimen, runs it to static equilibrium with the chosen cloth
+// model, prints measured against the analytic reference, writes a CSV.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "cli.hpp"
+#include "vgd/render/image.hpp"
+#include "vgd/scene/lab.hpp"
+
+namespace {
+
+struct Options {
+  std::string test, material, model = "rosette", out_dir;
+  double angle = 0.0, resolution_mm = 5.0;
+  bool json = false, no_poisson = false;
+  CLI::Option* angle_opt = nullptr;
+};
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json to_json(const vgd::scene::lab::LabResult& r, const vgd::scene::lab::LabSpec& spec) {
+  auto points = nlohmann::json::array();
+  for (const auto& p : r.points)
+    points.push_back({{"quantity", p.quantity},
+                      {"x", p.x},
+                      {"measured", number(p.measured)},
+                      {"expected", p.expected},
+                      {"rel_error", number(p.rel_error)}});
+  return {{"test", r.test},
+          {"material", r.material},
+          {"model", r.model},
+          {"x", r.x_name},
+          {"resolution_m", spec.resolution},
+          {"poisson_free", spec.poisson_free},
+          {"cells_along", r.cells_along},
+          {"cells_across", r.cells_across},
+          {"points", points},
+          {"max_rel_error", number(r.max_rel_error)},
+          {"wall_s", r.wall_s},
+          {"notes", r.notes}};
+}
+
+// A plain plot, one panel per quantity: the reference as a grey polyline
+// through the expected values, the measurements as coloured squares. No text:
+// the CSV beside it holds the numbers.
+vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
+  std::vector<std::string> quantities;
+  for (const auto& p : r.points)
+    if (std::find(quantities.begin(), quantities.end(), p.quantity) == quantities.end())
+      quantities.push_back(p.quantity);
+  constexpr int kWidth = 640, kPanel = 240, kMargin = 24;
+  vgd::render::Image img(kWidth, kPanel * static_cast<int>(quantities.size()), {255, 255, 255, 255});
+  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) {
+    if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
+    auto* px = img.pixel(x, y);
+    px[0] = c[0], px[1] = c[1], px[2] = c[2], px[3] = 255;
+  };
+  auto line = [&](int x0, int y0, int x1, int y1, std::array<std::uint8_t, 3> c) {
+    const int n = std::max({std::abs(x1 - x0), std::abs(y1 - y0), 1});
+    for (int i = 0; i <= n; ++i) put(x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n, c);
+  };
+  const std::array<std::array<std::uint8_t, 3>, 4> colours{{{200, 40, 40}, {40, 90, 200}, {30, 150, 60}, {170, 90, 20}}};
+  for (std::size_t q = 0; q < quantities.size(); ++q) {
+    std::vector<const vgd::scene::lab::LabPoint*> pts;
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const auto& p : r.points) {
+      if (p.quantity != quantities[q]) continue;
+      pts.push_back(&p);
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+      for (double y : {p.expected, p.measured})
+        if (std::isfinite(y)) y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (!(x1 > x0)) x0 -= 1, x1 += 1;
+    if (!(y1 > y0)) y0 -= 1, y1 += 1;
+    const int top = static_cast<int>(q) * kPanel + kMargin, bottom = (static_cast<int>(q) + 1) * kPanel - kMargin;
+    auto px = [&](double x) { return kMargin + static_cast<int>(std::lround((x - x0) / (x1 - x0) * (kWidth - 2 * kMargin))); };
+    auto py = [&](double y) { return bottom - static_cast<int>(std::lround((y - y0) / (y1 - y0) * (bottom - top))); };
+    const std::array<std::uint8_t, 3> grey{160, 160, 160}, dark{60, 60, 60};
+    line(kMargin, top, kMargin, bottom, grey), line(kMargin, bottom, kWidth - kMargin, bottom, grey);
+    for (std::size_t i = 1; i < pts.size(); ++i)
+      line(px(pts[i - 1]->x), py(pts[i - 1]->expected), px(pts[i]->x), py(pts[i]->expected), dark);
+    for (const auto* p : pts) {
+      if (!std::isfinite(p->measured)) continue;
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) put(px(p->x) + dx, py(p->measured) + dy, colours[q % colours.size()]);
+    }
+  }
+  return img;
+}
+
+vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
+  auto* sub = app.add_subcommand("lab", "Run a virtual textile test on a fabric and compare it with mechanics");
+  auto o = std::make_shared<Options>();
+  sub->add_option("TEST", o->test, "tip-cantilever, tensile, cantilever or buckling")
+      ->required()
+      ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling"}));
+  sub->add_option("--material", o->material, "Fabric: a name in data/materials (shirting) or an XVC file")->required();
+  sub->add_option("--model", o->model, "Cloth model: rosette (strain rosette + bending) or mass-spring")
+      ->check(CLI::IsMember({"rosette", "strain-rosette", "mass-spring"}));
+  o->angle_opt = sub->add_option("--angle", o->angle,
+                                 "Specimen axis from the warp, deg (default 0; tensile: every 15 deg from 0 to 90)")
+                     ->check(CLI::Range(0.0, 90.0));
+  sub->add_option("--resolution", o->resolution_mm, "Grid spacing along the specimen, mm (default 5)")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--no-poisson", o->no_poisson,
+                "Bend the fabric with nu_xy = 0, where strip and plate rigidity agree (docs/fabric-lab.md)");
+  sub->add_flag("--json", o->json, "Print the result as JSON on stdout");
+  sub->add_option("-o,--output", o->out_dir, "Write TEST.csv (measured vs expected) and TEST.png (a plot) into this directory");
+  sub->footer("Exit codes: 0 the test ran (its errors are in the output), 1 bad material or failed run.");
+  return vgd::cli::Command{sub, [o, &common]() -> int {
+    namespace lab = vgd::scene::lab;
+    lab::LabSpec spec;
+    spec.test = lab::parse_test(o->test);
+    spec.model = o->model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
+                                           : vgd::scene::ClothModel::strain_rosette;
+    spec.resolution = o->resolution_mm / 1000.0;
+    spec.poisson_free = o->no_poisson;
+    if (o->angle_opt->count() > 0) spec.angle_deg = o->angle;
+    else if (spec.test == lab::Test::tensile) spec.angle_deg = -1.0;
+    const auto material = lab::lab_material(o->material);
+    const lab::LabResult r = lab::run(spec, material);
+    if (!o->out_dir.empty()) {
+      std::filesystem::create_directories(o->out_dir);
+      const auto csv = std::filesystem::path(o->out_dir) / (r.test + ".csv");
+      lab::write_csv(r, csv);
+      const auto png = std::filesystem::path(o->out_dir) / (r.test + ".png");
+      vgd::render::write_png(plot(r), png);
+      vgd::cli::say(common, "wrote " + csv.string() + " and " + png.string());
+    }
+    if (o->json) {
+      vgd::cli::print_json(to_json(r, spec));
+      return vgd::cli::kOk;
+    }
+    std::printf("%s, %s, %s model, %d x %d cells (%.2f mm)\n", r.test.c_str(), r.material.c_str(), r.model.c_str(),
+                r.cells_along, r.cells_across, spec.resolution * 1000);
+    for (const auto& n : r.notes) std::printf("  %s\n", n.c_str());
+    std::printf("%-18s %10s %14s %14s %11s\n", "quantity", r.x_name.c_str(), "measured", "expected", "rel error");
+    for (const auto& p : r.points)
+      std::printf("%-18s %10g %14.7g %14.7g %+10.3e\n", p.quantity.c_str(), p.x, p.measured, p.expected, p.rel_error);
+    std::printf("max |rel error| %.3e, %.3f s\n", r.max_rel_error, r.wall_s);
+    return vgd::cli::kOk;
+  }};
+}};
+
+}  // namespace

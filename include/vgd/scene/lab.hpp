@@ -1,0 +1,100 @@
+#pragma once
+// The virtual fabric lab (issue 6, seed 002 §5): the textile industry's own
+// tests run on the cloth models, measured against mechanics (docs/fabric-lab.md).
+//
+// The lab builds a specimen (a strip of the fabric as a grid, cut at an angle
+// to the warp), puts the engine's own effects on it (strain rosette + bending,
+// or mass-spring; gravity when the test weighs the specimen), holds and loads
+// it as the test machine would, solves for static equilibrium (Newton with the
+// effects' exact Jacobians, the load applied in increments), measures, and
+// compares with the analytic reference (../shared/reference/mechanics.md,
+// recomputed here so the lab runs without ../shared):
+//
+//   tip-cantilever  strip clamped at one end, dead tip load P per width:
+//                   u/L and w/L of the tip vs the elastica, k = P L²/B = 1…10
+//   tensile         ISO 13934-1 strip (200 × 50 mm) stretched 0.01 % between clamps
+//                   free to slide across (no clamp constraint): E_θ vs the orthotropic off-axis
+//                   formula, θ = 0, 15, …, 90° (or the one --angle)
+//   cantilever      strip under its own weight: chord angle vs the heavy
+//                   elastica for g = w L³/B = 1, 2, 5, 8, 10, 20, and the
+//                   bending length as FAST / ASTM D1388 computes it
+//   buckling        strips of 50 and 100 mm, clamped-free (dead end load)
+//                   and clamped-clamped (end shortening): the load at which
+//                   the straight strip's stiffness across the sheet vanishes
+//                   vs Euler's P_cr = C B / L² (rosette model only)
+//
+// Bending references use the narrow-strip rigidity B_strip
+// (sim::bending_rigidity_strip), the one a free strip shows.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vgd/scene/material.hpp"
+#include "vgd/scene/scene.hpp"
+
+namespace vgd::scene::lab {
+
+enum class Test { tip_cantilever, tensile, cantilever, buckling };
+const char* to_string(Test t);
+// "tip-cantilever", "tensile", "cantilever", "buckling"; throws std::invalid_argument.
+Test parse_test(const std::string& s);
+
+// What to run.
+struct LabSpec {
+  Test test = Test::tip_cantilever;
+  ClothModel model = ClothModel::strain_rosette;
+  double angle_deg = 0.0;      // specimen axis from the warp (deg); tensile: < 0 = every 15° from 0 to 90
+  double resolution = 0.005;   // m, grid spacing along the specimen
+  double length = 0.1;         // m, free length of the tip-cantilever (tensile: the ISO 13934-1 200 × 50 mm strip)
+  double width = 0.01;         // m, bending specimens' width (2 cells across, or width/resolution)
+  // Run the fabric with ν_xy = 0, where the strip's and the plate's bending
+  // rigidities coincide and the elastica's single EI is unambiguous
+  // (docs/fabric-lab.md, "Strip or plate").
+  bool poisson_free = false;
+};
+
+// One measurement: at x (k, θ in deg, g), `quantity` measured and expected.
+struct LabPoint {
+  std::string quantity;  // e.g. "w/L", "u/L", "E_theta N/m", "chord deg"
+  double x = 0.0;
+  double measured = 0.0, expected = 0.0;
+  double rel_error = 0.0;  // measured / expected − 1 (NaN when the solve failed)
+};
+
+struct LabResult {
+  std::string test, material, model;
+  std::string x_name;               // what x is: "k = PL^2/B", "angle deg", "g = wL^3/B"
+  std::vector<LabPoint> points;
+  double max_rel_error = 0.0;       // over the points, |rel_error| (inf when a solve failed)
+  double wall_s = 0.0;              // s, the whole test
+  int cells_along = 0, cells_across = 0;  // the specimen grid (cells along the free length)
+  std::vector<std::string> notes;   // reference, rigidities, what is reported beside the points
+};
+
+// The material NAME (data/materials/NAME.xvc, MATERIAL id NAME) or an XVC
+// FILE (its MATERIAL whose id is the file's stem). Throws vgd::Error.
+MaterialDef lab_material(const std::string& name_or_file);
+
+// Runs one test. A static solve that fails leaves NaN in its points and makes
+// max_rel_error infinite (the notes say why). Throws vgd::Error when the
+// material lacks the model's values, or for buckling with the mass-spring model.
+LabResult run(const LabSpec& spec, const MaterialDef& material);
+
+// The result as CSV: quantity,x,measured,expected,rel_error (header row).
+void write_csv(const LabResult& r, const std::filesystem::path& file);
+
+// ---- analytic references (mechanics.md §1, §2), by shooting on θ'(0) ----
+
+// Cantilever with a dead vertical tip load, k = P L²/EI: tip shortening u/L,
+// deflection w/L, tip angle (rad). Agrees with cantilever_tip_load.csv to 1e-9.
+struct Elastica {
+  double u_over_L = 0.0, w_over_L = 0.0, tip_angle = 0.0;
+  double chord_deg() const;  // atan(w / (L − u)) in degrees
+};
+Elastica tip_load_elastica(double k);
+// Cantilever under its own weight, g = q L³/EI (heavy_elastica.csv).
+Elastica heavy_elastica(double g);
+// Peirce's bending length from the chord angle θ (rad): c / L = (cos(θ/2) / (8 tan θ))^(1/3).
+double peirce_bending_length_over_L(double chord_rad);
+
+}  // namespace vgd::scene::lab

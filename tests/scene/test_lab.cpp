@@ -1,0 +1,239 @@
+// The virtual fabric lab (docs/fabric-lab.md): its analytic references
+// against ../shared/reference, and each test's agreement with mechanics at a
+// stated resolution, on the shipped cotton shirting (data/materials/shirting.xvc).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "support/reference_csv.hpp"
+#include "support/test_paths.hpp"
+#include "vgd/scene/lab.hpp"
+
+using namespace vgd::scene;
+using namespace vgd::scene::lab;
+namespace lab = vgd::scene::lab;
+
+namespace {
+
+std::string sci(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2e", v);
+  return b;
+}
+
+// Prints the points (the test log shows the measured table) and records the largest error.
+void report(const LabResult& r) {
+  std::printf("%s, %s, %s, %d x %d cells, %.2f s\n", r.test.c_str(), r.material.c_str(), r.model.c_str(), r.cells_along,
+              r.cells_across, r.wall_s);
+  for (const auto& p : r.points)
+    std::printf("  %-18s %6g  measured %12.7g  expected %12.7g  %+.2e\n", p.quantity.c_str(), p.x, p.measured,
+                p.expected, p.rel_error);
+  ::testing::Test::RecordProperty("max_rel_error", sci(r.max_rel_error));
+  ::testing::Test::RecordProperty("wall_s", sci(r.wall_s));
+}
+
+LabResult run_on_shirting(lab::Test test, ClothModel model, double resolution, double angle = 0.0,
+                          bool poisson_free = false) {
+  LabSpec spec;
+  spec.test = test, spec.model = model, spec.resolution = resolution, spec.angle_deg = angle;
+  spec.poisson_free = poisson_free;
+  const LabResult r = run(spec, lab_material("shirting"));
+  report(r);
+  return r;
+}
+
+// Like reference_csv, for tables with a text column (heavy_elastica.csv's
+// `grid`): text cells are read as NaN.
+std::map<std::string, std::vector<double>> numeric_columns(const std::string& name) {
+  std::map<std::string, std::vector<double>> cols;
+  std::ifstream in(vgd::test::shared_dir() / "reference" / name);
+  std::string line, cell;
+  std::getline(in, line);
+  std::vector<std::string> head;
+  for (std::stringstream ss(line); std::getline(ss, cell, ',');) head.push_back(cell);
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    for (std::size_t k = 0; k < head.size() && std::getline(ss, cell, ','); ++k) {
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      cols[head[k]].push_back(end == cell.c_str() ? std::nan("") : v);
+    }
+  }
+  return cols;
+}
+
+}  // namespace
+
+// ---- the references ----
+
+TEST(LabReference, TipLoadElasticaMatchesTheSharedTable) {
+  VGD_REQUIRE_SHARED();
+  const auto t = vgd::test::reference_csv("cantilever_tip_load.csv");
+  ASSERT_FALSE(t.at("k").empty());
+  for (std::size_t i = 0; i < t.at("k").size(); ++i) {
+    const Elastica e = tip_load_elastica(t.at("k")[i]);
+    EXPECT_NEAR(e.u_over_L, t.at("u_over_L")[i], 1e-8) << "k = " << t.at("k")[i];
+    EXPECT_NEAR(e.w_over_L, t.at("w_over_L")[i], 1e-8) << "k = " << t.at("k")[i];
+    EXPECT_NEAR(e.tip_angle, t.at("tip_angle_rad")[i], 1e-8) << "k = " << t.at("k")[i];
+  }
+}
+
+TEST(LabReference, HeavyElasticaMatchesTheSharedTable) {
+  VGD_REQUIRE_SHARED();
+  const auto t = numeric_columns("heavy_elastica.csv");
+  ASSERT_FALSE(t.at("g").empty());
+  for (std::size_t i = 0; i < t.at("g").size(); ++i) {
+    const double g = t.at("g")[i];
+    if (g > 50) continue;  // the lab's specimens stay below; the tip is then within 1e-3 rad of vertical
+    const Elastica e = heavy_elastica(g);
+    EXPECT_NEAR(e.w_over_L, t.at("w_over_L")[i], 1e-8) << "g = " << g;
+    EXPECT_NEAR(e.chord_deg(), t.at("chord_angle_deg")[i], 1e-7) << "g = " << g;
+    EXPECT_NEAR(1.0 / peirce_bending_length_over_L(e.chord_deg() * M_PI / 180), t.at("L_over_c_peirce_from_chord")[i],
+                1e-6) << "g = " << g;
+  }
+}
+
+TEST(LabReference, EulerBucklingLoadsMatchTheSharedTable) {
+  VGD_REQUIRE_SHARED();
+  // The buckling test's expected loads for the shirting's B_strip, scaled to
+  // B = 1e-5 N·m, against euler_buckling.csv (L = 50 and 100 mm).
+  std::ifstream in(vgd::test::shared_dir() / "reference" / "euler_buckling.csv");
+  std::map<std::string, double> table;  // "case@L" -> P_cr for B = 1e-5
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string name, b, l, p;
+    std::getline(ss, name, ','), std::getline(ss, b, ','), std::getline(ss, l, ','), std::getline(ss, p, ',');
+    table[name + "@" + std::to_string(std::lround(std::stod(l) * 1000))] = std::stod(p);
+  }
+  ASSERT_FALSE(table.empty());
+  LabSpec spec;
+  spec.test = lab::Test::buckling, spec.resolution = 0.01, spec.poisson_free = true;  // B_strip = B_warp = 1e-5
+  const LabResult r = run(spec, lab_material("shirting"));
+  ASSERT_EQ(r.points.size(), 4u);
+  for (const auto& p : r.points) {
+    const std::string which = p.quantity.find("clamped-free") != std::string::npos ? "clamped_free" : "clamped_clamped";
+    const std::string key = which + "@" + std::to_string(std::lround(p.x));
+    ASSERT_TRUE(table.count(key)) << key;
+    EXPECT_NEAR(p.expected / table[key], 1.0, 1e-9) << key;
+  }
+}
+
+TEST(LabReference, OffAxisModulusMatchesTheSharedTable) {
+  VGD_REQUIRE_SHARED();
+  // The lab's tensile reference is sim::off_axis_modulus; the shipped
+  // shirting is mechanics.md §3's example fabric, so its lab run reproduces
+  // orthotropic_E_theta.csv.
+  const auto t = vgd::test::reference_csv("orthotropic_E_theta.csv");
+  ASSERT_FALSE(t.at("theta_deg").empty());
+  const LabResult r = run_on_shirting(lab::Test::tensile, ClothModel::strain_rosette, 0.005, -1.0);
+  ASSERT_EQ(r.points.size(), t.at("theta_deg").size());
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    EXPECT_DOUBLE_EQ(r.points[i].x, t.at("theta_deg")[i]);
+    EXPECT_NEAR(r.points[i].expected / t.at("E_theta_N_per_m")[i], 1.0, 1e-9) << r.points[i].x << " deg";
+  }
+}
+
+// ---- the lab tests ----
+//
+// Bending tests run twice: with the Poisson coupling off (ν_xy = 0), where the
+// strip's and the plate's rigidity coincide and the elastica's single EI is
+// unambiguous (the issue's 2 % target), and on the shirting as shipped
+// (ν_xy = 0.3), where the strip stiffens from B_strip towards B_plate as it
+// curves (docs/fabric-lab.md, "Strip or plate"): there the measured shortfall
+// is asserted as it stands.
+
+TEST(Lab, TipCantileverRosetteFollowsTheElasticaWithin2Percent) {
+  const LabResult r = run_on_shirting(lab::Test::tip_cantilever, ClothModel::strain_rosette, 0.005, 0.0, true);
+  ASSERT_EQ(r.points.size(), 20u);
+  EXPECT_LT(r.max_rel_error, 0.02);
+}
+
+TEST(Lab, TipCantileverRosetteWithPoissonIsWithin4PercentOfTheStripElastica) {
+  const LabResult r = run_on_shirting(lab::Test::tip_cantilever, ClothModel::strain_rosette, 0.005);
+  ASSERT_EQ(r.points.size(), 20u);
+  EXPECT_LT(r.max_rel_error, 0.04);
+}
+
+TEST(Lab, TensileRosetteFollowsTheOffAxisModulusWithin2Percent) {
+  const LabResult r = run_on_shirting(lab::Test::tensile, ClothModel::strain_rosette, 0.005, -1.0);
+  ASSERT_EQ(r.points.size(), 7u);
+  EXPECT_LT(r.max_rel_error, 0.02);
+}
+
+TEST(Lab, TensileRosetteReproducesPiecewiseLinearCurvesWithin1Percent) {
+  // A stiffening warp curve and a weft curve (their first slopes are E_warp
+  // and E_weft), read at their points and half-way between.
+  MaterialDef m = lab_material("shirting");
+  m.orthotropic->curve_warp = {{0.0, 0.01, 0.03, 0.06}, {0.0, 50.0, 200.0, 700.0}};
+  m.orthotropic->curve_weft = {{0.0, 0.02, 0.05}, {0.0, 60.0, 300.0}};
+  for (double angle : {0.0, 90.0}) {
+    LabSpec spec;
+    spec.test = lab::Test::tensile, spec.angle_deg = angle, spec.resolution = 0.01;
+    const LabResult r = run(spec, m);
+    report(r);
+    ASSERT_EQ(r.points.size(), angle == 0.0 ? 7u : 5u);
+    EXPECT_LT(r.max_rel_error, 0.01);
+  }
+}
+
+TEST(Lab, CantileverRosetteFollowsTheHeavyElasticaWithin2Percent) {
+  const LabResult r = run_on_shirting(lab::Test::cantilever, ClothModel::strain_rosette, 0.005, 0.0, true);
+  EXPECT_LT(r.max_rel_error, 0.02);
+}
+
+TEST(Lab, CantileverRosetteWithPoissonIsWithin3PercentOfTheStripHeavyElastica) {
+  const LabResult r = run_on_shirting(lab::Test::cantilever, ClothModel::strain_rosette, 0.005);
+  EXPECT_LT(r.max_rel_error, 0.03);
+}
+
+// The seed 000 mass-spring cloth with the shirting's spring constants: what
+// it measures is the result (docs/fabric-lab.md). Its sheet modulus is within
+// 10 % of E along the yarns (8.1 % warp, 7.6 % weft, the free edges' extra row
+// of springs included) and 34–69 % too stiff off-axis (the mesh path's
+// springs at 15°…75°); its strip has no linear bending stiffness (the bending
+// springs lie in the sheet), so no static equilibrium is found under a tip
+// load or its own weight, and the lab says so (NaN, infinite error).
+TEST(Lab, BucklingRosetteFollowsEulerWithin5Percent) {
+  // Clamped-free and clamped-clamped, L = 50 and 100 mm, as shipped (ν = 0.3)
+  // and with ν = 0. Measured at 5 mm: 1.25 % and 2.69 % (clamped-clamped, 50 mm).
+  for (bool poisson_free : {false, true}) {
+    const LabResult r = run_on_shirting(lab::Test::buckling, ClothModel::strain_rosette, 0.005, 0.0, poisson_free);
+    ASSERT_EQ(r.points.size(), 4u);
+    EXPECT_LT(r.max_rel_error, 0.05);
+  }
+}
+
+TEST(Lab, MassSpringShortfallIsReported) {
+  const LabResult tensile = run_on_shirting(lab::Test::tensile, ClothModel::mass_spring, 0.005, -1.0);
+  ASSERT_EQ(tensile.points.size(), 7u);
+  EXPECT_LT(std::abs(tensile.points.front().rel_error), 0.10);
+  EXPECT_LT(std::abs(tensile.points.back().rel_error), 0.10);
+  EXPECT_GT(tensile.max_rel_error, 0.02) << "mass-spring now meets the target: update docs/fabric-lab.md";
+  const LabResult tip = run_on_shirting(lab::Test::tip_cantilever, ClothModel::mass_spring, 0.005);
+  EXPECT_FALSE(std::isfinite(tip.max_rel_error)) << "mass-spring bending now converges: update docs/fabric-lab.md";
+}
+
+// ---- the shipped fabrics ----
+
+TEST(LabMaterials, EightFabricsLoadWithBothModelsAndPassTheTensileTarget) {
+  for (const char* name :
+       {"shirting", "denim", "silk-crepe", "wool-suiting", "linen", "polyester", "cotton-jersey", "chiffon"}) {
+    SCOPED_TRACE(name);
+    const MaterialDef m = lab_material(name);
+    EXPECT_GT(m.density, 0.0);
+    EXPECT_GT(m.thickness, 0.0);
+    ASSERT_TRUE(m.mass_spring.has_value());
+    EXPECT_EQ(orthotropic_problem(m), "");
+    LabSpec spec;
+    spec.test = lab::Test::tensile, spec.angle_deg = -1.0, spec.resolution = 0.01;
+    const LabResult r = run(spec, m);
+    EXPECT_LT(r.max_rel_error, 0.02);
+  }
+}
