@@ -47,26 +47,6 @@ LabResult run_on_shirting(lab::Test test, ClothModel model, double resolution, d
   return r;
 }
 
-// Like reference_csv, for tables with a text column (heavy_elastica.csv's
-// `grid`): text cells are read as NaN.
-std::map<std::string, std::vector<double>> numeric_columns(const std::string& name) {
-  std::map<std::string, std::vector<double>> cols;
-  std::ifstream in(vgd::test::shared_dir() / "reference" / name);
-  std::string line, cell;
-  std::getline(in, line);
-  std::vector<std::string> head;
-  for (std::stringstream ss(line); std::getline(ss, cell, ',');) head.push_back(cell);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    for (std::size_t k = 0; k < head.size() && std::getline(ss, cell, ','); ++k) {
-      char* end = nullptr;
-      const double v = std::strtod(cell.c_str(), &end);
-      cols[head[k]].push_back(end == cell.c_str() ? std::nan("") : v);
-    }
-  }
-  return cols;
-}
-
 }  // namespace
 
 // ---- the references ----
@@ -85,7 +65,7 @@ TEST(LabReference, TipLoadElasticaMatchesTheSharedTable) {
 
 TEST(LabReference, HeavyElasticaMatchesTheSharedTable) {
   VGD_REQUIRE_SHARED();
-  const auto t = numeric_columns("heavy_elastica.csv");
+  const auto t = vgd::test::reference_csv("heavy_elastica.csv");
   ASSERT_FALSE(t.at("g").empty());
   for (std::size_t i = 0; i < t.at("g").size(); ++i) {
     const double g = t.at("g")[i];

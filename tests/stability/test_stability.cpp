@@ -143,7 +143,7 @@ std::string name_of(Method m) {
 // midpoint's "limit" h·ω ≤ 0.5 still lets undamped modes grow by (hω)⁴/8 per
 // step, so tens of thousands of sub-steps of a stiff cloth blow up — caught
 // by the 340 m/s check, or, before it trips, visible only as energy growing
-// 40-fold). The run is reported as exploding in the table and in
+// 47-fold). The run is reported as exploding in the table and in
 // docs/accuracy-vs-time.md until sim/ fixes it; a stop must still say what to do.
 void expect_stable(const std::string& what, Method method, const Outcome& o, double speed_cap, bool energy_may_grow,
                    bool known_defect = false) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/errors.hpp"
 #include "sim/helpers.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
@@ -51,17 +52,7 @@ Trajectory sample(int frames = 12) {
   return t;
 }
 
-// Catches the vgd::Error `f` throws; fails the test when it throws none.
-template <class F>
-Diagnostic error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.diagnostic();
-  }
-  ADD_FAILURE() << "no vgd::Error thrown";
-  return {};
-}
+using vgd::test::error_of;
 
 bool has_warning(const TrjReader& r, const std::string& word) {
   for (const auto& d : r.warnings().items())

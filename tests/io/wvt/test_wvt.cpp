@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <random>
 
+#include "support/errors.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/io/trj/trj.hpp"
@@ -64,16 +65,7 @@ Trajectory waving_sheet(int frames) {
   return t;
 }
 
-template <class F>
-Diagnostic error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.diagnostic();
-  }
-  ADD_FAILURE() << "no vgd::Error thrown";
-  return {};
-}
+using vgd::test::error_of;
 
 // Decodes, checks everything but positions is exact, returns the max vertex error (m).
 double decoded_error(const Trajectory& t, const std::string& bytes) {
