@@ -269,7 +269,7 @@ std::string code_positions(const Trajectory& t, const Grid& g, const Tree& tree)
         c[signal(g, a, p) + k] = std::llround((static_cast<double>(t.frames[k][3 * p + a]) - g.origin[a]) / g.step);
   std::vector<std::int64_t> tmp;
   for (int a = 0; a < 3; ++a)
-    for (int p = 0; p < g.n; ++p) transform_signal(&c[signal(g, a, p)], g.frames, g.levels, g.transform, false, tmp);
+    for (int p = 0; p < g.n; ++p) transform_signal(c.data() + signal(g, a, p), g.frames, g.levels, g.transform, false, tmp);
   const std::vector<int> edges = band_edges(g.frames, g.levels);
   std::string out;
   out.reserve(c.size());
@@ -277,8 +277,8 @@ std::string code_positions(const Trajectory& t, const Grid& g, const Tree& tree)
     const bool predicted = band_predicted(g, static_cast<int>(b));
     for (int a = 0; a < 3; ++a)
       for (int p : tree.order) {
-        const std::int64_t* x = &c[signal(g, a, p)];
-        const std::int64_t* y = predicted && tree.parent[p] >= 0 ? &c[signal(g, a, tree.parent[p])] : nullptr;
+        const std::int64_t* x = c.data() + signal(g, a, p);
+        const std::int64_t* y = predicted && tree.parent[p] >= 0 ? c.data() + signal(g, a, tree.parent[p]) : nullptr;
         for (int k = edges[b]; k < edges[b + 1]; ++k) put_varint(out, y ? x[k] - y[k] : x[k]);
       }
   }
@@ -296,8 +296,8 @@ std::vector<std::vector<float>> decode_positions(std::string_view coded, const G
     const bool predicted = band_predicted(g, static_cast<int>(b));
     for (int a = 0; a < 3; ++a)
       for (int p : tree.order) {
-        std::int64_t* x = &c[signal(g, a, p)];
-        const std::int64_t* y = predicted && tree.parent[p] >= 0 ? &c[signal(g, a, tree.parent[p])] : nullptr;
+        std::int64_t* x = c.data() + signal(g, a, p);
+        const std::int64_t* y = predicted && tree.parent[p] >= 0 ? c.data() + signal(g, a, tree.parent[p]) : nullptr;
         for (int k = edges[b]; k < edges[b + 1]; ++k) {
           std::int64_t v = 0;
           if (!get_varint(p0, end, v)) fail(file, "positions", "the coefficient stream ends early (corrupt section)");
@@ -311,7 +311,7 @@ std::vector<std::vector<float>> decode_positions(std::string_view coded, const G
   if (p0 != end) fail(file, "positions", std::to_string(end - p0) + " bytes left after the coefficients (corrupt section)");
   std::vector<std::int64_t> tmp;
   for (int a = 0; a < 3; ++a)
-    for (int p = 0; p < g.n; ++p) transform_signal(&c[signal(g, a, p)], g.frames, g.levels, g.transform, true, tmp);
+    for (int p = 0; p < g.n; ++p) transform_signal(c.data() + signal(g, a, p), g.frames, g.levels, g.transform, true, tmp);
   std::vector<std::vector<float>> frames(f, std::vector<float>(3 * static_cast<std::size_t>(g.n)));
   for (std::size_t k = 0; k < f; ++k)
     for (int p = 0; p < g.n; ++p)
