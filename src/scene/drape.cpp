@@ -49,7 +49,7 @@ SceneDef drape_scene(const DrapeOptions& o) {
   // --material given, for every garment).
   std::vector<fs::path> garments{garment};
   for (const auto& p : o.over) {
-    if (fs::absolute(p) == garment || std::find(garments.begin(), garments.end(), fs::absolute(p)) != garments.end())
+    if (std::find(garments.begin(), garments.end(), fs::absolute(p)) != garments.end())
       throw Error(p.string(), "", "the same garment is given twice");
     if (!fs::is_regular_file(p, ec)) throw Error(p.string(), "", "no such garment document");
     garments.push_back(fs::absolute(p));

@@ -237,9 +237,10 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   // The point of the surface at arc u from the side's direction, height s along the axis.
   auto surface_point = [&](double u, double s_abs) -> Eigen::Vector2d {
     if (!follow) return curve.point_at_arc(arc0 + u);
-    const double t = std::clamp((s_abs - smin) / kBin, 0.0, static_cast<double>(bins.size() - 1));
-    const int k = std::min(static_cast<int>(t), static_cast<int>(bins.size()) - 2 < 0 ? 0 : static_cast<int>(bins.size()) - 2);
-    if (bins.size() == 1) return bins[0].point_at_arc(bin_arc0[0] + u);
+    const int last = static_cast<int>(bins.size()) - 1;
+    if (last == 0) return bins[0].point_at_arc(bin_arc0[0] + u);
+    const double t = std::clamp((s_abs - smin) / kBin, 0.0, static_cast<double>(last));
+    const int k = std::min(static_cast<int>(t), last - 1);  // interpolate between bins k and k + 1
     const double w = t - k;
     return (1 - w) * bins[k].point_at_arc(bin_arc0[k] + u) + w * bins[k + 1].point_at_arc(bin_arc0[k + 1] + u);
   };

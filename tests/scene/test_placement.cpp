@@ -111,7 +111,9 @@ TEST(PiecePlacement, FrontAndBackKeepClearanceAndLengths) {
       // kept (horizontal edges within 1 %), lengths along it stretch by
       // √(1 + (dr/ds)²) where the radius changes (under 15 %), never shrink.
       const Vec2 d = nodes[j] - nodes[i];
-      if (std::abs(d.y()) < 0.1 * std::abs(d.x())) EXPECT_NEAR(l3, l2, 0.01 * l2 + 1e-6) << "edge " << i;
+      if (std::abs(d.y()) < 0.1 * std::abs(d.x())) {
+        EXPECT_NEAR(l3, l2, 0.01 * l2 + 1e-6) << "edge " << i;
+      }
       EXPECT_GE(l3, 0.99 * l2) << "edge " << i;
       EXPECT_LE(l3, 1.15 * l2) << "edge " << i;
     }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vgd/sim/effect.hpp"
+#include "vgd/sim/effects/mass_spring.hpp"
 #include "vgd/sim/system.hpp"
 
 namespace vgd::sim::test {
@@ -94,6 +95,16 @@ inline Model two_grids(int nu, int nv, double gap, double mass_a = 0.01, double 
   for (std::size_t t = a.triangles.size(); t < m.triangles.size(); ++t) m.triangle_piece[t] = 1;
   m.pieces = {"A", "B"};
   return m;
+}
+
+// A soft mass-spring cloth (N/m per spring): cheap stable steps for tests
+// whose subject is not the cloth.
+inline MassSpringMaterial soft_cloth() {
+  MassSpringMaterial mat;
+  mat.warp = mat.weft = 50.0;
+  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
+  mat.damping = 0.01;
+  return mat;
 }
 
 }  // namespace vgd::sim::test

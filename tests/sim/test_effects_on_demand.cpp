@@ -18,14 +18,6 @@ using namespace vgd::sim::test;
 
 namespace {
 
-MassSpringMaterial soft() {
-  MassSpringMaterial mat;
-  mat.warp = mat.weft = 50.0;
-  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
-  mat.damping = 0.01;
-  return mat;
-}
-
 std::vector<std::string> names(const System& sys) {
   std::vector<std::string> out;
   for (const auto& p : sys.profile()) out.push_back(p.name);
@@ -58,7 +50,7 @@ class Countdown final : public Effect {
 TEST(EffectsOnDemand, OnlyTheGivenEffectsAreListedAndEvaluated) {
   const Model m = make_grid(6, 5, 0.1, 0.1, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 0.01);
   // Without wind: the profile names exactly mass-spring and gravity.
-  System still(m, effects(make_mass_spring(m, {soft()}), make_gravity({})));
+  System still(m, effects(make_mass_spring(m, {soft_cloth()}), make_gravity({})));
   auto integ = make_integrator({});
   State s = initial_state(m);
   ASSERT_TRUE(run(still, *integ, s, {30.0, 0.2}, {}).ok);
@@ -70,7 +62,7 @@ TEST(EffectsOnDemand, OnlyTheGivenEffectsAreListedAndEvaluated) {
   // With wind: a third entry, evaluated as often as the others.
   WindDef wind;
   wind.velocity = Vec3(0, 0, 5);
-  System windy(m, effects(make_mass_spring(m, {soft()}), make_gravity({}), make_wind(wind)));
+  System windy(m, effects(make_mass_spring(m, {soft_cloth()}), make_gravity({}), make_wind(wind)));
   s = initial_state(m);
   ASSERT_TRUE(run(windy, *integ, s, {30.0, 0.2}, {}).ok);
   EXPECT_EQ(names(windy), (std::vector<std::string>{"mass-spring", "gravity", "wind"}));
@@ -103,7 +95,7 @@ TEST(EffectsOnDemand, ASeamStopsCostingTimeAfterItsLastMerge) {
   SeamPairs side{"side", {}};
   for (int j = 0; j < nv; ++j) side.pairs.push_back({j * nu + nu - 1, nu * nv + j * nu});
   def.seams = {side};
-  System sys(m, effects(make_mass_spring(m, {soft()}), make_seam(m, def)));
+  System sys(m, effects(make_mass_spring(m, {soft_cloth()}), make_seam(m, def)));
   IntegratorSettings st;
   st.step = 0.002;
   auto integ = make_integrator(st);

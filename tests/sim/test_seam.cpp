@@ -30,14 +30,6 @@ SeamPairs side_seam(int nu, int nv) {
   return s;
 }
 
-MassSpringMaterial soft() {
-  MassSpringMaterial mat;
-  mat.warp = mat.weft = 50.0;
-  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
-  mat.damping = 0.01;
-  return mat;
-}
-
 Vec3 momentum(const VecX& mass, const VecX& v) {
   Vec3 p = Vec3::Zero();
   for (int i = 0; i < mass.size(); ++i) p += mass[i] * at(v, i);
@@ -140,7 +132,7 @@ TEST(SeamMerge, MergeKeepsMassFirstMomentAndMomentumExactly) {
   const Model m = test::two_grids(nu, nv, 0.001, 0.01, 0.03);  // the gap is below merge_distance
   SeamDef def;
   def.seams = {side_seam(nu, nv)};
-  System sys(m, effects(make_mass_spring(m, {soft()}), make_seam(m, def)));
+  System sys(m, effects(make_mass_spring(m, {soft_cloth()}), make_seam(m, def)));
   State s = initial_state(m);
   std::srand(7);
   s.v = VecX::Random(m.num_dofs());
@@ -168,7 +160,7 @@ TEST(SeamMerge, MergeKeepsMassFirstMomentAndMomentumExactly) {
   const MassSpringStats* st = mass_spring_stats(*sys.effects()[0]);
   ASSERT_NE(st, nullptr);
   const int springs_one = mass_spring_topology(make_grid(nu, nv, 0.1, 0.1, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 1),
-                                               {soft()}).size();
+                                               {soft_cloth()}).size();
   EXPECT_EQ(st->springs, 2 * springs_one - (nv - 1) - (nv - 2));
 }
 
@@ -177,7 +169,7 @@ TEST(SeamMerge, MergedSystemGivesTheAccelerationsOfAModelBuiltMerged) {
   // weighs both pieces' particles. Bending springs (none in a 2 × 2 piece)
   // and spring damping are off so that the one-piece lattice of the hand-built
   // model has exactly the merged system's springs.
-  MassSpringMaterial mat = soft();
+  MassSpringMaterial mat = soft_cloth();
   mat.bend_warp = mat.bend_weft = 0.0;
   mat.damping = 0.0;
   const Model m = test::two_grids(2, 2, 0.001, 0.01, 0.02);
@@ -295,7 +287,7 @@ Sewn sew(const IntegratorSettings& st, int nu = 3, int nv = 4, double gap = 0.05
   def.stiffness = 1.0;
   def.damping = 0.25;  // about critical for the two pieces' relative motion
   def.seams = {side_seam(nu, nv)};
-  System sys(m, effects(make_mass_spring(m, {soft()}), make_seam(m, def)));
+  System sys(m, effects(make_mass_spring(m, {soft_cloth()}), make_seam(m, def)));
   auto integ = make_integrator(st);
   State s = initial_state(m);
   Sewn out;
@@ -356,7 +348,7 @@ TEST(SeamRun, ProgressCountsOpenPairsAndTheirGapsWhenMergingIsOff) {
   def.damping = 0.25;
   def.stiffness = 1.0;
   def.seams = {side_seam(nu, nv)};
-  System sys(m, effects(make_mass_spring(m, {soft()}), make_seam(m, def)));
+  System sys(m, effects(make_mass_spring(m, {soft_cloth()}), make_seam(m, def)));
   const SeamReport* rp = seam_report(*sys.effects()[1]);
   EXPECT_EQ(rp->total.closed, 0);
   EXPECT_NEAR(rp->total.max_gap, 0.05, 1e-12);
