@@ -18,7 +18,7 @@ struct Options {
   std::string size, table, output, sex;
   std::string height, bust, under_bust, waist, hip, shoulder, neck, arm, inseam;
   int triangles = 10000;
-  double arm_angle = 30.0;
+  double arm_angle = 45.0;
   bool list = false, json = false;
 };
 

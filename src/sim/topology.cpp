@@ -14,6 +14,18 @@ std::vector<int> identity_representative(int particles) {
   return r;
 }
 
+void average_merged_copies(const std::vector<int>& representative, const VecX& mass, VecX& x) {
+  const int n = static_cast<int>(representative.size());
+  if (x.size() != 3 * static_cast<Eigen::Index>(n) || mass.size() != n) return;
+  std::vector<Vec3> sum(n, Vec3::Zero());
+  std::vector<double> total(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    sum[representative[i]] += mass[i] * at(x, i);
+    total[representative[i]] += mass[i];
+  }
+  for (int i = 0; i < n; ++i) at(x, i) = sum[representative[i]] / total[representative[i]];
+}
+
 namespace {
 std::vector<std::array<int, 2>> sorted_edges(const std::vector<std::array<int, 3>>& triangles) {
   std::vector<std::array<int, 2>> e;

@@ -110,7 +110,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
   // The same name rules as the seam suggestions (seams.cpp): SLEEVE or ...SL, ...SL1, ...SL FR.
   const bool sleeve = has(n, "SLEEVE") || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
   if (sleeve) {
-    a.height = 0.0;  // the cap top at the shoulder end of the arm
+    a.height = opts.sleeve_drop;  // the cap top this far down the arm from its shoulder end
     a.clearance = opts.sleeve_clearance;
     Arrangement l = a, r = a;
     l.segment = "left-arm";

@@ -28,6 +28,11 @@ struct MergedMesh {
 // The identity map of a model (no merges).
 std::vector<int> identity_representative(int particles);
 
+// Sets the copies of each merged particle (equal `representative` values) in
+// x (3 per particle) to their mass-weighted mean: where System puts the merged
+// particle. For effects that remember positions between steps.
+void average_merged_copies(const std::vector<int>& representative, const VecX& mass, VecX& x);
+
 // Re-points the model's triangles through `representative` (size
 // Model::num_particles(), values 0 .. max), drops triangles whose corners are
 // no longer three distinct particles, and lists the edges once.

@@ -60,11 +60,16 @@ struct ArrangementOptions {
   // Sleeves fit an arm closely: at 3 cm their underarm edges started in the
   // gap between arm and torso and could not meet.
   double sleeve_clearance = 0.01;   // m
+  // Sleeves start this far down the arm (cap top from the arm's shoulder end),
+  // clear of the bodice's shoulders: at 0 their caps started through the
+  // bodice (85 crossing triangle pairs before the first step); from 6 cm on
+  // nothing crosses, and the cap is pulled up into the armhole.
+  double sleeve_drop = 0.06;        // m
 };
 
 // From the piece's name and category: FRONT -> torso front, BACK -> torso back (top
 // edge bodice_lift above the neck point), SLEEVE -> the arms (LEFT/RIGHT in the name picks one; a
-// sleeve cut twice gives the right arm and the left arm flipped; cap top at s = 0),
+// sleeve cut twice gives the right arm and the left arm flipped; cap top sleeve_drop down the arm),
 // COLLAR/NECK -> neck front; in a lower-body garment FRONT/BACK -> hips front/back with
 // their top at the waist and WAISTBAND -> hips front around the waist. Empty when no
 // rule fits or the piece is not cut (quantity 0). The reference point and angle come from the piece's box and grain line.

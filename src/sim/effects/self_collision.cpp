@@ -14,6 +14,7 @@
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/sim/effects/basic.hpp"
+#include "vgd/sim/topology.hpp"
 
 namespace vgd::sim {
 namespace {
@@ -113,7 +114,8 @@ class SpatialHash {
 
  private:
   std::size_t hash(const std::array<int, 3>& c) const {
-    const std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 73856093u ^ static_cast<std::uint64_t>(c[1]) * 19349663u ^
+    const std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 73856093u ^
+                            static_cast<std::uint64_t>(c[1]) * 19349663u ^
                             static_cast<std::uint64_t>(c[2]) * 83492791u;
     return static_cast<std::size_t>(h) & mask_;
   }
@@ -140,7 +142,8 @@ struct Pair {
 
 // The particle's height over the triangle's plane and the barycentric
 // coordinates of its projection; false for a degenerate triangle.
-inline bool project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& nrm, double& dn, Vec3& w) {
+inline bool project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& nrm, double& dn,
+                    Vec3& w) {
   const Vec3 e1 = b - a, e2 = c - a;
   const Vec3 cr = e1.cross(e2);
   const double len2 = cr.squaredNorm();
@@ -158,7 +161,8 @@ inline bool inside(const Vec3& w) { return w.minCoeff() >= -kInsideTolerance; }
 
 // Closest points of segments p0p1 and q0q1 (Ericson §5.1.9): parameters s, t
 // in [0, 1]; false when both are degenerate or parallel.
-inline bool closest_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, double& s, double& t) {
+inline bool closest_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, double& s,
+                             double& t) {
   const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   const double c = d1.dot(r), b = d1.dot(d2);
@@ -185,12 +189,15 @@ struct EdgePair {
 
 class SelfCollision final : public Effect {
  public:
-  SelfCollision(const Model& m, const SelfCollisionDef& d) : def_(d), tris_(m.triangles), n_(m.num_particles()) {
+  SelfCollision(const Model& m, const SelfCollisionDef& d)
+      : def_(d), tris_(m.triangles), n_(m.num_particles()) {
     if (!(d.thickness > 0.0)) throw SimulationError("self collision: thickness must be > 0");
     inv_mass_.resize(n_);
+    mass_ = m.mass;
     for (int i = 0; i < n_; ++i) inv_mass_[i] = 1.0 / m.mass[i];
     for (int p : d.fixed) {
-      if (p < 0 || p >= n_) throw SimulationError("self collision: fixed particle " + std::to_string(p) + " does not exist");
+      if (p < 0 || p >= n_)
+        throw SimulationError("self collision: fixed particle " + std::to_string(p) + " does not exist");
       inv_mass_[p] = 0.0;
     }
     double sum = 0.0;
@@ -226,17 +233,22 @@ class SelfCollision final : public Effect {
 
   // Merged copies are one particle: never a collision between them.
   void particles_merged(const Model&, const std::vector<int>& representative) override {
-    // Merged copies jumped to their common position: the positions before the
-    // next step are the ones after the merge, not the last after-step's.
-    x_prev_.resize(0);
+    // Merged copies jumped to their common position (the mass-weighted mean
+    // of the positions the last after-step left): the next step starts there.
+    // Every other particle keeps its start, so the next step's motion is
+    // still checked.
     merged_once_ = true;
     std::vector<int> first(n_, -1);
     for (int i = 0; i < n_; ++i) {
       int& f = first[representative[i]];
-      if (f < 0) f = i;
-      else join(f, i);
+      if (f < 0)
+        f = i;
+      else
+        join(f, i);
     }
     flatten();
+    rep_ = representative;
+    if (!rep_.empty()) average_merged_copies(rep_, mass_, x_prev_);
   }
 
   const char* name() const override { return "self-collision"; }
@@ -253,15 +265,38 @@ class SelfCollision final : public Effect {
       const auto& tr = tris_[pr.t];
       Vec3 nrm, w;
       double dn;
-      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) || std::abs(dn) >= th ||
-          !inside(w))
+      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) ||
+          std::abs(dn) >= th || !inside(w))
         continue;
       const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
       at(f, pr.p) += fp;
       for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
     }
   }
-  bool add_jacobian(const Eval&, Triplets&, Triplets&) override { return false; }  // contact springs enter explicitly
+  // f = k (th − |dn|) sgn(dn) n on the particle and −w_q f on the triangle's
+  // corners; with n held fixed, ∂f_i/∂x_j = −k c_i c_j n nᵀ, c = (1, −w₀, −w₁,
+  // −w₂): negative semi-definite. Explicitly, a 1 N/m spring on a 40 mg
+  // particle is unstable above a 13 ms step (k h²/m > 4 for two springs) —
+  // pressed layers (a sleeve cap under a bodice) blew up at 10 ms.
+  bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets&) override {
+    if (def_.stiffness <= 0.0) return true;
+    if (!searched_) find_near(e.x);
+    const double k = def_.stiffness;
+    for (const Pair& pr : near_) {
+      const auto& tr = tris_[pr.t];
+      Vec3 nrm, w;
+      double dn;
+      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) ||
+          std::abs(dn) >= def_.thickness || !inside(w))
+        continue;
+      const Mat3 nn = -k * nrm * nrm.transpose();
+      const int idx[4] = {pr.p, tr[0], tr[1], tr[2]};
+      const double c[4] = {1.0, -w[0], -w[1], -w[2]};
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) add_block(dfdx, idx[i], idx[j], (c[i] * c[j]) * nn);
+    }
+    return true;
+  }
   void add_stiffness_bound(const Model&, VecX& k, VecX&) const override { k.array() += 2.0 * def_.stiffness; }
 
   void after_step(const Model& m, State& s) override {
@@ -275,115 +310,125 @@ class SelfCollision final : public Effect {
     // looks in its own swept box, and every bound below is per pair. (One
     // global motion grew every query by the fastest particle's: a cloth
     // falling at 2.4 m/s made each triangle meet dozens of particles.)
-    disp_.resize(n_);
-    for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
-    hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
-    pairs_.clear();
-    edge_pairs_.clear();
-    std::vector<Pair> near;
-    int crossings = 0;
-    const int nt = static_cast<int>(tris_.size());
+    // Corrections move particles too, and a push can carry a neighbour
+    // through other cloth: the detection is repeated on the whole step's
+    // motion (start to corrected end) until it finds no crossing. A crossing
+    // left undetected becomes the "side" the next step defends.
+    for (int round = 0; round < std::max(1, def_.rounds); ++round) {
+      disp_.resize(n_);
+      for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
+      hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
+      pairs_.clear();
+      edge_pairs_.clear();
+      std::vector<Pair> near;
+      int crossings = 0;
+      const int nt = static_cast<int>(tris_.size());
 #pragma omp parallel if (nt >= kParallelMinTriangles) reduction(+ : crossings)
-    {
-      std::vector<Pair> my_pairs, my_near;
-      std::vector<EdgePair> my_edges;
-      std::vector<int> stamp(n_, -1);  // the triangle that last met each particle (dedupe)
+      {
+        std::vector<Pair> my_pairs, my_near;
+        std::vector<EdgePair> my_edges;
+        std::vector<int> stamp(n_, -1);  // the triangle that last met each particle (dedupe)
 #pragma omp for schedule(dynamic, 256) nowait
-      for (int t = 0; t < nt; ++t) {
-        const auto& tr = tris_[t];
-        const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
-        Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
-        for (int q : tr) {
-          lo = lo.cwiseMin(at(x_prev_, q));
-          hi = hi.cwiseMax(at(x_prev_, q));
-        }
-        const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
-        const Vec3 tn = (b - a).cross(c - a);
-        const double tn_len = tn.norm();
-        const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
-        hash_.for_each_in_box(lo, hi, [&](int p) {
-          if (stamp[p] == t) return;
-          stamp[p] = t;
-          // The particle's swept box, grown by th, must meet the triangle's.
-          const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
-          const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
-          if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
-          const double lim = th + disp_[p] + tri_motion;
-          // Point–triangle.
-          if (!skip(p, tr)) {
-            Vec3 nrm, w;
-            double dn;
-            if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
-              my_near.push_back({p, t, 0.0});
-              // The side before the step.
-              Vec3 nrm0, w0;
-              double dn0;
-              double side = dn >= 0.0 ? 1.0 : -1.0;
-              if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0, dn0, w0) &&
-                  std::abs(dn0) > 1e-12)
-                side = dn0 > 0.0 ? 1.0 : -1.0;
-              if (side * dn < th) {
-                if (side * dn < 0.0) ++crossings;
-                my_pairs.push_back({p, t, side});
+        for (int t = 0; t < nt; ++t) {
+          const auto& tr = tris_[t];
+          const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
+          Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+          for (int q : tr) {
+            lo = lo.cwiseMin(at(x_prev_, q));
+            hi = hi.cwiseMax(at(x_prev_, q));
+          }
+          const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
+          const Vec3 tn = (b - a).cross(c - a);
+          const double tn_len = tn.norm();
+          const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
+          hash_.for_each_in_box(lo, hi, [&](int p) {
+            if (stamp[p] == t) return;
+            stamp[p] = t;
+            // The particle's swept box, grown by th, must meet the triangle's.
+            const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
+            const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
+            if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
+            const double lim = th + disp_[p] + tri_motion;
+            // Point–triangle.
+            if (!skip(p, tr)) {
+              Vec3 nrm, w;
+              double dn;
+              if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
+                my_near.push_back({p, t, 0.0});
+                // The side before the step.
+                Vec3 nrm0, w0;
+                double dn0;
+                double side = dn >= 0.0 ? 1.0 : -1.0;
+                if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0,
+                            dn0, w0) &&
+                    std::abs(dn0) > 1e-12)
+                  side = dn0 > 0.0 ? 1.0 : -1.0;
+                if (side * dn < th) {
+                  if (side * dn < 0.0) ++crossings;
+                  my_pairs.push_back({p, t, side});
+                }
               }
             }
-          }
-          // Edge–edge: the edges at p against the triangle's edges. An edge
-          // with both ends on one side of the triangle's plane, farther than
-          // the pair's bound, cannot come that close to the triangle's edges
-          // (they lie in the plane), nor can one whose box, grown by the
-          // bound, misses the other edge's: both cheap tests go first.
-          if (tn_len <= 0.0) return;
-          const double hp = (at(s.x, p) - a).dot(unit);
-          for (int q : adj_[p]) {
-            if (q < p && stamp[q] == t) continue;  // the edge was met from q already
-            const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
-            const double hq = (at(s.x, q) - a).dot(unit);
-            if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
-            const Vec3 elo = at(s.x, p).cwiseMin(at(s.x, q)) - Vec3::Constant(elim);
-            const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
-            for (int k = 0; k < 3; ++k) {
-              const int b0 = tr[k], b1 = tr[(k + 1) % 3];
-              const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
-              if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
-              if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
-            if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
-              edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
+            // Edge–edge: the edges at p against the triangle's edges. An edge
+            // with both ends on one side of the triangle's plane, farther than
+            // the pair's bound, cannot come that close to the triangle's edges
+            // (they lie in the plane), nor can one whose box, grown by the
+            // bound, misses the other edge's: both cheap tests go first.
+            if (tn_len <= 0.0) return;
+            const double hp = (at(s.x, p) - a).dot(unit);
+            for (int q : adj_[p]) {
+              if (q < p && stamp[q] == t) continue;  // the edge was met from q already
+              const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
+              const double hq = (at(s.x, q) - a).dot(unit);
+              if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
+              const Vec3 elo = at(s.x, p).cwiseMin(at(s.x, q)) - Vec3::Constant(elim);
+              const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
+              for (int k = 0; k < 3; ++k) {
+                const int b0 = tr[k], b1 = tr[(k + 1) % 3];
+                const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
+                if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
+                if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
+                if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
+                edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
+              }
             }
-          }
-        });
-      }
+          });
+        }
 #pragma omp critical(vgd_self_collision_merge)
-      {
-        pairs_.insert(pairs_.end(), my_pairs.begin(), my_pairs.end());
-        near.insert(near.end(), my_near.begin(), my_near.end());
-        edge_pairs_.insert(edge_pairs_.end(), my_edges.begin(), my_edges.end());
+        {
+          pairs_.insert(pairs_.end(), my_pairs.begin(), my_pairs.end());
+          near.insert(near.end(), my_near.begin(), my_near.end());
+          edge_pairs_.insert(edge_pairs_.end(), my_edges.begin(), my_edges.end());
+        }
       }
-    }
-    // Threads finish in any order: sort, so the Gauss–Seidel passes below see
-    // the pairs in one order whatever the thread count.
-    auto by_triangle = [](const Pair& x, const Pair& y) { return std::tie(x.t, x.p) < std::tie(y.t, y.p); };
-    std::sort(pairs_.begin(), pairs_.end(), by_triangle);
-    std::sort(near.begin(), near.end(), by_triangle);
-    near_ = std::move(near);
-    std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
-      return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
-    });
-    edge_pairs_.erase(std::unique(edge_pairs_.begin(), edge_pairs_.end(),
-                                  [](const EdgePair& x, const EdgePair& y) {
-                                    return x.a0 == y.a0 && x.a1 == y.a1 && x.b0 == y.b0 && x.b1 == y.b1;
-                                  }),
-                      edge_pairs_.end());
-    stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
-    stats_.crossings = crossings;
-    stats_.pairs_total += static_cast<long>(pairs_.size() + edge_pairs_.size());
+      // Threads finish in any order: sort, so the Gauss–Seidel passes below see
+      // the pairs in one order whatever the thread count.
+      auto by_triangle = [](const Pair& x, const Pair& y) { return std::tie(x.t, x.p) < std::tie(y.t, y.p); };
+      std::sort(pairs_.begin(), pairs_.end(), by_triangle);
+      std::sort(near.begin(), near.end(), by_triangle);
+      near_ = std::move(near);
+      std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
+        return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
+      });
+      edge_pairs_.erase(std::unique(edge_pairs_.begin(), edge_pairs_.end(),
+                                    [](const EdgePair& x, const EdgePair& y) {
+                                      return x.a0 == y.a0 && x.a1 == y.a1 && x.b0 == y.b0 && x.b1 == y.b1;
+                                    }),
+                        edge_pairs_.end());
+      stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
+      if (round == 0) {
+        stats_.crossings = crossings;
+        stats_.pairs_total += static_cast<long>(pairs_.size() + edge_pairs_.size());
+      }
+      if (round > 0 && crossings == 0) break;
 
-    // Gauss–Seidel: each pair in turn moves its four particles.
-    for (int pass = 0; pass < def_.passes && !(pairs_.empty() && edge_pairs_.empty()); ++pass) {
-      bool moved = false;
-      for (const Pair& pr : pairs_) moved = resolve(s, pr) || moved;
-      for (const EdgePair& ep : edge_pairs_) moved = resolve(s, ep) || moved;
-      if (!moved) break;
+      // Gauss–Seidel: each pair in turn moves its four particles.
+      for (int pass = 0; pass < def_.passes && !(pairs_.empty() && edge_pairs_.empty()); ++pass) {
+        bool moved = false;
+        for (const Pair& pr : pairs_) moved = resolve(s, pr) || moved;
+        for (const EdgePair& ep : edge_pairs_) moved = resolve(s, ep) || moved;
+        if (!moved) break;
+      }
     }
     double dmin = th;
     for (const Pair& pr : pairs_) {
@@ -395,6 +440,9 @@ class SelfCollision final : public Effect {
     }
     stats_.min_distance = dmin;
     x_prev_ = s.x;
+    // The system moves a merged particle by the mass-weighted mean of its
+    // copies' corrections: where it will be.
+    if (!rep_.empty()) average_merged_copies(rep_, mass_, x_prev_);
   }
 
   const SelfCollisionStats& stats() const { return stats_; }
@@ -409,7 +457,8 @@ class SelfCollision final : public Effect {
     for (int t = 0; t < static_cast<int>(tris_.size()); ++t) {
       const auto& tr = tris_[t];
       const Vec3 a = at(x, tr[0]), b = at(x, tr[1]), c = at(x, tr[2]);
-      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(th), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(th);
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(th),
+                 hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(th);
       hash_.for_each_in_box(lo, hi, [&](int p) {
         Vec3 nrm, w;
         double dn;
@@ -443,7 +492,6 @@ class SelfCollision final : public Effect {
     return false;
   }
 
-
   // Records edges (a0, a1) and (b0, b1) if closer than the thickness now, or
   // crossed during the step (their closest-point direction reversed).
   void edge_pair(const State& s, int a0, int a1, int b0, int b1, double th, double motion,
@@ -455,11 +503,15 @@ class SelfCollision final : public Effect {
     const double dist = r.norm();
     if (dist >= th + motion) return;
     // Direction before the step, at the same parameters.
-    const Vec3 r0 = (1 - u) * at(x_prev_, a0) + u * at(x_prev_, a1) - (1 - w) * at(x_prev_, b0) - w * at(x_prev_, b1);
+    const Vec3 r0 =
+        (1 - u) * at(x_prev_, a0) + u * at(x_prev_, a1) - (1 - w) * at(x_prev_, b0) - w * at(x_prev_, b1);
     Vec3 dir;
-    if (r0.norm() > 1e-12) dir = r0.normalized();
-    else if (dist > 1e-12) dir = r / dist;
-    else return;
+    if (r0.norm() > 1e-12)
+      dir = r0.normalized();
+    else if (dist > 1e-12)
+      dir = r / dist;
+    else
+      return;
     if (r.dot(dir) >= th) return;
     out.push_back({std::min(a0, a1), std::max(a0, a1), std::min(b0, b1), std::max(b0, b1), dir});
   }
@@ -495,6 +547,11 @@ class SelfCollision final : public Effect {
     Vec3 nrm, w;
     double dn;
     if (!project(at(s.x, pr.p), at(s.x, tr[0]), at(s.x, tr[1]), at(s.x, tr[2]), nrm, dn, w)) return false;
+    // A particle that went through the triangle may have ended beside it:
+    // the push acts at the nearest point of the triangle, never with weights
+    // outside [0, 1] (they would fling the far corners).
+    w = w.cwiseMax(0.0);
+    w /= w.sum();
     const Vec3 dir = pr.side * nrm;  // from the triangle towards where the particle belongs
     const double wsum = inv_mass_[pr.p] + w[0] * w[0] * inv_mass_[tr[0]] + w[1] * w[1] * inv_mass_[tr[1]] +
                         w[2] * w[2] * inv_mass_[tr[2]];
@@ -523,6 +580,8 @@ class SelfCollision final : public Effect {
   int n_;
   double cell_;
   std::vector<double> inv_mass_;
+  VecX mass_;             // kg
+  std::vector<int> rep_;  // per particle: its merged particle (empty before the first merge)
   std::vector<std::vector<int>> ring_;
   SpatialHash hash_;
   std::vector<Pair> pairs_;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "vgd/sim/effects/basic.hpp"
+#include "vgd/sim/topology.hpp"
 
 namespace vgd::sim {
 namespace {
@@ -18,14 +19,19 @@ class SpeedLimit final : public Effect {
   void add_forces(const Eval&, VecX&) override {}
   bool add_jacobian(const Eval&, Triplets&, Triplets&) override { return true; }
 
-  void particles_merged(const Model&, const std::vector<int>&) override { x_prev_.resize(0); }
+  // Merged copies jumped to their common position: the next step starts
+  // there (every other particle keeps its start, so the limit still holds).
+  void particles_merged(const Model& m, const std::vector<int>& representative) override {
+    average_merged_copies(representative, m.mass, x_prev_);
+  }
 
   void after_step(const Model& m, State& s) override {
-    // The first step, and the first after a merge (whose copies jumped to
-    // their common position), have no previous position to limit against.
-    const bool known = x_prev_.size() == s.x.size();
-    if (!known) x_prev_ = s.x;
-    const double h = known && std::isfinite(last_t_) && s.t > last_t_ ? s.t - last_t_ : 0.0;
+    // The first step starts from the model's initial positions at t = 0.
+    if (x_prev_.size() != s.x.size()) {
+      x_prev_ = m.x0.size() == s.x.size() ? m.x0 : s.x;
+      last_t_ = m.x0.size() == s.x.size() ? 0.0 : s.t;
+    }
+    const double h = s.t > last_t_ ? s.t - last_t_ : 0.0;
     last_t_ = s.t;
     const int n = static_cast<int>(s.x.size() / 3);
     for (int i = 0; i < n; ++i) {

@@ -36,6 +36,12 @@ struct SelfCollisionDef {
   double stiffness = 1.0;
   bool skip_one_ring = false;  // also skip particles sharing an edge with the triangle
   int passes = 4;              // Gauss–Seidel passes of the after-step correction
+  // Detections per step: after the correction, the whole step's motion (start
+  // to corrected end) is checked again, until a round finds no crossing. With
+  // one, a push that carried a neighbour through other cloth went unseen, the
+  // next step defended the wrong side, and a T-shirt's seams pulling against
+  // that made the contacts grow from 20 to 10⁶ pairs in 0.6 s.
+  int rounds = 4;
   std::vector<int> fixed;      // particles never moved (the scene's pins)
   // Particles that are, or are about to become, one (seam pairs): a particle
   // never collides with a triangle or an edge holding its partner, and a
