@@ -102,8 +102,9 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings);
 // stiffness bounds (before the safety factor); +inf for implicit methods.
 // Symplectic Euler: h < 2/ω on undamped oscillations and h < 2/c for the
 // damping rate c; RK4: h·ω < 2√2 and h·c < 2.78; midpoint: its stability region
-// touches the imaginary axis only at 0, so undamped oscillations grow by
-// (hω)⁴/8 per step: h·ω ≤ 0.5 keeps that below 0.8 % per step.
+// touches the imaginary axis only at 0, so oscillations grow by (hω)⁴/8 per
+// step: h·ω ≤ 0.5 and h³ω⁴/8 − c/2 ≤ 0.01/s (at most 1 % amplitude growth per
+// simulated second, net of damping).
 double stability_limit(Method m, const Stiffness& k);
 
 }  // namespace vgd::sim
