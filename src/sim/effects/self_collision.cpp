@@ -265,9 +265,7 @@ class SelfCollision final : public Effect {
       const auto& tr = tris_[pr.t];
       Vec3 nrm, w;
       double dn;
-      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) ||
-          std::abs(dn) >= th || !inside(w))
-        continue;
+      if (!pressed(e.x, pr, nrm, dn, w)) continue;
       const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
       at(f, pr.p) += fp;
       for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
@@ -286,9 +284,7 @@ class SelfCollision final : public Effect {
       const auto& tr = tris_[pr.t];
       Vec3 nrm, w;
       double dn;
-      if (!project(at(e.x, pr.p), at(e.x, tr[0]), at(e.x, tr[1]), at(e.x, tr[2]), nrm, dn, w) ||
-          std::abs(dn) >= def_.thickness || !inside(w))
-        continue;
+      if (!pressed(e.x, pr, nrm, dn, w)) continue;
       const Mat3 nn = -k * nrm * nrm.transpose();
       const int idx[4] = {pr.p, tr[0], tr[1], tr[2]};
       const double c[4] = {1.0, -w[0], -w[1], -w[2]};
@@ -304,131 +300,19 @@ class SelfCollision final : public Effect {
     if (tris_.empty()) return;
     if (x_prev_.size() != s.x.size()) x_prev_ = m.x0.size() == s.x.size() && !merged_once_ ? m.x0 : s.x;
     const double th = def_.thickness;
-    // How far each particle moved this step. A pair can only have crossed, or
-    // come within th, if it is within th plus their two motions now: the
-    // particles are hashed by their swept boxes grown by th, each triangle
-    // looks in its own swept box, and every bound below is per pair. (One
-    // global motion grew every query by the fastest particle's: a cloth
-    // falling at 2.4 m/s made each triangle meet dozens of particles.)
     // Corrections move particles too, and a push can carry a neighbour
     // through other cloth: the detection is repeated on the whole step's
     // motion (start to corrected end) until it finds no crossing. A crossing
     // left undetected becomes the "side" the next step defends.
     for (int round = 0; round < std::max(1, def_.rounds); ++round) {
-      disp_.resize(n_);
-      for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
-      hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
-      pairs_.clear();
-      edge_pairs_.clear();
-      std::vector<Pair> near;
-      int crossings = 0;
-      const int nt = static_cast<int>(tris_.size());
-#pragma omp parallel if (nt >= kParallelMinTriangles) reduction(+ : crossings)
-      {
-        std::vector<Pair> my_pairs, my_near;
-        std::vector<EdgePair> my_edges;
-        std::vector<int> stamp(n_, -1);  // the triangle that last met each particle (dedupe)
-#pragma omp for schedule(dynamic, 256) nowait
-        for (int t = 0; t < nt; ++t) {
-          const auto& tr = tris_[t];
-          const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
-          Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
-          for (int q : tr) {
-            lo = lo.cwiseMin(at(x_prev_, q));
-            hi = hi.cwiseMax(at(x_prev_, q));
-          }
-          const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
-          const Vec3 tn = (b - a).cross(c - a);
-          const double tn_len = tn.norm();
-          const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
-          hash_.for_each_in_box(lo, hi, [&](int p) {
-            if (stamp[p] == t) return;
-            stamp[p] = t;
-            // The particle's swept box, grown by th, must meet the triangle's.
-            const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
-            const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
-            if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
-            const double lim = th + disp_[p] + tri_motion;
-            // Point–triangle.
-            if (!skip(p, tr)) {
-              Vec3 nrm, w;
-              double dn;
-              if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
-                my_near.push_back({p, t, 0.0});
-                // The side before the step.
-                Vec3 nrm0, w0;
-                double dn0;
-                double side = dn >= 0.0 ? 1.0 : -1.0;
-                if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0,
-                            dn0, w0) &&
-                    std::abs(dn0) > 1e-12)
-                  side = dn0 > 0.0 ? 1.0 : -1.0;
-                if (side * dn < th) {
-                  if (side * dn < 0.0) ++crossings;
-                  my_pairs.push_back({p, t, side});
-                }
-              }
-            }
-            // Edge–edge: the edges at p against the triangle's edges. An edge
-            // with both ends on one side of the triangle's plane, farther than
-            // the pair's bound, cannot come that close to the triangle's edges
-            // (they lie in the plane), nor can one whose box, grown by the
-            // bound, misses the other edge's: both cheap tests go first.
-            if (tn_len <= 0.0) return;
-            const double hp = (at(s.x, p) - a).dot(unit);
-            for (int q : adj_[p]) {
-              if (q < p && stamp[q] == t) continue;  // the edge was met from q already
-              const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
-              const double hq = (at(s.x, q) - a).dot(unit);
-              if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
-              const Vec3 elo = at(s.x, p).cwiseMin(at(s.x, q)) - Vec3::Constant(elim);
-              const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
-              for (int k = 0; k < 3; ++k) {
-                const int b0 = tr[k], b1 = tr[(k + 1) % 3];
-                const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
-                if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
-                if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
-                if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
-                edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
-              }
-            }
-          });
-        }
-#pragma omp critical(vgd_self_collision_merge)
-        {
-          pairs_.insert(pairs_.end(), my_pairs.begin(), my_pairs.end());
-          near.insert(near.end(), my_near.begin(), my_near.end());
-          edge_pairs_.insert(edge_pairs_.end(), my_edges.begin(), my_edges.end());
-        }
-      }
-      // Threads finish in any order: sort, so the Gauss–Seidel passes below see
-      // the pairs in one order whatever the thread count.
-      auto by_triangle = [](const Pair& x, const Pair& y) { return std::tie(x.t, x.p) < std::tie(y.t, y.p); };
-      std::sort(pairs_.begin(), pairs_.end(), by_triangle);
-      std::sort(near.begin(), near.end(), by_triangle);
-      near_ = std::move(near);
-      std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
-        return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
-      });
-      edge_pairs_.erase(std::unique(edge_pairs_.begin(), edge_pairs_.end(),
-                                    [](const EdgePair& x, const EdgePair& y) {
-                                      return x.a0 == y.a0 && x.a1 == y.a1 && x.b0 == y.b0 && x.b1 == y.b1;
-                                    }),
-                        edge_pairs_.end());
-      stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
+      const int crossings = detect(s);
       if (round == 0) {
         stats_.crossings = crossings;
         stats_.pairs_total += static_cast<long>(pairs_.size() + edge_pairs_.size());
+      } else if (crossings == 0) {
+        break;
       }
-      if (round > 0 && crossings == 0) break;
-
-      // Gauss–Seidel: each pair in turn moves its four particles.
-      for (int pass = 0; pass < def_.passes && !(pairs_.empty() && edge_pairs_.empty()); ++pass) {
-        bool moved = false;
-        for (const Pair& pr : pairs_) moved = resolve(s, pr) || moved;
-        for (const EdgePair& ep : edge_pairs_) moved = resolve(s, ep) || moved;
-        if (!moved) break;
-      }
+      correct(s);
     }
     double dmin = th;
     for (const Pair& pr : pairs_) {
@@ -448,6 +332,139 @@ class SelfCollision final : public Effect {
   const SelfCollisionStats& stats() const { return stats_; }
 
  private:
+  // Pairs within the thickness, or crossed, over the step from x_prev_ to
+  // s.x: pairs_, edge_pairs_ and the repulsion's near_. Returns the number of
+  // point–triangle crossings.
+  int detect(const State& s) {
+    const double th = def_.thickness;
+    // How far each particle moved this step. A pair can only have crossed, or
+    // come within th, if it is within th plus their two motions now: the
+    // particles are hashed by their swept boxes grown by th, each triangle
+    // looks in its own swept box, and every bound below is per pair. (One
+    // global motion grew every query by the fastest particle's: a cloth
+    // falling at 2.4 m/s made each triangle meet dozens of particles.)
+    disp_.resize(n_);
+    for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
+    hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
+    pairs_.clear();
+    edge_pairs_.clear();
+    std::vector<Pair> near;
+    int crossings = 0;
+    const int nt = static_cast<int>(tris_.size());
+#pragma omp parallel if (nt >= kParallelMinTriangles) reduction(+ : crossings)
+    {
+      std::vector<Pair> my_pairs, my_near;
+      std::vector<EdgePair> my_edges;
+      std::vector<int> stamp(n_, -1);  // the triangle that last met each particle (dedupe)
+#pragma omp for schedule(dynamic, 256) nowait
+      for (int t = 0; t < nt; ++t) {
+        const auto& tr = tris_[t];
+        const Vec3 a = at(s.x, tr[0]), b = at(s.x, tr[1]), c = at(s.x, tr[2]);
+        Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+        for (int q : tr) {
+          lo = lo.cwiseMin(at(x_prev_, q));
+          hi = hi.cwiseMax(at(x_prev_, q));
+        }
+        const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
+        const Vec3 tn = (b - a).cross(c - a);
+        const double tn_len = tn.norm();
+        const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
+        hash_.for_each_in_box(lo, hi, [&](int p) {
+          if (stamp[p] == t) return;
+          stamp[p] = t;
+          // The particle's swept box, grown by th, must meet the triangle's.
+          const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
+          const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
+          if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
+          const double lim = th + disp_[p] + tri_motion;
+          // Point–triangle.
+          if (!skip(p, tr)) {
+            Vec3 nrm, w;
+            double dn;
+            if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
+              my_near.push_back({p, t, 0.0});
+              // The side before the step.
+              Vec3 nrm0, w0;
+              double dn0;
+              double side = dn >= 0.0 ? 1.0 : -1.0;
+              if (project(at(x_prev_, p), at(x_prev_, tr[0]), at(x_prev_, tr[1]), at(x_prev_, tr[2]), nrm0,
+                          dn0, w0) &&
+                  std::abs(dn0) > 1e-12)
+                side = dn0 > 0.0 ? 1.0 : -1.0;
+              if (side * dn < th) {
+                if (side * dn < 0.0) ++crossings;
+                my_pairs.push_back({p, t, side});
+              }
+            }
+          }
+          // Edge–edge: the edges at p against the triangle's edges. An edge
+          // with both ends on one side of the triangle's plane, farther than
+          // the pair's bound, cannot come that close to the triangle's edges
+          // (they lie in the plane), nor can one whose box, grown by the
+          // bound, misses the other edge's: both cheap tests go first.
+          if (tn_len <= 0.0) return;
+          const double hp = (at(s.x, p) - a).dot(unit);
+          for (int q : adj_[p]) {
+            if (q < p && stamp[q] == t) continue;  // the edge was met from q already
+            const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
+            const double hq = (at(s.x, q) - a).dot(unit);
+            if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
+            const Vec3 elo = at(s.x, p).cwiseMin(at(s.x, q)) - Vec3::Constant(elim);
+            const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
+            for (int k = 0; k < 3; ++k) {
+              const int b0 = tr[k], b1 = tr[(k + 1) % 3];
+              const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
+              if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
+              if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
+              if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
+              edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
+            }
+          }
+        });
+      }
+#pragma omp critical(vgd_self_collision_merge)
+      {
+        pairs_.insert(pairs_.end(), my_pairs.begin(), my_pairs.end());
+        near.insert(near.end(), my_near.begin(), my_near.end());
+        edge_pairs_.insert(edge_pairs_.end(), my_edges.begin(), my_edges.end());
+      }
+    }
+    // Threads finish in any order: sort, so the Gauss–Seidel passes below see
+    // the pairs in one order whatever the thread count.
+    auto by_triangle = [](const Pair& x, const Pair& y) { return std::tie(x.t, x.p) < std::tie(y.t, y.p); };
+    std::sort(pairs_.begin(), pairs_.end(), by_triangle);
+    std::sort(near.begin(), near.end(), by_triangle);
+    near_ = std::move(near);
+    std::sort(edge_pairs_.begin(), edge_pairs_.end(), [](const EdgePair& x, const EdgePair& y) {
+      return std::tie(x.a0, x.a1, x.b0, x.b1) < std::tie(y.a0, y.a1, y.b0, y.b1);
+    });
+    edge_pairs_.erase(std::unique(edge_pairs_.begin(), edge_pairs_.end(),
+                                  [](const EdgePair& x, const EdgePair& y) {
+                                    return x.a0 == y.a0 && x.a1 == y.a1 && x.b0 == y.b0 && x.b1 == y.b1;
+                                  }),
+                      edge_pairs_.end());
+    stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
+    return crossings;
+  }
+
+  // Gauss–Seidel: each pair in turn moves its four particles.
+  void correct(State& s) {
+    for (int pass = 0; pass < def_.passes && !(pairs_.empty() && edge_pairs_.empty()); ++pass) {
+      bool moved = false;
+      for (const Pair& pr : pairs_) moved = resolve(s, pr) || moved;
+      for (const EdgePair& ep : edge_pairs_) moved = resolve(s, ep) || moved;
+      if (!moved) break;
+    }
+  }
+
+  // Particle and triangle of a near pair within the thickness at x, the
+  // projection inside the triangle: the repulsion acts (normal, height, weights).
+  bool pressed(const VecX& x, const Pair& pr, Vec3& nrm, double& dn, Vec3& w) const {
+    const auto& tr = tris_[pr.t];
+    return project(at(x, pr.p), at(x, tr[0]), at(x, tr[1]), at(x, tr[2]), nrm, dn, w) &&
+           std::abs(dn) < def_.thickness && inside(w);
+  }
+
   // The point–triangle pairs within the thickness at x (no motion known yet).
   void find_near(const VecX& x) {
     searched_ = true;
