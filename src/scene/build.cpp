@@ -232,22 +232,23 @@ struct DressedPiece {
   std::string name;
   sim::Model model;
 };
+// `under` holds the cloth of the garments worn under this one; this one's
+// placed pieces are appended to it.
 std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in, const MaterialDef& m,
-                                         Diagnostics& diag, const Avatar& avatar, std::vector<GarmentSeam>& seams) {
+                                         Diagnostics& diag, const Avatar& avatar, std::vector<GarmentSeam>& seams,
+                                         std::vector<Underlayer>& under) {
   const ClothDef& c = def.cloth[ci];
   const GarmentDef& gd = *c.garment;
   const std::string p = cloth_path(ci) + ".garment";
   const auto& doc = in.document(gd.file, p + ".file");
-  auto arrangements = garment_arrangements(doc, avatar, diag);
-  for (auto& [id, list] : arrangements)
-    for (auto& a : list) a.clearance += gd.layer * GarmentDef::kLayerGap;
+  const auto arrangements = garment_arrangements(doc, avatar, diag);
   AssemblyOptions ao;
   ao.size = gd.size;
   ao.spacing = gd.spacing;
   ao.pieces = gd.pieces;
   for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
   const Garment g = assemble_garment(doc, ao, diag);
-  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar);
+  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, &under);
   std::vector<DressedPiece> out;
   for (std::size_t k = 0; k < g.pieces.size(); ++k) {
     const GarmentPiece& gp = g.pieces[k];
@@ -316,6 +317,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
   model.v0.resize(0);
   model.mass.resize(0);
   pieces.clear();
+  std::vector<std::pair<int, std::vector<Underlayer>>> layers;  // each garment's placed cloth, by layer
   for (int ci = 0; ci < static_cast<int>(def.cloth.size()); ++ci) {
     const ClothDef& c = def.cloth[ci];
     const MaterialDef& m = in.material(c.material, c.model);
@@ -331,7 +333,13 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       // pieces carry their garment's name.
       const int garments = static_cast<int>(
           std::count_if(def.cloth.begin(), def.cloth.end(), [](const ClothDef& x) { return x.garment.has_value(); }));
-      for (auto& d : garment_pieces(def, ci, in, m, diag, *avatar, garment_seams))
+      std::vector<Underlayer> under;  // the garments of lower layers placed so far
+      for (const auto& [layer, cloth] : layers)
+        if (layer < c.garment->layer) under.insert(under.end(), cloth.begin(), cloth.end());
+      const std::size_t below = under.size();
+      auto dressed = garment_pieces(def, ci, in, m, diag, *avatar, garment_seams, under);
+      layers.emplace_back(c.garment->layer, std::vector<Underlayer>(under.begin() + below, under.end()));
+      for (auto& d : dressed)
         parts.emplace_back(garments > 1 && !c.name.empty() ? c.name + "/" + d.name : std::move(d.name), std::move(d.model));
     }
     const int first_piece = static_cast<int>(pieces.size());

@@ -74,9 +74,12 @@ struct OffsetCurve {
   }
 };
 
+bool trunk(const std::string& segment) { return segment == "neck" || segment == "torso" || segment == "hips"; }
+
 }  // namespace
 
-PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::Arrangement& ar, const Avatar& avatar) {
+PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::Arrangement& ar, const Avatar& avatar,
+                           const std::vector<Underlayer>& under) {
   const BodySegment* seg = nullptr;
   for (const auto& s : avatar.segments)
     if (s.name == ar.segment) seg = &s;
@@ -135,19 +138,38 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
     take(ring_local(*seg, hi));
     for (const auto& r : seg->rings)
       if (r.s > lo && r.s < hi) take(r);
-    // A piece on the trunk may reach above its segment's top (a waistband above
-    // the hips): the rings of the trunk segments above at those heights bound
-    // it too, or it would start inside them. (Below, a bodice's hem over the
-    // hips is left to the drape.)
+    // A piece on the trunk may reach past its segment's ends (a waistband above
+    // the hips, a bodice's hem over them): the rings of the other trunk
+    // segments at those heights bound it too, or it would start inside them
+    // (and inside a skirt worn under it).
     if (!limb && !seg->rings.empty())
       for (const auto& other : avatar.segments) {
-        if (&other == seg || (other.name != "neck" && other.name != "torso" && other.name != "hips")) continue;
+        if (&other == seg || !trunk(other.name)) continue;
         for (const auto& r : other.rings) {
           const double s = (r.centre - seg->start).dot(axis);
-          if (s > seg->rings.back().s && s > lo && s < hi) take(r);
+          const bool outside = s > seg->rings.back().s || s < seg->rings.front().s;
+          if (outside && s > lo && s < hi) take(r);
         }
       }
-    return std::pair{std::max(a, 1e-3), std::max(b, 1e-3)};
+    // Cloth under the piece: the ellipse grows (keeping its shape) until its
+    // offset curve at the clearance passes each point at the gap or more.
+    a = std::max(a, 1e-3), b = std::max(b, 1e-3);
+    const double inset = std::max(0.0, ar.clearance) - kUnderlayerGap;
+    for (const auto& layer : under) {
+      if (layer.segment != ar.segment && !(trunk(layer.segment) && trunk(ar.segment))) continue;
+      for (const auto& p : layer.points) {
+        const double s = (p - seg->start).dot(axis);
+        if (s < lo || s > hi) continue;
+        Vec3 d = p - axis_point;
+        d -= d.dot(axis) * axis;
+        const double r = d.norm();
+        if (r <= inset || r < 1e-9) continue;
+        const double k = (r - inset) / r;  // the point pulled in by what the clearance adds
+        const double x = k * d.dot(e1) / a, y = k * d.dot(e2) / b, q = x * x + y * y;
+        if (q > 1) a *= std::sqrt(q), b *= std::sqrt(q);
+      }
+    }
+    return std::pair{a, b};
   };
   const auto [a, b] = envelope(smin, smax);
 
@@ -202,11 +224,21 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
       const int hi = std::min(nb - 1, static_cast<int>(std::ceil((s - smin + 2 * kBin) / kBin)));
       for (int k = lo; k <= hi; ++k) half[k] = std::max(half[k], std::abs(uv[i].x()));
     }
-    std::vector<double> c(nb);
     std::vector<std::pair<double, double>> ab(nb);
+    for (int k = 0; k < nb; ++k) ab[k] = envelope(smin + k * kBin - kWindow, smin + k * kBin + kWindow);
+    // Rings no steeper than kSlope up and down (a cone round each bin's ring):
+    // a skirt's top under a T-shirt would otherwise step the T-shirt out by
+    // centimetres within one bin, stretching its vertical edges at the start.
+    constexpr double kSlope = 0.5;
+    const auto steep = ab;
+    for (int k = 0; k < nb; ++k)
+      for (int j = 0; j < nb; ++j) {
+        const double drop = kSlope * kBin * std::abs(k - j);
+        ab[k].first = std::max(ab[k].first, steep[j].first - drop);
+        ab[k].second = std::max(ab[k].second, steep[j].second - drop);
+      }
+    std::vector<double> c(nb);
     for (int k = 0; k < nb; ++k) {
-      const double s = smin + k * kBin;
-      ab[k] = envelope(s - kWindow, s + kWindow);
       // An offset curve of a convex curve is longer by c times the angle turned:
       // a quarter (side to front) is the ellipse's quarter plus c·π/2.
       OffsetCurve e;

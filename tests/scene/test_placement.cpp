@@ -197,6 +197,50 @@ TEST(PiecePlacement, WidePiecesWrapWithoutOverlapping) {
   EXPECT_GT(total, M_PI);
 }
 
+// A garment worn over another (a T-shirt over a skirt) starts outside it:
+// the cloth under it bounds the rings like the body. Points of another
+// segment (an arm's sleeve) do not.
+TEST(PiecePlacement, StartsOutsideTheClothUnderIt) {
+  const Avatar av = hand_avatar();
+  const auto pieces = pattern::draft_tshirt(pattern::TShirtMeasurements{});
+  auto a = xvc::suggest_arrangement(pieces[0], false).at(0);  // the front
+  a.height = 1.5;
+  const auto nodes = outline_of(pieces[0]);
+  const auto alone = place_piece(nodes, a, av);
+
+  // A skirt's top: an elliptic band 6 cm out from the torso's lowest rings, from 0.8 to 1.05 m.
+  BodySegment band;
+  band.start = Vec3(0, 0.8, 0);
+  band.length = 0.25;
+  band.rings = {{0.0, band.start, 0.23, 0.17}, {0.25, band.start + 0.25 * Vec3::UnitY(), 0.23, 0.17}};
+  Underlayer skirt{"hips", {}};  // the trunk is one segment for this
+  for (int j = 0; j <= 25; ++j)
+    for (int k = 0; k < 360; ++k) {
+      const double t = 2 * M_PI * k / 360;
+      skirt.points.emplace_back(0.23 * std::cos(t), 0.8 + 0.01 * j, 0.17 * std::sin(t));
+    }
+  const auto over = place_piece(nodes, a, av, {skirt});
+  int in_band = 0;
+  for (const auto& q : over.points)
+    if (q.y() >= 0.8 && q.y() <= 1.05) {
+      ++in_band;
+      EXPECT_GE(outside(band, q), kUnderlayerGap - 1e-3) << q.transpose();
+    }
+  EXPECT_GT(in_band, 10);
+  // Without the skirt the same points start inside it.
+  int inside_skirt = 0;
+  for (const auto& q : alone.points)
+    if (q.y() >= 0.8 && q.y() <= 1.05 && outside(band, q) < 0) ++inside_skirt;
+  EXPECT_GT(inside_skirt, 10);
+
+  // An arm's cloth leaves the torso's piece where it was.
+  Underlayer sleeve{"left-arm", skirt.points};
+  const auto with_sleeve = place_piece(nodes, a, av, {sleeve});
+  ASSERT_EQ(with_sleeve.points.size(), alone.points.size());
+  for (std::size_t i = 0; i < alone.points.size(); ++i)
+    EXPECT_LT((with_sleeve.points[i] - alone.points[i]).norm(), 1e-12);
+}
+
 TEST(PiecePlacement, MissingSegmentIsAnError) {
   xvc::Arrangement a;
   a.segment = "neck";

@@ -11,6 +11,7 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/scene/avatar.hpp"
 #include "vgd/scene/garment.hpp"
+#include "vgd/scene/placement.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/document.hpp"
 
@@ -32,8 +33,10 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 // One PlacedPiece per garment piece, in order: piece k of a pattern takes the
 // pattern's k-th arrangement. Throws vgd::Error naming the document and the
 // PATTERN when a piece has no arrangement, or names a segment the avatar lacks.
+// `under`: garments already placed that this one is worn over; each placed
+// piece is appended to it (with its segment) for the garments over this one.
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
-                                       const Avatar& avatar);
+                                       const Avatar& avatar, std::vector<Underlayer>* under = nullptr);
 
 }  // namespace vgd::scene

@@ -46,10 +46,20 @@ struct PiecePlacement {
   bool reverses_winding = false;    // true for flipped arrangements (see above)
 };
 
+// Cloth already placed under the piece (a skirt under a T-shirt): its points
+// bound the piece's rings like the body's, so the piece starts at least `gap`
+// outside them. Only points of the same segment count (the trunk — neck, torso,
+// hips — is one segment here), or a torso's points would inflate a sleeve.
+struct Underlayer {
+  std::string segment;      // the body segment the points were placed on
+  std::vector<Vec3> points;  // m, world frame
+};
+inline constexpr double kUnderlayerGap = 0.015;  // m between a piece and the cloth under it
+
 // Throws vgd::Error naming the segment when the avatar has no such segment, the
 // segment has no rings, or (neck/torso/hips) its axis is too close to horizontal for
 // a world height to be meaningful.
 PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::Arrangement& arrangement,
-                      const Avatar& avatar);
+                           const Avatar& avatar, const std::vector<Underlayer>& under = {});
 
 }  // namespace vgd::scene

@@ -86,11 +86,10 @@ struct GarmentDef {
   std::string size;                 // "" = the sample size
   std::vector<std::string> pieces;  // piece or block names; empty = every pattern of the size
   double spacing = 0.0;             // m between boundary vertices; 0 = the document's mesh.spacing, else 0.015
-  // 0 = next to the body; a garment worn over another starts each layer
-  // kLayerGap further out (its arrangements' clearances grown), so the two
-  // do not start through each other.
+  // 0 = next to the body; a garment worn over others (a lower layer) starts
+  // at least 15 mm outside their placed cloth (scene/placement.hpp,
+  // Underlayer), so the two do not start through each other.
   int layer = 0;
-  static constexpr double kLayerGap = 0.015;  // m per layer
 };
 
 struct ClothDef {

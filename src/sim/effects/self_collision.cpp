@@ -220,15 +220,26 @@ class SelfCollision final : public Effect {
     stats_.min_distance = d.thickness;
     group_.resize(n_);
     for (int i = 0; i < n_; ++i) group_[i] = i;
-    hem_.assign(n_, 0);
     for (const auto& [a, b] : d.joined) {
       if (a < 0 || a >= n_ || b < 0 || b >= n_)
         throw SimulationError("self collision: joined pair (" + std::to_string(a) + ", " + std::to_string(b) +
                               ") names a particle that does not exist");
       join(a, b);
-      hem_[a] = hem_[b] = 1;
     }
     flatten();
+    // Hem particles by garment (the cloth connected through edges and seams):
+    // a T-shirt's side seam over a skirt's still collides with it (with one
+    // label for every hem, the two garments crossed at their side seams).
+    std::vector<int> cloth(n_);
+    for (int i = 0; i < n_; ++i) cloth[i] = i;
+    auto top = [&](int i) {
+      while (cloth[i] != i) i = cloth[i] = cloth[cloth[i]];
+      return i;
+    };
+    for (const auto& e : edges) cloth[top(e[0])] = top(e[1]);
+    for (const auto& [a, b] : d.joined) cloth[top(a)] = top(b);
+    hem_.assign(n_, 0);
+    for (const auto& [a, b] : d.joined) hem_[a] = hem_[b] = top(a) + 1;
   }
 
   // Merged copies are one particle: never a collision between them.
@@ -416,7 +427,7 @@ class SelfCollision final : public Effect {
               const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
               if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
               if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
-              if ((hem_[p] || hem_[q]) && (hem_[b0] || hem_[b1])) continue;
+              if (on_one_hem(hem_[p] | hem_[q], hem_[b0] | hem_[b1])) continue;
               edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
             }
           }
@@ -498,10 +509,13 @@ class SelfCollision final : public Effect {
     for (int i = 0; i < n_; ++i) group_[i] = root(i);
   }
   bool same(int a, int b) const { return group_[a] == group_[b]; }
+  // The hem labels of two edges (an edge's: either end's, both ends being of
+  // one garment): both on a hem of the same garment.
+  static bool on_one_hem(int a, int b) { return a != 0 && a == b; }
 
   bool skip(int p, const std::array<int, 3>& tr) const {
     if (same(p, tr[0]) || same(p, tr[1]) || same(p, tr[2])) return true;
-    if (hem_[p] && (hem_[tr[0]] || hem_[tr[1]] || hem_[tr[2]])) return true;
+    if (hem_[p] && (hem_[tr[0]] == hem_[p] || hem_[tr[1]] == hem_[p] || hem_[tr[2]] == hem_[p])) return true;
     if (!ring_.empty())
       for (int q : tr)
         for (int r : ring_[q])
@@ -613,7 +627,7 @@ class SelfCollision final : public Effect {
   // Per particle: on a seam's hem. Hems approach each other edge on while a
   // seam closes: a hem particle never collides with a triangle or edge
   // touching a hem, or the strips along the seam would block it.
-  std::vector<unsigned char> hem_;  // per particle: the lowest particle it is one with
+  std::vector<int> hem_;  // per particle: 0, or 1 + its garment's label when it is on a seam's hem
   SelfCollisionStats stats_;
 };
 
