@@ -30,7 +30,7 @@ nlohmann::json to_json(const vgd::scene::lab::LabResult& r, const vgd::scene::la
     points.push_back({{"quantity", p.quantity},
                       {"x", p.x},
                       {"measured", number(p.measured)},
-                      {"expected", p.expected},
+                      {"expected", number(p.expected)},
                       {"rel_error", number(p.rel_error)}});
   return {{"test", r.test},
           {"material", r.material},
@@ -84,7 +84,8 @@ vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
     const std::array<std::uint8_t, 3> grey{160, 160, 160}, dark{60, 60, 60};
     line(kMargin, top, kMargin, bottom, grey), line(kMargin, bottom, kWidth - kMargin, bottom, grey);
     for (std::size_t i = 1; i < pts.size(); ++i)
-      line(px(pts[i - 1]->x), py(pts[i - 1]->expected), px(pts[i]->x), py(pts[i]->expected), dark);
+      if (std::isfinite(pts[i - 1]->expected) && std::isfinite(pts[i]->expected))
+        line(px(pts[i - 1]->x), py(pts[i - 1]->expected), px(pts[i]->x), py(pts[i]->expected), dark);
     for (const auto* p : pts) {
       if (!std::isfinite(p->measured)) continue;
       for (int dy = -3; dy <= 3; ++dy)
@@ -94,24 +95,35 @@ vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
   return img;
 }
 
+// The drape's view from above (LabResult::top_view), grey.
+vgd::render::Image top_view(const vgd::scene::lab::LabResult& r) {
+  vgd::render::Image img(r.top_view_size, r.top_view_size, {255, 255, 255, 255});
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      auto* px = img.pixel(x, y);
+      px[0] = px[1] = px[2] = r.top_view[std::size_t(y) * r.top_view_size + x];
+    }
+  return img;
+}
+
 vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
   auto* sub = app.add_subcommand("lab", "Run a virtual textile test on a fabric and compare it with mechanics");
   auto o = std::make_shared<Options>();
-  sub->add_option("TEST", o->test, "tip-cantilever, tensile, cantilever or buckling")
+  sub->add_option("TEST", o->test, "tip-cantilever, tensile, cantilever, buckling, shear, bending or drape")
       ->required()
-      ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling"}));
+      ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling", "shear", "bending", "drape"}));
   sub->add_option("--material", o->material, "Fabric: a name in data/materials (shirting) or an XVC file")->required();
   sub->add_option("--model", o->model, "Cloth model: rosette (strain rosette + bending) or mass-spring")
       ->check(CLI::IsMember({"rosette", "strain-rosette", "mass-spring"}));
   o->angle_opt = sub->add_option("--angle", o->angle,
-                                 "Specimen axis from the warp, deg (default 0; tensile: every 15 deg from 0 to 90)")
+                                 "Specimen axis from the warp, deg (default 0; tensile: every 15 deg from 0 to 90; bending: 0 and 90)")
                      ->check(CLI::Range(0.0, 90.0));
   sub->add_option("--resolution", o->resolution_mm, "Grid spacing along the specimen, mm (default 5)")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--no-poisson", o->no_poisson,
                 "Bend the fabric with nu_xy = 0, where strip and plate rigidity agree (docs/fabric-lab.md)");
   sub->add_flag("--json", o->json, "Print the result as JSON on stdout");
-  sub->add_option("-o,--output", o->out_dir, "Write TEST.csv (measured vs expected) and TEST.png (a plot) into this directory");
+  sub->add_option("-o,--output", o->out_dir, "Write TEST.csv (measured vs expected) and TEST.png (a plot; drape: the view from above) into this directory");
   sub->footer("Exit codes: 0 the test ran (its errors are in the output), 1 bad material or failed run.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     namespace lab = vgd::scene::lab;
@@ -122,7 +134,7 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
     spec.resolution = o->resolution_mm / 1000.0;
     spec.poisson_free = o->no_poisson;
     if (o->angle_opt->count() > 0) spec.angle_deg = o->angle;
-    else if (spec.test == lab::Test::tensile) spec.angle_deg = -1.0;
+    else if (spec.test == lab::Test::tensile || spec.test == lab::Test::bending) spec.angle_deg = -1.0;
     const auto material = lab::lab_material(o->material);
     const lab::LabResult r = lab::run(spec, material);
     if (!o->out_dir.empty()) {
@@ -130,7 +142,7 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
       const auto csv = std::filesystem::path(o->out_dir) / (r.test + ".csv");
       lab::write_csv(r, csv);
       const auto png = std::filesystem::path(o->out_dir) / (r.test + ".png");
-      vgd::render::write_png(plot(r), png);
+      vgd::render::write_png(r.top_view.empty() ? plot(r) : top_view(r), png);
       vgd::cli::say(common, "wrote " + csv.string() + " and " + png.string());
     }
     if (o->json) {

@@ -1,6 +1,7 @@
-// The lab's analytic references (../shared/reference/mechanics.md §1, §2):
+// The lab's analytic references (../shared/reference/mechanics.md §1, §2, §6):
 // inextensible Euler-Bernoulli cantilevers at large rotation, solved by
-// shooting on the clamp curvature θ'(0) with classical RK4 in arc length.
+// shooting on the clamp curvature θ'(0) with classical RK4 in arc length;
+// Cusick's drape-coefficient arithmetic.
 #include <array>
 #include <cmath>
 #include <functional>
@@ -67,6 +68,11 @@ Elastica heavy_elastica(double g) {
 
 double peirce_bending_length_over_L(double chord_rad) {
   return std::cbrt(std::cos(0.5 * chord_rad) / (8.0 * std::tan(chord_rad)));
+}
+
+double drape_coefficient(double shadow_area, double specimen_diameter, double disk_diameter) {
+  const double disk = std::numbers::pi / 4 * disk_diameter * disk_diameter;
+  return (shadow_area - disk) / (std::numbers::pi / 4 * specimen_diameter * specimen_diameter - disk);
 }
 
 }  // namespace vgd::scene::lab

@@ -22,9 +22,21 @@
 //                   and clamped-clamped (end shortening): the load at which
 //                   the straight strip's stiffness across the sheet vanishes
 //                   vs Euler's P_cr = C B / L² (rosette model only)
+//   shear           KES-FB1: 200 mm along the clamps, 50 mm between them, one
+//                   clamp moved sideways by L tan φ at fixed distance, φ ≤ 8°:
+//                   force per clamp length vs uniform simple shear of the law,
+//                   G at 0.5° vs Q̄₆₆(θ) (G_xy at 0 and 90°)
+//   bending         KES-FB2 pure bending: 10 mm between clamps set on an arc,
+//                   K = ±0.5…2.5 1/cm: moment per width vs the plate's B_θ K, and
+//                   B (the KES slope) per direction (warp and weft, or --angle)
+//   drape           Cusick: a 300 mm disc clamped on a 180 mm disk hung to rest
+//                   by the engine's implicit Euler: drape coefficient, nodes and
+//                   a top view (no analytic reference)
 //
 // Bending references use the narrow-strip rigidity B_strip
-// (sim::bending_rigidity_strip), the one a free strip shows.
+// (sim::bending_rigidity_strip), the one a free strip shows; pure bending's
+// wide specimen the plate's B_θ (sim::bending_rigidity).
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -34,16 +46,17 @@
 
 namespace vgd::scene::lab {
 
-enum class Test { tip_cantilever, tensile, cantilever, buckling };
+enum class Test { tip_cantilever, tensile, cantilever, buckling, shear, bending, drape };
 const char* to_string(Test t);
-// "tip-cantilever", "tensile", "cantilever", "buckling"; throws std::invalid_argument.
+// "tip-cantilever", "tensile", "cantilever", "buckling", "shear", "bending", "drape"; throws std::invalid_argument.
 Test parse_test(const std::string& s);
 
 // What to run.
 struct LabSpec {
   Test test = Test::tip_cantilever;
   ClothModel model = ClothModel::strain_rosette;
-  double angle_deg = 0.0;      // specimen axis from the warp (deg); tensile: < 0 = every 15° from 0 to 90
+  double angle_deg = 0.0;      // specimen axis from the warp (deg); tensile: < 0 = every 15° from 0 to 90;
+                               // bending: < 0 = 0 and 90°
   double resolution = 0.005;   // m, grid spacing along the specimen
   double length = 0.1;         // m, free length of the tip-cantilever (tensile: the ISO 13934-1 200 × 50 mm strip)
   double width = 0.01;         // m, bending specimens' width (2 cells across, or width/resolution)
@@ -53,7 +66,8 @@ struct LabSpec {
   bool poisson_free = false;
 };
 
-// One measurement: at x (k, θ in deg, g), `quantity` measured and expected.
+// One measurement: at x (k, θ in deg, g), `quantity` measured and expected
+// (NaN where mechanics gives no reference: the drape's DC and nodes).
 struct LabPoint {
   std::string quantity;  // e.g. "w/L", "u/L", "E_theta N/m", "chord deg"
   double x = 0.0;
@@ -65,10 +79,16 @@ struct LabResult {
   std::string test, material, model;
   std::string x_name;               // what x is: "k = PL^2/B", "angle deg", "g = wL^3/B"
   std::vector<LabPoint> points;
-  double max_rel_error = 0.0;       // over the points, |rel_error| (inf when a solve failed)
+  double max_rel_error = 0.0;       // over the points with a reference, |rel_error| (inf when a solve failed, NaN
+                                    // when no point has a reference: drape)
   double wall_s = 0.0;              // s, the whole test
   int cells_along = 0, cells_across = 0;  // the specimen grid (cells along the free length)
   std::vector<std::string> notes;   // reference, rigidities, what is reported beside the points
+  // drape: the view from above, grey levels row by row from the top (+y up),
+  // top_view_size² pixels of 0.5 mm centred on the disk: 255 nothing, 225 the
+  // bare disk, darker the fabric (the steeper, the darker). Empty for other tests.
+  std::vector<std::uint8_t> top_view;
+  int top_view_size = 0;
 };
 
 // The material NAME (data/materials/NAME.xvc, MATERIAL id NAME) or an XVC
@@ -96,5 +116,8 @@ Elastica tip_load_elastica(double k);
 Elastica heavy_elastica(double g);
 // Peirce's bending length from the chord angle θ (rad): c / L = (cos(θ/2) / (8 tan θ))^(1/3).
 double peirce_bending_length_over_L(double chord_rad);
+// Cusick's drape coefficient (mechanics.md §6) from the shadow area A_s (m²) of a
+// specimen of diameter D on a disk of diameter d (m): (A_s − A_d)/(A_D − A_d).
+double drape_coefficient(double shadow_area, double specimen_diameter, double disk_diameter);
 
 }  // namespace vgd::scene::lab
