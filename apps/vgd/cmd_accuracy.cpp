@@ -40,6 +40,7 @@
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/data.hpp"
 #include "vgd/scene/json.hpp"
+#include "vgd/scene/quality.hpp"
 #include "vgd/sim/run.hpp"
 
 namespace vgd::cli {
@@ -352,6 +353,17 @@ int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir) 
             finish(std::move(o.row));
           }
         }
+        // The quality presets (scene/quality.hpp) as a scene or --quality
+        // would run them: an explicit preset's step is its fraction of the limit.
+        for (const auto q : {scene::Quality::preview, scene::Quality::standard, scene::Quality::precise}) {
+          sim::IntegratorSettings st = scene::quality_integrator(q, scene::has_contact(def.effects)).settings;
+          st.step = sim::is_explicit(st.method) ? sim::stability_limit(st.method, stiff) * st.safety
+                                                : 1.0 / (def.run.fps * 4);
+          Outcome o = run_once(def, st);
+          if (o.row.status == "ok") o.row.error_mm = max_distance_mm(o.x, reference.x);
+          o.row.integrator = std::string("preset-") + scene::to_string(q);
+          finish(std::move(o.row));
+        }
       }
   omp_set_num_threads(std::max(1, omp_get_num_procs()));
 
@@ -367,7 +379,8 @@ int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir) 
   // One diagram per problem × model × resolution, of the runs that finished.
   std::map<std::string, std::vector<const Row*>> groups;
   for (const auto& r : rows)
-    if (r.status == "ok" && r.error_mm > 0 && r.integrator.rfind("reference", 0) != 0)
+    if (r.status == "ok" && r.error_mm > 0 && r.integrator.rfind("reference", 0) != 0 &&
+        r.integrator.rfind("preset", 0) != 0)  // a preset is one of the methods' points
       groups[r.problem + "-" + r.model + "-" + std::to_string(r.resolution)].push_back(&r);
   std::vector<std::string> files;
   for (const auto& [key, list] : groups) {

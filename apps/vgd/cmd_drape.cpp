@@ -20,12 +20,13 @@
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/scene/avatar_io.hpp"
 #include "vgd/scene/drape.hpp"
+#include "vgd/scene/quality.hpp"
 
 namespace {
 
 struct Options {
   std::vector<std::string> garments;
-  std::string size, avatar, output = "out", material, material_id, table, trj;
+  std::string size, avatar, output = "out", material, material_id, table, trj, quality = "standard";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
   bool self_collision = true, frames = false, json = false;
@@ -102,18 +103,23 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::ExistingFile);
   sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
   sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
+  sub->add_option("--quality", o->quality,
+                  "Quality preset: preview (no self-collision unless asked), standard (the default: 4 implicit "
+                  "steps per frame) or precise (8 steps per frame); measured cost and difference in "
+                  "docs/accuracy-vs-time.md")
+      ->check(CLI::IsMember({"preview", "standard", "precise"}));
   sub->add_option("--spacing", o->spacing, "Mesh spacing, m (default: the document's mesh.spacing, else 0.015)")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--self-collision,!--no-self-collision", o->self_collision,
-                "Keep the cloth from passing through itself (default on; --no-self-collision is about 3x faster "
-                "and may leave cloth crossing cloth)");
+                "Keep the cloth from passing through itself (default on, off for --quality preview; "
+                "--no-self-collision is about 3x faster and may leave cloth crossing cloth)");
   sub->add_flag("--frames", o->frames, "Also write every frame as OBJ into OUTPUT/frames/");
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
   sub->footer("Exit codes: 0 draped to rest and every check passed, 1 bad input or the run failed, "
               "3 the drape ended but a check failed (see certificate.json).");
-  return vgd::cli::Command{sub, [o, &common]() -> int {
+  return vgd::cli::Command{sub, [o, sub, &common]() -> int {
     namespace scene = vgd::scene;
     namespace fs = std::filesystem;
     scene::DrapeOptions d;
@@ -131,7 +137,11 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.material_id = o->material_id;
     d.time_limit = o->time_limit;
     d.spacing = o->spacing;
-    d.self_collision = o->self_collision;
+    d.quality = scene::parse_quality(o->quality);
+    // Preview drapes without self-collision unless told otherwise: about 4x
+    // faster, cloth may end through cloth (docs/accuracy-vs-time.md).
+    const bool told = sub->get_option("--self-collision")->count() > 0;
+    d.self_collision = told ? o->self_collision : d.quality != scene::Quality::preview;
     if (!o->avatar.empty()) {
       scene::AvatarDef a;
       a.kind = scene::AvatarDef::Kind::file;

@@ -17,12 +17,13 @@
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/json.hpp"
+#include "vgd/scene/quality.hpp"
 #include "vgd/scene/units.hpp"
 
 namespace {
 
 struct Options {
-  std::string scene, output, integrator, step, duration, trj;
+  std::string scene, output, quality, integrator, step, duration, trj;
   bool profile = false, json = false;
 };
 
@@ -82,6 +83,10 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
   sub->add_option("SCENE", o->scene, "Scene file (JSON, docs/scene.md)")->required();
   sub->add_option("-o,--output", o->output, "Write frames as OBJ files (frame_0000.obj, ...) into this folder, "
                                             "instead of the scene's OBJ output");
+  sub->add_option("--quality", o->quality,
+                  "Quality preset, replacing the scene's integrator: preview, standard or precise "
+                  "(docs/accuracy-vs-time.md; --integrator and --step then override it)")
+      ->check(CLI::IsMember({"preview", "standard", "precise"}));
   sub->add_option("--integrator", o->integrator, "Integrator: euler, midpoint, rk4, implicit-euler, bdf")
       ->check(CLI::IsMember({"euler", "symplectic-euler", "midpoint", "rk4", "implicit-euler", "bdf", "cvode"}));
   sub->add_option("--step", o->step, "Integration step, s (e.g. 0.004 or 4ms); replaces the scene's")
@@ -98,6 +103,8 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
     scene::SceneDef def = scene::load_scene(o->scene);
 
     // Command-line overrides, then the checks again.
+    if (!o->quality.empty())
+      def.integrator = scene::quality_integrator(scene::parse_quality(o->quality), scene::has_contact(def.effects));
     if (!o->integrator.empty()) def.integrator.settings.method = vgd::sim::parse_method(o->integrator);
     if (!o->step.empty()) {
       def.integrator.settings.step = *seconds(o->step);

@@ -7,6 +7,7 @@
 #include "vgd/core/version.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/scene/data.hpp"
+#include "vgd/scene/quality.hpp"
 #include "vgd/sim/effects/seam.hpp"
 #include "vgd/xvc/io.hpp"
 
@@ -121,12 +122,8 @@ SceneDef drape_scene(const DrapeOptions& o) {
     e.speed_limit = sim::SpeedLimitDef{1.0};
   }
 
-  def.integrator.settings.method = sim::Method::implicit_euler;
-  def.integrator.settings.step = 1.0 / (o.fps * 4);
-  // A 1 % residual: what a picture needs (Baraff & Witkin stop early too);
-  // the Newton acceptance test still rejects a step that makes things worse.
-  def.integrator.settings.cg_tolerance = 1e-2;
-  def.integrator.settings.cg_max_iterations = 100;
+  // Implicit Euler at 2, 4 or 8 steps per frame (quality.hpp).
+  def.integrator = quality_integrator(o.quality, true);
   def.run.fps = o.fps;
   def.run.duration = o.time_limit;
   def.run.rest_energy = o.rest_energy;
@@ -185,6 +182,7 @@ DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& s
   if (r.scene.avatar) c.inputs.emplace_back("avatar", r.scene.avatar->source);
   for (const auto& [k, m] : def.materials)
     if (!m.xvc.empty()) c.inputs.emplace_back(k == "fabric" ? "material" : "material_" + k.substr(6), m.xvc.string() + "#" + m.id);
+  if (def.integrator.preset) c.settings.emplace_back("quality", to_string(*def.integrator.preset));
   c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
   c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
   c.settings.emplace_back("fps", format_double(def.run.fps));

@@ -9,6 +9,7 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/scene/quality.hpp"
 
 namespace vgd::scene {
 
@@ -515,17 +516,29 @@ EffectsDef read_effects(Object o) {
   return e;
 }
 
-IntegratorDef read_integrator(Object o) {
+// `effects` decide what a quality preset means (explicit methods without
+// contact, implicit Euler with it); fields given with a preset override it.
+IntegratorDef read_integrator(Object o, const EffectsDef& effects) {
   IntegratorDef d;
-  auto& s = d.settings;
-  std::string method = "euler";
-  o.string("method", method);
-  try {
-    s.method = sim::parse_method(method);
-  } catch (const std::invalid_argument& e) {
-    o.context().fail(o.at("method"), e.what());
+  std::string preset;
+  o.string("preset", preset);
+  if (!preset.empty()) {
+    try {
+      d = quality_integrator(parse_quality(preset), has_contact(effects));
+    } catch (const std::invalid_argument& e) {
+      o.context().fail(o.at("preset"), e.what());
+    }
   }
+  auto& s = d.settings;
+  std::string method;  // default: the preset's, else symplectic Euler ("euler")
+  o.string("method", method);
+  if (!method.empty()) try {
+      s.method = sim::parse_method(method);
+    } catch (const std::invalid_argument& e) {
+      o.context().fail(o.at("method"), e.what());
+    }
   o.number("step", s.step, dim::time);
+  if (o.has("step")) d.iterations_per_frame = 0;  // a step given replaces the preset's steps per frame
   o.integer("iterations_per_frame", d.iterations_per_frame);
   if (o.has("step") && o.has("iterations_per_frame"))
     o.context().fail(o.at("iterations_per_frame"),
@@ -619,7 +632,8 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
   const auto& l = list(cloth, "cloth", c);
   for (std::size_t i = 0; i < l.size(); ++i) def.cloth.push_back(read_cloth(Object(l[i], index_path("cloth", i), c), def));
   if (const json* e = top.find("effects")) def.effects = read_effects(Object(*e, "effects", c));
-  if (const json* s = top.find("integrator")) def.integrator = read_integrator(Object(*s, "integrator", c));
+  if (const json* s = top.find("integrator"))
+    def.integrator = read_integrator(Object(*s, "integrator", c), def.effects);
   if (const json* f = top.find("frames")) {
     Object fr(*f, "frames", c);
     fr.number("fps", def.run.fps, dim::rate);

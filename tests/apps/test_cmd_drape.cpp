@@ -174,5 +174,30 @@ TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
     }
 }
 
+// --quality: the preset lands in the certificate with its settings; preview
+// drops self-collision unless asked for it, precise halves the step.
+TEST(CliDrape, QualityPresetsSetTheStepAndSelfCollision) {
+  const auto garment = (source_dir() / "data/garments/a-line-skirt.xvc").string();
+  struct Case {
+    std::vector<std::string> extra;
+    std::string quality, step, self_collision;
+  };
+  for (const auto& k : {Case{{"--quality", "preview"}, "preview", "0.01 s", "off"},
+                        Case{{"--quality", "preview", "--self-collision"}, "preview", "0.01 s", "on"},
+                        Case{{}, "standard", "0.01 s", "on"},
+                        Case{{"--quality", "precise"}, "precise", "0.005 s", "on"}}) {
+    const auto out = scratch_dir("drape-quality-" + k.quality + k.self_collision);
+    std::vector<std::string> args{"drape", garment, "--time-limit", "0.02", "-q", "-o", out.string()};
+    args.insert(args.end(), k.extra.begin(), k.extra.end());
+    const auto r = run_vgd(args);
+    ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+    const json c = read_json(out / "certificate.json");
+    EXPECT_EQ(c["settings"]["quality"], k.quality);
+    EXPECT_EQ(c["settings"]["step"], k.step) << k.quality;
+    EXPECT_EQ(c["settings"]["self_collision"], k.self_collision) << k.quality;
+  }
+  EXPECT_EQ(run_vgd({"drape", garment, "--quality", "ultra", "-q"}).code, 2);  // a usage error
+}
+
 }  // namespace
 }  // namespace vgd::test

@@ -86,6 +86,26 @@ TEST(CmdSimulate, JsonSummaryAndOverrides) {
   EXPECT_GT(j.at("particle_steps_per_s").get<double>(), 0.0);
 }
 
+// --quality replaces the scene's integrator by a preset (docs/accuracy-vs-time.md):
+// precise is RK4 at 1/8 of its limit, half standard's step (1/4), twice its steps.
+TEST(CmdSimulate, QualityPresetsReplaceTheIntegrator) {
+  const auto scene = write_scene("cmd_simulate_quality", tiny_scene());
+  long steps[2] = {0, 0};
+  double step[2] = {0, 0};
+  int k = 0;
+  for (const char* q : {"standard", "precise"}) {
+    const auto r = vgd_run("-q simulate " + scene.string() + " --json --quality " + q + " --duration 0.08");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = json::parse(r.out);
+    EXPECT_EQ(j.at("integrator"), "rk4") << q;
+    steps[k] = j.at("steps").get<long>();
+    step[k++] = j.at("step_s").get<double>();
+  }
+  EXPECT_NEAR(step[1], 0.5 * step[0], 1e-12);
+  EXPECT_NEAR(static_cast<double>(steps[1]) / steps[0], 2.0, 0.1);
+  EXPECT_EQ(vgd_run("-q simulate " + scene.string() + " --quality ultra").code, 2);
+}
+
 TEST(CmdSimulate, ProfileListsExactlyTheScenesEffects) {
   const auto scene = write_scene("cmd_simulate_profile", tiny_scene());
   const auto r = vgd_run("-q simulate " + scene.string() + " --profile");

@@ -40,6 +40,7 @@ struct DrapeOptions {
   double rest_energy = 5e-9;             // J: mean kinetic energy per particle counted as rest (~1.5 cm/s at 40 mg)
   int rest_frames = 10;                  // consecutive frames below it
   double fps = 25.0;
+  Quality quality = Quality::standard;   // implicit Euler at 2 / 4 / 8 steps per frame (quality.hpp)
 };
 
 // The scene the options describe (materials resolved to files, not read yet).

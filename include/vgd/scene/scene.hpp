@@ -185,7 +185,11 @@ struct EffectsDef {
 
 // ---- integration, frames, output --------------------------------------------------
 
+// Quality presets (quality.hpp): named integrator settings.
+enum class Quality { preview, standard, precise };
+
 struct IntegratorDef {
+  std::optional<Quality> preset;     // the preset these settings started from, if any
   sim::IntegratorSettings settings;  // method, step (s), auto_substep, tolerances, ...
   // Seed 000's "iterations": steps per frame. When > 0 the step is
   // 1 / (fps · iterations_per_frame) and settings.step is ignored.
