@@ -1,23 +1,28 @@
 // vgd lab: one virtual textile test on a fabric (issue 6, docs/fabric-lab.md):
 // builds the specimen, runs it to static equilibrium with the chosen cloth
 // model, prints measured against the analytic reference, writes a CSV.
+// `vgd lab all` runs every test and writes a Markdown report; `vgd lab fit`
+// fits a model's parameters to measurements and writes a MATERIAL.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <chrono>
 #include <memory>
 
 #include "cli.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/render/image.hpp"
 #include "vgd/scene/lab.hpp"
+#include "vgd/scene/lab_fit.hpp"
 
 namespace {
 
 struct Options {
-  std::string test, material, model = "rosette", out_dir;
-  double angle = 0.0, resolution_mm = 5.0;
+  std::string test, measurements, material, model = "rosette", out_dir;
+  double angle = 0.0, resolution_mm = 5.0, drape_resolution_mm = 0.0;
   bool json = false, no_poisson = false;
   CLI::Option* angle_opt = nullptr;
 };
@@ -106,13 +111,122 @@ vgd::render::Image top_view(const vgd::scene::lab::LabResult& r) {
   return img;
 }
 
+// Writes DIR/TEST.csv and DIR/TEST.png (a plot; drape: the view from above).
+void write_outputs(const vgd::scene::lab::LabResult& r, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  vgd::scene::lab::write_csv(r, dir / (r.test + ".csv"));
+  vgd::render::write_png(r.top_view.empty() ? plot(r) : top_view(r), dir / (r.test + ".png"));
+}
+
+int usage(const std::string& problem) {
+  std::fprintf(stderr, "vgd lab: %s (see vgd lab --help)\n", problem.c_str());
+  return vgd::cli::kUsage;
+}
+
+std::string fixed(double v, int decimals) {
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
+// vgd lab all: every test, each test's CSV and PNG and DIR/report.md.
+int run_all(const Options& o, const vgd::cli::Common& common) {
+  namespace lab = vgd::scene::lab;
+  if (o.out_dir.empty()) return usage("'all' needs -o DIR for its report");
+  const auto model = o.model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
+                                              : vgd::scene::ClothModel::strain_rosette;
+  // The drape costs about resolution^-3 (shirting: 116 s at 5 mm, 7 s at 10 mm):
+  // by default no finer than 10 mm.
+  const double drape_mm = o.drape_resolution_mm > 0.0 ? o.drape_resolution_mm : std::max(10.0, o.resolution_mm);
+  const auto material = lab::lab_material(o.material);
+  const std::filesystem::path dir(o.out_dir);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<lab::ReportEntry> runs;
+  for (const auto& spec : lab::all_specs(model, o.resolution_mm / 1000.0, drape_mm / 1000.0, o.no_poisson)) {
+    lab::ReportEntry e{spec, lab::run(spec, material), "", ""};
+    write_outputs(e.result, dir);
+    e.csv = e.result.test + ".csv", e.png = e.result.test + ".png";
+    vgd::cli::say(common, e.result.test + ": " + fixed(e.result.wall_s, 2) + " s");
+    runs.push_back(std::move(e));
+  }
+  std::string command = "vgd lab all --material " + o.material + " --model " + o.model + " --resolution " +
+                        fixed(o.resolution_mm, 2) + " --drape-resolution " + fixed(drape_mm, 2) +
+                        (o.no_poisson ? " --no-poisson" : "") + " -o " + o.out_dir;
+  std::vector<std::string> notes{"The drape runs at " + fixed(drape_mm, 2) + " mm, the other tests at " +
+                                 fixed(o.resolution_mm, 2) + " mm: the Cusick drape's cost grows about as "
+                                 "resolution^-3 (shirting: 7 s at 10 mm, 116 s at 5 mm; docs/fabric-lab.md)."};
+  if (model != vgd::scene::ClothModel::strain_rosette)
+    notes.push_back("buckling is left out: the mass-spring strip has no bending stiffness at the straight state.");
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  vgd::write_file_atomic(dir / "report.md", lab::report_markdown(runs, command, notes, total));
+  if (o.json) {
+    auto tests = nlohmann::json::array();
+    for (const auto& e : runs) tests.push_back(to_json(e.result, e.spec));
+    vgd::cli::print_json({{"tests", tests}, {"total_wall_s", total}, {"report", (dir / "report.md").string()}});
+    return vgd::cli::kOk;
+  }
+  std::printf("%s, %s model: %zu tests, report %s\n", material.name.c_str(), o.model.c_str(), runs.size(),
+              (dir / "report.md").string().c_str());
+  std::printf("%-16s %15s %9s\n", "test", "max rel error", "wall s");
+  for (const auto& e : runs)
+    std::printf("%-16s %15.3e %9.2f\n", e.result.test.c_str(), e.result.max_rel_error, e.result.wall_s);
+  std::printf("%-16s %15s %9.2f\n", "total", "", total);
+  return vgd::cli::kOk;
+}
+
+// vgd lab fit: measurements -> fitted MATERIAL, with the residuals.
+int run_fit(const Options& o, const vgd::cli::Common& common) {
+  namespace lab = vgd::scene::lab;
+  if (o.measurements.empty()) return usage("'fit' needs the measurements CSV");
+  if (o.out_dir.empty()) return usage("'fit' needs -o FILE.xvc for the fitted MATERIAL");
+  const auto model = o.model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
+                                              : vgd::scene::ClothModel::strain_rosette;
+  const std::filesystem::path out(o.out_dir);
+  const auto measurements = lab::read_measurements(o.measurements);
+  const lab::FitResult f = lab::fit(measurements, model, out.stem().string(), o.measurements);
+  lab::write_material_xvc(f, out, o.measurements);
+  vgd::cli::say(common, "wrote " + out.string() + " (MATERIAL " + out.stem().string() + ")");
+  if (o.json) {
+    auto residuals = nlohmann::json::array();
+    for (const auto& r : f.residuals)
+      residuals.push_back({{"line", r.measurement.line},
+                           {"quantity", lab::to_string(r.measurement.kind)},
+                           {"angle_deg", r.measurement.angle_deg},
+                           {"x", r.measurement.x},
+                           {"measured", r.measurement.value},
+                           {"fitted", number(r.fitted)},
+                           {"rel_residual", number(r.rel_residual)}});
+    vgd::cli::print_json({{"material", out.stem().string()},
+                          {"model", vgd::scene::to_string(model)},
+                          {"fitted", f.fitted},
+                          {"residuals", residuals},
+                          {"rms_rel_residual", f.rms_rel_residual},
+                          {"iterations", f.iterations},
+                          {"notes", f.notes}});
+    return vgd::cli::kOk;
+  }
+  std::printf("%s fitted to %s (%s model, %d iterations): ", out.string().c_str(), o.measurements.c_str(),
+              vgd::scene::to_string(model), f.iterations);
+  for (std::size_t k = 0; k < f.fitted.size(); ++k) std::printf("%s%s", k ? ", " : "", f.fitted[k].c_str());
+  std::printf("\n");
+  for (const auto& n : f.notes) std::printf("  %s\n", n.c_str());
+  std::printf("residuals (fitted / measured - 1), SI, by line:\n");
+  for (const auto& r : f.residuals) std::printf("  %s\n", lab::describe(r).c_str());
+  std::printf("rms relative residual %.3e\n", f.rms_rel_residual);
+  return vgd::cli::kOk;
+}
+
 vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
   auto* sub = app.add_subcommand("lab", "Run a virtual textile test on a fabric and compare it with mechanics");
   auto o = std::make_shared<Options>();
-  sub->add_option("TEST", o->test, "tip-cantilever, tensile, cantilever, buckling, shear, bending or drape")
+  sub->add_option("TEST", o->test,
+                  "tip-cantilever, tensile, cantilever, buckling, shear, bending, drape; all (every test and a "
+                  "report); fit (fit a MATERIAL to measurements)")
       ->required()
-      ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling", "shear", "bending", "drape"}));
-  sub->add_option("--material", o->material, "Fabric: a name in data/materials (shirting) or an XVC file")->required();
+      ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling", "shear", "bending", "drape", "all",
+                             "fit"}));
+  sub->add_option("MEASUREMENTS", o->measurements, "fit: the measurements CSV (docs/fabric-lab.md)");
+  sub->add_option("--material", o->material, "Fabric: a name in data/materials (shirting) or an XVC file");
   sub->add_option("--model", o->model, "Cloth model: rosette (strain rosette + bending) or mass-spring")
       ->check(CLI::IsMember({"rosette", "strain-rosette", "mass-spring"}));
   o->angle_opt = sub->add_option("--angle", o->angle,
@@ -120,13 +234,26 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
                      ->check(CLI::Range(0.0, 90.0));
   sub->add_option("--resolution", o->resolution_mm, "Grid spacing along the specimen, mm (default 5)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--drape-resolution", o->drape_resolution_mm,
+                  "all: the drape's mesh spacing, mm (default 10, or --resolution when coarser)")
+      ->check(CLI::PositiveNumber);
   sub->add_flag("--no-poisson", o->no_poisson,
                 "Bend the fabric with nu_xy = 0, where strip and plate rigidity agree (docs/fabric-lab.md)");
   sub->add_flag("--json", o->json, "Print the result as JSON on stdout");
-  sub->add_option("-o,--output", o->out_dir, "Write TEST.csv (measured vs expected) and TEST.png (a plot; drape: the view from above) into this directory");
-  sub->footer("Exit codes: 0 the test ran (its errors are in the output), 1 bad material or failed run.");
+  sub->add_option("-o,--output", o->out_dir,
+                  "Write TEST.csv (measured vs expected) and TEST.png (a plot; drape: the view from above) into this "
+                  "directory; all: also report.md; fit: the fitted MATERIAL's XVC file");
+  sub->footer("Exit codes: 0 the test ran (its errors are in the output), 1 bad material, measurements or failed run, "
+              "2 usage.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     namespace lab = vgd::scene::lab;
+    if (o->test == "fit") return run_fit(*o, common);
+    if (o->material.empty()) return usage("--material is required for '" + o->test + "'");
+    if (!o->measurements.empty()) return usage("unexpected argument '" + o->measurements + "'");
+    if (o->test == "all") {
+      if (o->angle_opt->count() > 0) return usage("'all' runs each test at its own angles; --angle is for one test");
+      return run_all(*o, common);
+    }
     lab::LabSpec spec;
     spec.test = lab::parse_test(o->test);
     spec.model = o->model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
@@ -138,12 +265,9 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
     const auto material = lab::lab_material(o->material);
     const lab::LabResult r = lab::run(spec, material);
     if (!o->out_dir.empty()) {
-      std::filesystem::create_directories(o->out_dir);
-      const auto csv = std::filesystem::path(o->out_dir) / (r.test + ".csv");
-      lab::write_csv(r, csv);
-      const auto png = std::filesystem::path(o->out_dir) / (r.test + ".png");
-      vgd::render::write_png(r.top_view.empty() ? plot(r) : top_view(r), png);
-      vgd::cli::say(common, "wrote " + csv.string() + " and " + png.string());
+      write_outputs(r, o->out_dir);
+      vgd::cli::say(common, "wrote " + (std::filesystem::path(o->out_dir) / (r.test + ".csv")).string() + " and " +
+                                (std::filesystem::path(o->out_dir) / (r.test + ".png")).string());
     }
     if (o->json) {
       vgd::cli::print_json(to_json(r, spec));

@@ -9,16 +9,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/scene/data.hpp"
 #include "vgd/sim/effects/basic.hpp"
@@ -501,6 +502,8 @@ sim::OrthotropicMaterial orthotropic_reference(const MaterialDef& mat, const cha
   return orthotropic_of(mat);
 }
 
+}  // namespace
+
 // Q̄₆₆ (N/m): the sheet's stiffness in simple shear (strain (0, 0, γ) in the
 // specimen's frame, the strains along and across held) at θ from the warp;
 // G at 0 and 90°. Plane-stress Q of material.hpp rotated (Jones eq. 2.85).
@@ -510,6 +513,8 @@ double simple_shear_modulus(const sim::OrthotropicMaterial& o, double angle_deg)
   const double c = std::cos(angle_deg * kDeg), s = std::sin(angle_deg * kDeg);
   return (q11 + q22 - 2 * q12 - 2 * q66) * s * s * c * c + q66 * (s * s * s * s + c * c * c * c);
 }
+
+namespace {
 
 // The shear force per clamp length (N/m) of an ideal, end-free specimen in
 // uniform simple shear y += t·x (t = tan φ, x across the gap) at finite
@@ -861,14 +866,101 @@ LabResult run(const LabSpec& spec, const MaterialDef& given) {
 }
 
 void write_csv(const LabResult& r, const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string(), "", "cannot write");
+  std::ostringstream out;
   out << "test,material,model,quantity,x,measured,expected,rel_error\n";
   out.precision(10);
   for (const auto& p : r.points)
     out << r.test << ',' << csv_field(r.material) << ',' << r.model << ',' << p.quantity << ',' << p.x << ',' << p.measured << ','
         << p.expected << ',' << p.rel_error << '\n';
-  if (!out) throw Error(file.string(), "", "write failed");
+  write_file_atomic(file, out.str());
+}
+
+const char* describe(Test t) {
+  switch (t) {
+    case Test::tip_cantilever:
+      return "Strip 100 x 10 mm clamped at one end under a dead tip load P per width (seed 002 Fig. 15, after "
+             "Eichen): tip shortening u/L and deflection w/L for k = PL^2/B = 1...10 against the elastica "
+             "(mechanics.md 1), B = B_strip.";
+    case Test::tensile:
+      return "ISO 13934-1 strip 200 x 50 mm stretched by 0.01 %, ends free to contract and shear (Instron / "
+             "KES-FB1): E_theta at 0, 15, ..., 90 deg against the orthotropic off-axis modulus (mechanics.md 3).";
+    case Test::cantilever:
+      return "Strip 10 mm wide under its own weight (ASTM D1388 / FAST-2), g = wL^3/B = 1...20: chord angle against "
+             "the heavy elastica (mechanics.md 2), and the bending length by Peirce's formula as FAST computes it.";
+    case Test::buckling:
+      return "Strips 50 and 100 mm, clamped-free (dead end load) and clamped-clamped (end shortening): the load at "
+             "which the straight strip loses its stiffness across the sheet against Euler's C B / L^2 (mechanics.md 4).";
+    case Test::shear:
+      return "KES-FB1 shear, 200 mm along the clamps, 50 mm between them, phi = 0.5...8 deg: shear force per clamp "
+             "length against uniform simple shear of the law, G at 0.5 deg against Q66 (G_xy).";
+    case Test::bending:
+      return "KES-FB2 pure bending, 10 mm between clamps set on an arc, K = +-0.5...2.5 1/cm: moment per width "
+             "against the plate's B_theta K, and B (the KES slope) warp and weft.";
+    case Test::drape:
+      return "Cusick drape tester (BS 5058 / ISO 9073-9): a 300 mm disc on a 180 mm disk hung to rest by the "
+             "engine's implicit Euler: drape coefficient, nodes, shadow area. No analytic reference.";
+  }
+  return "?";
+}
+
+std::vector<LabSpec> all_specs(ClothModel model, double resolution, double drape_resolution, bool poisson_free) {
+  std::vector<LabSpec> specs;
+  for (Test t : {Test::tip_cantilever, Test::tensile, Test::cantilever, Test::buckling, Test::shear, Test::bending,
+                 Test::drape}) {
+    if (t == Test::buckling && model != ClothModel::strain_rosette) continue;
+    LabSpec s;
+    s.test = t, s.model = model, s.poisson_free = poisson_free;
+    s.resolution = t == Test::drape ? drape_resolution : resolution;
+    // As `vgd lab TEST` without --angle: tensile and bending at all their angles.
+    if (t == Test::tensile || t == Test::bending) s.angle_deg = -1.0;
+    specs.push_back(s);
+  }
+  return specs;
+}
+
+namespace {
+
+// A number for the report's tables; "–" where there is none.
+std::string cell(double v, const char* format) {
+  if (std::isnan(v)) return "–";
+  if (std::isinf(v)) return v > 0 ? "inf (failed solve)" : "-inf";
+  char b[48];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
+}  // namespace
+
+std::string report_markdown(const std::vector<ReportEntry>& runs, const std::string& command,
+                            const std::vector<std::string>& notes, double total_wall_s) {
+  std::ostringstream md;
+  const LabResult* first = runs.empty() ? nullptr : &runs.front().result;
+  md << "# Fabric lab report: " << (first ? first->material : "") << ", " << (first ? first->model : "")
+     << " model\n\n";
+  md << "Generated by `" << command << "`. Largest |relative error| over each test's points with a "
+     << "reference; wall times are each test's own (single thread unless --threads).\n\n";
+  md << "| test | grid | resolution mm | points | max rel. error | wall s |\n|---|---|---|---|---|---|\n";
+  for (const auto& e : runs)
+    md << "| [" << e.result.test << "](#" << e.result.test << ") | " << e.result.cells_along << " x "
+       << e.result.cells_across << " | " << cell(1000 * e.spec.resolution, "%g") << " | " << e.result.points.size()
+       << " | " << cell(e.result.max_rel_error, "%.3e") << " | " << cell(e.result.wall_s, "%.2f") << " |\n";
+  md << "\nTotal wall time " << cell(total_wall_s, "%.2f") << " s.\n";
+  for (const auto& n : notes) md << "\n- " << n;
+  if (!notes.empty()) md << "\n";
+  for (const auto& e : runs) {
+    const LabResult& r = e.result;
+    md << "\n## " << r.test << "\n\n" << describe(parse_test(r.test)) << "\n\n";
+    md << "Grid " << r.cells_along << " x " << r.cells_across << " cells at " << cell(1000 * e.spec.resolution, "%g")
+       << " mm" << (e.spec.poisson_free ? ", nu_xy = 0" : "") << ". Notes:\n\n";
+    for (const auto& n : r.notes) md << "- " << n << "\n";
+    md << "\n| quantity | " << r.x_name << " | measured | expected | rel. error |\n|---|---|---|---|---|\n";
+    for (const auto& p : r.points)
+      md << "| " << p.quantity << " | " << cell(p.x, "%g") << " | " << cell(p.measured, "%.7g") << " | "
+         << cell(p.expected, "%.7g") << " | " << cell(p.rel_error, "%+.2e") << " |\n";
+    md << "\nMax |rel. error| " << cell(r.max_rel_error, "%.3e") << ", wall " << cell(r.wall_s, "%.2f")
+       << " s. Data: [" << e.csv << "](" << e.csv << ").\n\n![" << r.test << "](" << e.png << ")\n";
+  }
+  return md.str();
 }
 
 }  // namespace vgd::scene::lab

@@ -319,3 +319,14 @@ TEST(Lab, DrapeOrdersDenimAboveSilkCrepeWithThreeToTwelveNodes) {
   EXPECT_GT(point(denim, "DC", 30.0).measured, point(silk, "DC", 30.0).measured + 0.1);
   EXPECT_GT(point(denim, "DC", 30.0).measured, 0.7);  // the stiff class's range, mechanics.md §6
 }
+
+TEST(LabAll, RunsEveryTestWithTheDrapeAtItsOwnResolution) {
+  const auto specs = lab::all_specs(ClothModel::strain_rosette, 0.005, 0.01, false);
+  ASSERT_EQ(specs.size(), 7u);
+  for (const auto& s : specs) EXPECT_DOUBLE_EQ(s.resolution, s.test == lab::Test::drape ? 0.01 : 0.005);
+  EXPECT_LT(specs[1].angle_deg, 0.0);  // tensile at every angle
+  // The mass-spring strip cannot buckle (no stiffness across the sheet): left out.
+  for (const auto& s : lab::all_specs(ClothModel::mass_spring, 0.005, 0.01, false))
+    EXPECT_NE(s.test, lab::Test::buckling);
+  EXPECT_EQ(lab::all_specs(ClothModel::mass_spring, 0.005, 0.01, false).size(), 6u);
+}

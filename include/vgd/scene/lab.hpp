@@ -100,8 +100,38 @@ MaterialDef lab_material(const std::string& name_or_file);
 // material lacks the model's values, or for buckling with the mass-spring model.
 LabResult run(const LabSpec& spec, const MaterialDef& material);
 
-// The result as CSV: quantity,x,measured,expected,rel_error (header row).
+// The result as CSV: test,material,model,quantity,x,measured,expected,rel_error
+// (header row), written atomically.
 void write_csv(const LabResult& r, const std::filesystem::path& file);
+
+// Q̄₆₆ (N/m): the sheet's stiffness in simple shear at angle_deg from the warp
+// (G_xy at 0 and 90°; Jones eq. 2.85), the shear test's reference.
+double simple_shear_modulus(const sim::OrthotropicMaterial& o, double angle_deg);
+
+// ---- vgd lab all: every test and a Markdown report ----
+
+// What the test does and what it is compared with, one line (for reports).
+const char* describe(Test t);
+
+// The runs of `vgd lab all`, in order: every test at `resolution` (tensile at
+// 0…90°, bending warp and weft), the drape at `drape_resolution` (it costs
+// ~ resolution⁻³: 116 s at 5 mm, 7 s at 10 mm on the shirting). Buckling is
+// left out for the mass-spring model, which has no stiffness across the sheet.
+std::vector<LabSpec> all_specs(ClothModel model, double resolution, double drape_resolution, bool poisson_free);
+
+// One run of a report and the files written beside it (names relative to the report).
+struct ReportEntry {
+  LabSpec spec;
+  LabResult result;
+  std::string csv, png;
+};
+
+// The report: a summary table, then per test what it does, its grid, a table
+// of measured vs expected with relative errors, max |rel error|, wall time and
+// links to its CSV and PNG. `command` is quoted as what generated it; `notes`
+// are listed under the summary.
+std::string report_markdown(const std::vector<ReportEntry>& runs, const std::string& command,
+                            const std::vector<std::string>& notes, double total_wall_s);
 
 // ---- analytic references (mechanics.md §1, §2), by shooting on θ'(0) ----
 

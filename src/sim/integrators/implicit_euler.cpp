@@ -193,6 +193,11 @@ class ImplicitEuler final : public FixedStepIntegrator {
 
   void prepare(System& sys, const State& s) override {
     FixedStepIntegrator::prepare(sys, s);
+    // An indefinite matrix is an outcome the step handles (Outcome::indefinite),
+    // not news for the terminal: CHOLMOD would print it on stdout, into a
+    // command's JSON (vgd lab drape --json).
+    ldlt_.cholmod().print = 0;
+    factor_.cholmod().print = 0;
     mass_dof_.resize(0);  // rebuilt from the system's (possibly merged) masses on the next step
     factor_valid_ = false;  // a lagged factor belongs to the old system
     prev_h_ = 0.0;          // ... and so does the warm start
