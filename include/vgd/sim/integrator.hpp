@@ -57,6 +57,12 @@ struct IntegratorSettings {
   // BDF (CVODE)
   double rtol = 1e-4;          // relative tolerance
   double atol = 1e-6;          // absolute tolerance (m for positions, m/s for velocities)
+  // BDF orders 3-5 are not stable near the imaginary axis, where cloth's
+  // lightly damped stiff modes sit: at order 5 a 5 mm strain-rosette mesh
+  // gained 86 % energy in 0.2 s (72 708 steps, 102 s); at 2 (A-stable) it
+  // completes in 2 410 steps, 4 s (tests/stability). Order 2 damps the
+  // swinging of a hanging cloth, though (5.6 mm off at rtol 1e-5 where order
+  // 5 is within 0.05 mm): 5 stays the default, 2 is the choice for fine meshes.
   int max_order = 5;
   bool krylov = false;         // GMRES (matrix-free) instead of KLU sparse direct
   double max_step = 0.0;       // s, 0 = no limit
