@@ -278,7 +278,10 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
     for (const auto& n : r.notes) std::printf("  %s\n", n.c_str());
     std::printf("%-18s %10s %14s %14s %11s\n", "quantity", r.x_name.c_str(), "measured", "expected", "rel error");
     for (const auto& p : r.points)
-      std::printf("%-18s %10g %14.7g %14.7g %+10.3e\n", p.quantity.c_str(), p.x, p.measured, p.expected, p.rel_error);
+      if (std::isfinite(p.expected))
+        std::printf("%-18s %10g %14.7g %14.7g %+10.3e\n", p.quantity.c_str(), p.x, p.measured, p.expected, p.rel_error);
+      else  // no reference (a wrinkle count, the drape coefficient)
+        std::printf("%-18s %10g %14.7g %14s %10s\n", p.quantity.c_str(), p.x, p.measured, "-", "-");
     std::printf("max |rel error| %.3e, %.3f s\n", r.max_rel_error, r.wall_s);
     return vgd::cli::kOk;
   }};

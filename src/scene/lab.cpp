@@ -401,7 +401,9 @@ void cantilever(const LabSpec& spec, const MaterialDef& mat, LabResult& r) {
 // The smallest eigenvalue (N/m) of the stiffness −∂f/∂x across the sheet (z
 // degrees of freedom of the free particles) at x: zero where the straight
 // strip buckles. In the flat state z decouples from the in-plane motion.
-double lowest_out_of_plane_stiffness(const Specimen& s, const std::vector<char>& fixed, const VecX& x) {
+// `mode` (optional): the eigenvector's z per particle (0 where z is held).
+double lowest_out_of_plane_stiffness(const Specimen& s, const std::vector<char>& fixed, const VecX& x,
+                                     Eigen::VectorXd* mode = nullptr) {
   const sim::Model& m = s.model;
   std::vector<int> slot(m.num_dofs(), -1);
   int n = 0;
@@ -414,7 +416,105 @@ double lowest_out_of_plane_stiffness(const Specimen& s, const std::vector<char>&
   for (const auto& t : jx)
     if (slot[t.row()] >= 0 && slot[t.col()] >= 0) K(slot[t.row()], slot[t.col()]) -= t.value();
   const Eigen::MatrixXd Ks = 0.5 * (K + K.transpose());
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ks, Eigen::EigenvaluesOnly).eigenvalues()[0];
+  if (!mode) return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ks, Eigen::EigenvaluesOnly).eigenvalues()[0];
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Ks);
+  mode->setZero(m.num_particles());
+  for (int p = 0; p < m.num_particles(); ++p)
+    if (slot[3 * p + 2] >= 0) (*mode)[p] = eig.eigenvectors()(slot[3 * p + 2], 0);
+  return eig.eigenvalues()[0];
+}
+
+// Shear buckling of a long plate clamped on its long edges (the KES-FB1 shear
+// specimen's geometry: 200 mm along the clamps, b = 50 mm between their
+// middles; each clamp two held rows). One clamp is displaced parallel to the
+// other: every held particle, and the start of the free ones, in uniform simple
+// shear x += γ y (γ = tan φ), the short ends held in that state and in z
+// (simply supported), the in-plane equilibrium solved. The critical shear
+// N_xy (N/m, the moving clamp's reaction per length) is where the lowest
+// out-of-plane stiffness vanishes, by bisection on γ as for Euler above.
+// Reference: the classic plate result N_xy,cr = k_s π² D / b², k_s = 8.98 for
+// an infinitely long isotropic plate with clamped long edges (Southwell &
+// Skan 1924; Timoshenko & Gere, Theory of Elastic Stability, 2nd ed., §9.7);
+// the 200 mm plate's simply supported ends raise it by less than ~2 %. Given
+// only where it applies: isotropic bending (D₁₁ = D₂₂ = D₁₂ + 2D₆₆ = D) and a
+// pure shear prestress (specimen along a yarn, angle 0 or 90°); otherwise NaN
+// (no reference for the orthotropic plate here). Also reported, without a
+// reference: the buckle's half-waves along the centre line and their wavelength.
+void shear_buckling(const LabSpec& spec, const MaterialDef& mat, LabResult& r) {
+  constexpr double b = 0.05, a = 0.2, kS = 8.98;
+  const int m = std::max(4, static_cast<int>(std::lround(b / spec.resolution)));
+  const int n = std::max(8, static_cast<int>(std::lround(a / spec.resolution)));
+  const double w = b / (m + 1);
+  const Specimen s = make_specimen(spec, mat, n + 1, m + 3, a / n, (m + 2) * w, 0.0);
+  std::vector<char> fixed(s.model.num_dofs(), 0);
+  for (int i = 0; i < s.nu; ++i)
+    for (int j : {0, 1, s.nv - 2, s.nv - 1})
+      for (int c = 0; c < 3; ++c) fixed[3 * s.index(i, j) + c] = 1;
+  for (int j = 0; j < s.nv; ++j)
+    for (int i : {0, s.nu - 1})
+      for (int c = 0; c < 3; ++c) fixed[3 * s.index(i, j) + c] = 1;
+  std::vector<char> in_plane = fixed;
+  for (int p = 0; p < s.model.num_particles(); ++p) in_plane[3 * p + 2] = 1;
+  // The sheared state and the shear it carries: the top clamp's reaction per length (N/m).
+  auto state_at = [&](double gamma, VecX& x) {
+    x = s.model.x0;
+    for (int p = 0; p < s.model.num_particles(); ++p) x[3 * p] += gamma * s.model.x0[3 * p + 1];
+    if (!equilibrium(s, in_plane, VecX::Zero(s.model.num_dofs()), x, false)) return std::nan("");
+    const VecX f = specimen_forces(s, x);
+    double load = 0.0;
+    for (int i = 0; i < s.nu; ++i)
+      for (int j : {s.nv - 2, s.nv - 1}) load -= f[3 * s.index(i, j)];
+    return load / a;
+  };
+  const sim::OrthotropicMaterial o = orthotropic_of(mat);
+  const double d11 = o.B_warp, d22 = o.B_weft, d3 = sim::nu_weft_warp(o) * o.B_warp + 2 * sim::twist_rigidity(o);
+  const bool isotropic = std::abs(d22 / d11 - 1) < 1e-9 && std::abs(d3 / d11 - 1) < 1e-9;
+  const bool along_yarn = std::abs(std::remainder(spec.angle_deg, 90.0)) < 1e-9;
+  const double estimate = kS * std::numbers::pi * std::numbers::pi * std::sqrt(d11 * d22) / (b * b);
+  const double expected = isotropic && along_yarn ? estimate : std::nan("");
+  // Bracket on γ from the estimate and the sheet's shear stiffness, doubled until unstable.
+  double lo = 0.0, hi = 2.0 * estimate / simple_shear_modulus(o, spec.angle_deg);
+  VecX x;
+  bool bracket = false;
+  for (int k = 0; k < 8 && !bracket; ++k) {
+    state_at(hi, x);
+    bracket = lowest_out_of_plane_stiffness(s, fixed, x) < 0.0;
+    if (!bracket) lo = hi, hi *= 2.0;
+  }
+  for (int it = 0; it < 40 && bracket; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    state_at(mid, x);
+    (lowest_out_of_plane_stiffness(s, fixed, x) > 0.0 ? lo : hi) = mid;
+  }
+  double load = std::nan(""), half_waves = std::nan(""), wavelength = std::nan("");
+  if (bracket) {
+    load = state_at(hi, x);
+    Eigen::VectorXd mode;
+    lowest_out_of_plane_stiffness(s, fixed, x, &mode);
+    // Zero crossings of the buckle along the centre line (x of each crossing, interpolated).
+    const int jc = s.nv / 2;
+    const double tiny = 1e-6 * mode.cwiseAbs().maxCoeff();
+    std::vector<double> crossings;
+    for (int i = 1; i + 2 < s.nu; ++i) {
+      const double z0 = mode[s.index(i, jc)], z1 = mode[s.index(i + 1, jc)];
+      if (std::abs(z0) > tiny && std::abs(z1) > tiny && (z0 > 0) != (z1 > 0))
+        crossings.push_back(s.h * (i + z0 / (z0 - z1)));
+    }
+    half_waves = static_cast<double>(crossings.size() + 1);
+    if (crossings.size() >= 2)
+      wavelength = 1000 * 2 * (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+  }
+  add_point(r, "N_xy,cr shear N/m", 1000 * b, load, expected);
+  add_point(r, "shear wrinkle half-waves", 1000 * b, half_waves, std::nan(""));
+  add_point(r, "shear wrinkle wavelength mm", 1000 * b, wavelength, std::nan(""));
+  r.notes.push_back("shear: plate " + format_fixed(1000 * a, 0) + " x " + format_fixed(1000 * b, 0) +
+                    " mm clamped on its long edges (two held rows each), one clamp moved parallel to the other, ends "
+                    "simply supported; " + std::to_string(n) + " x " + std::to_string(m + 1) +
+                    " cells; reference N_xy,cr = k_s pi^2 D / b^2, k_s = 8.98 (long plate, clamped edges; Timoshenko & "
+                    "Gere 9.7), " + (std::isfinite(expected) ? "D = " + sig(d11) + " N.m"
+                                                              : std::string("given only for isotropic bending "
+                                                                            "(B_warp = B_weft = D12 + 2 D66) along a yarn: none here")) +
+                    "; x = b mm; wrinkles: half-waves and wavelength along the centre line");
 }
 
 // Euler buckling (mechanics.md §4): the compressive line load (N/m) at which
@@ -493,6 +593,7 @@ void buckling(const LabSpec& spec, const MaterialDef& mat, LabResult& r) {
       add_point(r, "P_cr clamped-clamped N/m", 1000 * L, load, expected);
     }
   }
+  shear_buckling(spec, mat, r);
 }
 
 // The fabric's orthotropic values, which every reference is computed from.
@@ -889,7 +990,9 @@ const char* describe(Test t) {
              "the heavy elastica (mechanics.md 2), and the bending length by Peirce's formula as FAST computes it.";
     case Test::buckling:
       return "Strips 50 and 100 mm, clamped-free (dead end load) and clamped-clamped (end shortening): the load at "
-             "which the straight strip loses its stiffness across the sheet against Euler's C B / L^2 (mechanics.md 4).";
+             "which the straight strip loses its stiffness across the sheet against Euler's C B / L^2 (mechanics.md 4); "
+             "and a 200 x 50 mm plate clamped on its long edges in shear: critical N_xy and wrinkles, against "
+             "k_s pi^2 D / b^2, k_s = 8.98, where the bending is isotropic.";
     case Test::shear:
       return "KES-FB1 shear, 200 mm along the clamps, 50 mm between them, phi = 0.5...8 deg: shear force per clamp "
              "length against uniform simple shear of the law, G at 0.5 deg against Q66 (G_xy).";

@@ -96,8 +96,9 @@ TEST(LabReference, EulerBucklingLoadsMatchTheSharedTable) {
   LabSpec spec;
   spec.test = lab::Test::buckling, spec.resolution = 0.01, spec.poisson_free = true;  // B_strip = B_warp = 1e-5
   const LabResult r = run(spec, lab_material("shirting"));
-  ASSERT_EQ(r.points.size(), 4u);
+  ASSERT_EQ(r.points.size(), 7u);  // 4 Euler points, then the shear case's 3
   for (const auto& p : r.points) {
+    if (p.quantity.find("shear") != std::string::npos) continue;
     const std::string which = p.quantity.find("clamped-free") != std::string::npos ? "clamped_free" : "clamped_clamped";
     const std::string key = which + "@" + std::to_string(std::lround(p.x));
     ASSERT_TRUE(table.count(key)) << key;
@@ -185,9 +186,34 @@ TEST(Lab, BucklingRosetteFollowsEulerWithin5Percent) {
   // and with ν = 0. Measured at 5 mm: 1.25 % and 2.69 % (clamped-clamped, 50 mm).
   for (bool poisson_free : {false, true}) {
     const LabResult r = run_on_shirting(lab::Test::buckling, ClothModel::strain_rosette, 0.005, 0.0, poisson_free);
-    ASSERT_EQ(r.points.size(), 4u);
+    ASSERT_EQ(r.points.size(), 7u);  // CF, CC at 50 and 100 mm; shear N_xy,cr, half-waves, wavelength
     EXPECT_LT(r.max_rel_error, 0.05);
+    // The shirting's bending is orthotropic: the shear case has no reference,
+    // but it buckles.
+    EXPECT_TRUE(std::isnan(r.points[4].expected));
+    EXPECT_GT(r.points[4].measured, 0.0);
   }
+}
+
+TEST(Lab, ShearBucklingOfALongClampedPlateIsWithin10PercentOfKs898) {
+  // The buckling test's shear case on a fabric made isotropic in bending
+  // (B_weft = B_warp, ν = 0, D66 = B/2, so D11 = D22 = D12 + 2 D66 = D):
+  // N_xy,cr vs k_s π² D / b², k_s = 8.98 (infinitely long plate, clamped
+  // long edges; Timoshenko & Gere §9.7), 200 x 50 mm at 5 mm.
+  MaterialDef mat = lab_material("shirting");
+  mat.orthotropic->B_weft = mat.orthotropic->B_warp;
+  mat.orthotropic->D_twist = 0.5 * mat.orthotropic->B_warp;
+  LabSpec spec;
+  spec.test = lab::Test::buckling, spec.resolution = 0.005, spec.poisson_free = true;
+  const LabResult r = run(spec, mat);
+  report(r);
+  ASSERT_EQ(r.points.size(), 7u);
+  const LabPoint& shear = r.points[4];
+  ASSERT_EQ(shear.quantity, "N_xy,cr shear N/m");
+  EXPECT_NEAR(shear.expected, 8.98 * M_PI * M_PI * mat.orthotropic->B_warp / (0.05 * 0.05), 1e-9 * shear.expected);
+  EXPECT_LT(std::abs(shear.rel_error), 0.10);
+  EXPECT_GE(r.points[5].measured, 2.0);  // the buckle is a train of inclined wrinkles
+  EXPECT_GT(r.points[6].measured, 0.0);
 }
 
 TEST(Lab, MassSpringShortfallIsReported) {

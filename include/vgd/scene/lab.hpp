@@ -22,6 +22,11 @@
 //                   and clamped-clamped (end shortening): the load at which
 //                   the straight strip's stiffness across the sheet vanishes
 //                   vs Euler's P_cr = C B / L² (rosette model only)
+//                   and in shear: a 200 × 50 mm plate clamped on its long
+//                   edges, one clamp moved parallel to the other: critical
+//                   N_xy, wrinkle half-waves and wavelength, vs k_s π² D / b²,
+//                   k_s = 8.98 (long plate, clamped edges) where the bending is
+//                   isotropic (NaN otherwise)
 //   shear           KES-FB1: 200 mm along the clamps, 50 mm between them, one
 //                   clamp moved sideways by L tan φ at fixed distance, φ ≤ 8°:
 //                   force per clamp length vs uniform simple shear of the law,
