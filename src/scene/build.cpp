@@ -231,12 +231,12 @@ std::vector<std::pair<std::string, sim::Model>> xvc_pieces(const SceneDef& def, 
 struct DressedPiece {
   std::string name;
   sim::Model model;
+  std::string segment;  // the body segment it was placed on
 };
-// `under` holds the cloth of the garments worn under this one; this one's
-// placed pieces are appended to it.
+// `under`: the cloth of the garments worn under this one.
 std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in, const MaterialDef& m,
                                          Diagnostics& diag, const Avatar& avatar, std::vector<GarmentSeam>& seams,
-                                         std::vector<Underlayer>& under) {
+                                         const std::vector<Underlayer>& under) {
   const ClothDef& c = def.cloth[ci];
   const GarmentDef& gd = *c.garment;
   const std::string p = cloth_path(ci) + ".garment";
@@ -248,7 +248,7 @@ std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in
   ao.pieces = gd.pieces;
   for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
   const Garment g = assemble_garment(doc, ao, diag);
-  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, &under);
+  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under);
   std::vector<DressedPiece> out;
   for (std::size_t k = 0; k < g.pieces.size(); ++k) {
     const GarmentPiece& gp = g.pieces[k];
@@ -262,7 +262,7 @@ std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in
     if (placed[k].flipped)  // keep triangles counter-clockwise seen from outside the body
       for (auto& t : mp.triangles) std::swap(t[1], t[2]);
     set_masses(mp, m, c.model);
-    out.push_back({gp.piece.block.empty() ? gp.name : gp.piece.block, std::move(mp)});
+    out.push_back({gp.piece.block.empty() ? gp.name : gp.piece.block, std::move(mp), placed[k].segment});
   }
   seams = g.seams;
   return out;
@@ -336,9 +336,12 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       std::vector<Underlayer> under;  // the garments of lower layers placed so far
       for (const auto& [layer, cloth] : layers)
         if (layer < c.garment->layer) under.insert(under.end(), cloth.begin(), cloth.end());
-      const std::size_t below = under.size();
       auto dressed = garment_pieces(def, ci, in, m, diag, *avatar, garment_seams, under);
-      layers.emplace_back(c.garment->layer, std::vector<Underlayer>(under.begin() + below, under.end()));
+      auto& mine = layers.emplace_back(c.garment->layer, std::vector<Underlayer>{}).second;
+      for (const auto& d : dressed) {
+        Underlayer& u = mine.emplace_back(Underlayer{d.segment, {}});
+        for (int i = 0; i < d.model.num_particles(); ++i) u.points.push_back(sim::at(d.model.x0, i));
+      }
       for (auto& d : dressed)
         parts.emplace_back(garments > 1 && !c.name.empty() ? c.name + "/" + d.name : std::move(d.name), std::move(d.model));
     }

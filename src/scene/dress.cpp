@@ -42,10 +42,8 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
-                                       const Avatar& avatar, std::vector<Underlayer>* under) {
-  static const std::vector<Underlayer> kNone;
+                                       const Avatar& avatar, const std::vector<Underlayer>& under) {
   std::vector<PlacedPiece> out;
-  std::vector<Underlayer> mine;
   for (const auto& gp : garment.pieces) {
     const auto it = arrangements.find(gp.pattern_id);
     if (it == arrangements.end() || gp.copy >= static_cast<int>(it->second.size()))
@@ -56,19 +54,18 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
     const xvc::Arrangement& a = it->second[gp.copy];
     PiecePlacement p;
     try {
-      p = place_piece(gp.mesh.nodes, a, avatar, under ? *under : kNone);
+      p = place_piece(gp.mesh.nodes, a, avatar, under);
     } catch (const Error& e) {
       throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
     }
-    if (under) mine.push_back({a.segment, p.points});
     PlacedPiece pp;
     pp.positions = std::move(p.points);
     pp.flipped = p.reverses_winding;
+    pp.segment = a.segment;
     pp.arrangement = a.segment + " " + a.side + " at " + format_fixed(a.height, 3) + " m, " +
                      format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
     out.push_back(std::move(pp));
   }
-  if (under) under->insert(under->end(), mine.begin(), mine.end());
   return out;
 }
 

@@ -21,6 +21,7 @@ struct PlacedPiece {
   std::vector<Vec3> positions;  // per mesh node, m, world frame
   bool flipped = false;         // the placement mirrored the piece: its triangles must be reversed
   std::string arrangement;      // how it was placed, for reports ("torso front 1.25 m, 30 mm clear, suggested")
+  std::string segment;          // the body segment it was placed on (for garments worn over it)
 };
 
 // Every PATTERN's arrangements: those stored in the document, else vgd's
@@ -33,10 +34,9 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 // One PlacedPiece per garment piece, in order: piece k of a pattern takes the
 // pattern's k-th arrangement. Throws vgd::Error naming the document and the
 // PATTERN when a piece has no arrangement, or names a segment the avatar lacks.
-// `under`: garments already placed that this one is worn over; each placed
-// piece is appended to it (with its segment) for the garments over this one.
+// `under`: the cloth of garments already placed that this one is worn over.
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
-                                       const Avatar& avatar, std::vector<Underlayer>* under = nullptr);
+                                       const Avatar& avatar, const std::vector<Underlayer>& under = {});
 
 }  // namespace vgd::scene
