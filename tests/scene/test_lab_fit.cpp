@@ -21,9 +21,17 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// One scratch folder for the whole file (scratch_dir empties it).
-const std::filesystem::path& scratch() {
-  static const auto dir = test::scratch_dir("lab_fit");
+// One scratch folder per test: ctest runs the tests as parallel processes,
+// and scratch_dir empties the folder it makes (a folder shared by the file's
+// tests lost one test's CSV to another's start).
+std::filesystem::path scratch() {
+  static std::string made_for;
+  const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto dir = test::binary_dir() / "test-scratch" / ("lab_fit-" + name);
+  if (made_for != name) {
+    made_for = name;
+    return test::scratch_dir("lab_fit-" + name);
+  }
   return dir;
 }
 
