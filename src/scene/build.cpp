@@ -556,12 +556,8 @@ Scene build(const SceneDef& def) {
     }
     // Self-collision before the body: its corrections move particles, and the
     // body's projection after it has the last word (no particle left inside).
-    if (e.self_collision) {
-      sim::SelfCollisionDef sc = *e.self_collision;
-      sc.fixed = s.pinned;
-      for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
-      effects.push_back(sim::make_self_collision(model, sc));
-    }
+    // The body's effect is made first: layered self-collision reads its grid.
+    std::unique_ptr<sim::Effect> body;
     if (e.collision) {
       sim::BodyCollisionDef cd = *e.collision;
       cd.body = s.avatar->surface;
@@ -570,8 +566,29 @@ Scene build(const SceneDef& def) {
                         : e.collision_seam_response == "slide" ? sim::SeamContact::slide
                                                                : sim::SeamContact::glide;
       cd.fixed = s.pinned;
-      effects.push_back(sim::make_body_collision(model, cd));
+      body = sim::make_body_collision(model, cd);
     }
+    if (e.self_collision) {
+      sim::SelfCollisionDef sc = *e.self_collision;
+      sc.fixed = s.pinned;
+      for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
+      // Garments worn over others keep the body's order (layer 0 innermost).
+      const sim::SignedDistanceGrid* grid = body ? sim::body_collision_grid(*body) : nullptr;
+      if (grid && std::any_of(s.pieces.begin(), s.pieces.end(), [&](const PieceInfo& p) {
+            const auto& g = def.cloth[p.cloth].garment;
+            return g && g->layer != 0;
+          })) {
+        sc.body = grid;
+        sc.body_clearance = e.collision->clearance;
+        sc.held_distance = 1.5 * e.collision->clearance;
+        sc.layer.assign(model.num_particles(), 0);
+        for (const auto& p : s.pieces)
+          if (const auto& g = def.cloth[p.cloth].garment)
+            std::fill_n(sc.layer.begin() + p.first, p.count, g->layer);
+      }
+      effects.push_back(sim::make_self_collision(model, sc));
+    }
+    if (body) effects.push_back(std::move(body));
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));
   } catch (const sim::SimulationError& err) {
     throw Error(def.source.string(), "", std::string("cannot build the simulation: ") + err.what());

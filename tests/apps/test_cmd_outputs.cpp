@@ -88,7 +88,9 @@ TEST(CmdOutputs, ExportWritesEveryFormatOfATrajectory) {
       EXPECT_NE(text.find("CoordinateInterpolator"), std::string::npos);
       EXPECT_NE(text.find("TimeSensor"), std::string::npos);
     }
-    if (std::string(flavour) == "live") EXPECT_NE(text.find("Script"), std::string::npos);
+    if (std::string(flavour) == "live") {
+      EXPECT_NE(text.find("Script"), std::string::npos);
+    }
   }
   const auto glb = dir / "flag.glb", obj = dir / "flag.obj";
   const auto r = test::run_vgd({"-q", "export", trj.string(), "--gltf", glb.string(), "--obj", obj.string()});

@@ -40,7 +40,9 @@ TEST(Bvh, SignedDistanceMatchesTheSphere) {
     const auto c = bvh.closest(p);
     const double exact = p.norm() - kR;
     worst = std::max(worst, std::abs(c.distance - exact));
-    if (std::abs(exact) > kFacetError) EXPECT_EQ(c.distance < 0, exact < 0);
+    if (std::abs(exact) > kFacetError) {
+      EXPECT_EQ(c.distance < 0, exact < 0);
+    }
     EXPECT_GT(c.normal.dot(p.normalized()), 0.99);
   }
   RecordProperty("bvh_max_error_vs_sphere_m", sci(worst));

@@ -162,6 +162,62 @@ TEST(SelfCollision, CrossedParticleIsBroughtBack) {
   EXPECT_NEAR(at(s.x, 3).z() - wp, 0.003, 1e-6);
 }
 
+// Layers: a triangle of an outer garment (layer 1) 10 mm over a flat body
+// (a box whose top is z = 0) and a particle of the inner garment (layer 0)
+// 4 mm outside it — a crossing an earlier step left. With layers the particle
+// goes back under the triangle (the body's order); without, the side it came
+// from is kept and the crossing stays.
+TEST(SelfCollision, LayersPutTheInnerGarmentBackUnderTheOuterOne) {
+  const auto body = test::box(Vec3(0.2, 0.2, 0.05), Mat3::Identity(), Vec3(0.05, 0.05, -0.05));
+  const SignedDistanceGrid grid(body);
+  for (const bool layered : {false, true}) {
+    Model m = triangle_and_particle(Vec3(0.02, 0.02, 0.014));
+    for (int i = 0; i < 3; ++i) at(m.x0, i).z() = 0.010;
+    SelfCollisionDef def;
+    def.body = &grid;
+    if (layered) def.layer = {1, 1, 1, 0};
+    auto e = make_self_collision(m, def);
+    State s = initial_state(m);
+    e->after_step(m, s);
+    const double height = at(s.x, 3).z() - (0.6 * at(s.x, 0).z() + 0.2 * at(s.x, 1).z() + 0.2 * at(s.x, 2).z());
+    if (layered) {
+      // Within 10 µm: the contact's edge–edge pairs move it by micrometres more.
+      EXPECT_NEAR(height, -def.thickness, 1e-5) << "the inner particle belongs under the outer triangle";
+      EXPECT_GT(at(s.x, 0).z(), 0.010) << "not held by the body: the outer layer gives way too";
+    } else {
+      EXPECT_NEAR(height, 0.004, 1e-12) << "without layers the crossing is not seen";
+    }
+  }
+}
+
+// An inner particle the body holds (within held_distance) does not move: the
+// outer triangle, pressed through it, is lifted over it instead.
+TEST(SelfCollision, TheBodyHoldsTheInnerLayerAndTheOuterGivesWay) {
+  const auto body = test::box(Vec3(0.2, 0.2, 0.05), Mat3::Identity(), Vec3(0.05, 0.05, -0.05));
+  const SignedDistanceGrid grid(body);
+  Model m = triangle_and_particle(Vec3(0.02, 0.02, 0.004));
+  for (int i = 0; i < 3; ++i) at(m.x0, i).z() = 0.0035;  // outer layer, 0.5 mm under the inner particle
+  SelfCollisionDef def;
+  def.body = &grid;
+  def.layer = {1, 1, 1, 0};
+  auto e = make_self_collision(m, def);
+  State s = initial_state(m);
+  e->after_step(m, s);
+  EXPECT_EQ(at(s.x, 3).z(), 0.004);
+  const double tri = 0.6 * at(s.x, 0).z() + 0.2 * at(s.x, 1).z() + 0.2 * at(s.x, 2).z();
+  EXPECT_NEAR(tri - 0.004, def.thickness, 1e-5);
+}
+
+// Layers need the body to tell inside from outside.
+TEST(SelfCollision, LayersWithoutABodyAreRefused) {
+  Model m = triangle_and_particle(Vec3(0.02, 0.02, 0.014));
+  SelfCollisionDef def;
+  def.layer = {1, 1, 1, 0};
+  EXPECT_THROW(make_self_collision(m, def), SimulationError);
+  def.layer = {1, 0};
+  EXPECT_THROW(make_self_collision(m, def), SimulationError);
+}
+
 }  // namespace
 }  // namespace vgd::sim
 

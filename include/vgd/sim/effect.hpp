@@ -62,6 +62,10 @@ class Effect {
   // Runs after every accepted step; may change positions and velocities
   // (deformation limiting, later collision projection and seam merges).
   virtual void after_step(const Model& m, State& s) {}
+  // True when after_step must see every step, not every frame (contacts: cloth
+  // moving centimetres between frames passes through a body unseen). BDF runs
+  // the hooks once per frame and refuses a system with such an effect.
+  virtual bool needs_every_step() const { return false; }
   // Seams (docs/seams.md). Merges happen between integrator advances (frame
   // boundaries of sim::run), in System::apply_merges, never inside a step.
   // Adds pairs of particles (indices of the Model) that should become one

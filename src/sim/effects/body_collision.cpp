@@ -56,6 +56,7 @@ class BodyCollision final : public Effect {
   }
 
   const char* name() const override { return "body-collision"; }
+  bool needs_every_step() const override { return true; }
   void add_forces(const Eval&, VecX&) override {}  // acts on the total force and after steps
   bool add_jacobian(const Eval&, Triplets&, Triplets&) override { return true; }
 

@@ -137,7 +137,8 @@ class SpatialHash {
 
 struct Pair {
   int p, t;
-  double side;  // +1 / −1: the side of the triangle the particle must stay on
+  double side;           // +1 / −1: the side of the triangle the particle must stay on
+  bool layered = false;  // between two layers: the side is the body's order
 };
 
 // The particle's height over the triangle's plane and the barycentric
@@ -240,6 +241,17 @@ class SelfCollision final : public Effect {
     for (const auto& [a, b] : d.joined) cloth[top(a)] = top(b);
     hem_.assign(n_, 0);
     for (const auto& [a, b] : d.joined) hem_[a] = hem_[b] = top(a) + 1;
+    if (!d.layer.empty()) {
+      if (static_cast<int>(d.layer.size()) != n_)
+        throw SimulationError("self collision: " + std::to_string(d.layer.size()) + " layers for " +
+                              std::to_string(n_) + " particles");
+      if (d.body == nullptr) throw SimulationError("self collision: layers need the body's distance grid");
+      if (!(d.layer_depth >= 0.0) || !(d.held_distance >= 0.0))
+        throw SimulationError("self collision: layer depth and held distance must be >= 0");
+      // One layer everywhere is no layering: skip the body queries.
+      if (std::any_of(d.layer.begin(), d.layer.end(), [&](int l) { return l != d.layer.front(); }))
+        layered_ = true;
+    }
   }
 
   // Merged copies are one particle: never a collision between them.
@@ -263,6 +275,7 @@ class SelfCollision final : public Effect {
   }
 
   const char* name() const override { return "self-collision"; }
+  bool needs_every_step() const override { return true; }
 
   // The repulsion acts on the pairs the last after-step found near (within
   // the thickness plus their motion over that step): the positions a step
@@ -277,7 +290,8 @@ class SelfCollision final : public Effect {
       Vec3 nrm, w;
       double dn;
       if (!pressed(e.x, pr, nrm, dn, w)) continue;
-      const Vec3 fp = (k * (th - std::abs(dn)) * (dn >= 0.0 ? 1.0 : -1.0)) * nrm;
+      const double sgn = pr.side != 0.0 ? pr.side : (dn >= 0.0 ? 1.0 : -1.0);
+      const Vec3 fp = (k * (th - sgn * dn) * sgn) * nrm;
       at(f, pr.p) += fp;
       for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
     }
@@ -311,6 +325,10 @@ class SelfCollision final : public Effect {
     if (tris_.empty()) return;
     if (x_prev_.size() != s.x.size()) x_prev_ = m.x0.size() == s.x.size() && !merged_once_ ? m.x0 : s.x;
     const double th = def_.thickness;
+    if (layered_) {
+      held_.resize(n_);
+      for (int i = 0; i < n_; ++i) held_[i] = def_.body->distance(at(s.x, i)) < def_.held_distance;
+    }
     // Corrections move particles too, and a push can carry a neighbour
     // through other cloth: the detection is repeated on the whole step's
     // motion (start to corrected end) until it finds no crossing. A crossing
@@ -324,6 +342,7 @@ class SelfCollision final : public Effect {
         break;
       }
       correct(s);
+      if (layered_) project_out_of_body(s);
     }
     double dmin = th;
     for (const Pair& pr : pairs_) {
@@ -357,6 +376,10 @@ class SelfCollision final : public Effect {
     disp_.resize(n_);
     for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
     hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
+    // Between layers a particle is looked for deeper on the wrong side: the
+    // triangle's query box grows by the depth, the particle's test by its
+    // pair's reach.
+    const double depth = layered_ ? def_.layer_depth : 0.0;
     pairs_.clear();
     edge_pairs_.clear();
     std::vector<Pair> near;
@@ -376,23 +399,47 @@ class SelfCollision final : public Effect {
           lo = lo.cwiseMin(at(x_prev_, q));
           hi = hi.cwiseMax(at(x_prev_, q));
         }
+        lo.array() -= depth;
+        hi.array() += depth;
         const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
         const Vec3 tn = (b - a).cross(c - a);
         const double tn_len = tn.norm();
         const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
+        // The body's outward normal against the triangle's (+1: the normal
+        // points away from the body), when the triangle faces the body.
+        double facing = 0.0;
+        if (layered_) {
+          Vec3 g;
+          def_.body->sample((a + b + c) / 3.0, g);
+          const double cosine = unit.dot(g) / std::max(g.norm(), 1e-12);
+          if (std::abs(cosine) >= 0.5) facing = cosine > 0.0 ? 1.0 : -1.0;
+        }
         hash_.for_each_in_box(lo, hi, [&](int p) {
           if (stamp[p] == t) return;
           stamp[p] = t;
           // The particle's swept box, grown by th, must meet the triangle's.
-          const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(th);
-          const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(th);
+          const int lp = layered_ ? def_.layer[p] : 0, lt = layered_ ? def_.layer[tr[0]] : 0;
+          const bool between = facing != 0.0 && lp != lt;
+          const double reach = th + (between ? 0.0 : -depth);  // against the grown box
+          const Vec3 plo = at(s.x, p).cwiseMin(at(x_prev_, p)) - Vec3::Constant(reach);
+          const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(reach);
           if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
           const double lim = th + disp_[p] + tri_motion;
           // Point–triangle.
           if (!skip(p, tr)) {
             Vec3 nrm, w;
             double dn;
-            if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
+            if (between) {
+              // Between layers: the outer one on the triangle's side away
+              // from the body, wherever it came from.
+              const double side = lp > lt ? facing : -facing;
+              if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && side * dn < th &&
+                  side * dn > -(lim + def_.layer_depth)) {
+                if (std::abs(dn) < lim) my_near.push_back({p, t, side, true});
+                if (side * dn < 0.0) ++crossings;
+                my_pairs.push_back({p, t, side, true});
+              }
+            } else if (project(at(s.x, p), a, b, c, nrm, dn, w) && inside(w) && std::abs(dn) < lim) {
               my_near.push_back({p, t, 0.0});
               // The side before the step.
               Vec3 nrm0, w0;
@@ -456,6 +503,22 @@ class SelfCollision final : public Effect {
                       edge_pairs_.end());
     stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
     return crossings;
+  }
+
+  // Particles the corrections pushed within the body's clearance go back out
+  // along its normal, so the next round's detection sees the body's push too.
+  // Positions only, and to just inside the clearance: the body collision
+  // after this effect still finds the contact and answers it (velocity,
+  // friction), its own push then under a micrometre.
+  void project_out_of_body(State& s) const {
+    const double c = def_.body_clearance * (1.0 - 1e-4);
+    for (int i = 0; i < n_; ++i) {
+      if (inv_mass_[i] == 0.0) continue;
+      Vec3 g;
+      const double d = def_.body->sample(at(s.x, i), g);
+      const double len = g.norm();
+      if (d < c && len > 0.5) at(s.x, i) += (c - d) / len * g;
+    }
   }
 
   // Gauss–Seidel: each pair in turn moves its four particles.
@@ -584,23 +647,46 @@ class SelfCollision final : public Effect {
     w = w.cwiseMax(0.0);
     w /= w.sum();
     const Vec3 dir = pr.side * nrm;  // from the triangle towards where the particle belongs
-    const double wsum = inv_mass_[pr.p] + w[0] * w[0] * inv_mass_[tr[0]] + w[1] * w[1] * inv_mass_[tr[1]] +
-                        w[2] * w[2] * inv_mass_[tr[2]];
+    // Between layers the inner one does not move where the body holds it.
+    auto im = [&](int i) {
+      if (pr.layered && held_[i] && def_.layer[i] == std::min(def_.layer[pr.p], def_.layer[tr[0]])) return 0.0;
+      return inv_mass_[i];
+    };
+    const double ip = im(pr.p), i0 = im(tr[0]), i1 = im(tr[1]), i2 = im(tr[2]);
+    const double wsum = ip + w[0] * w[0] * i0 + w[1] * w[1] * i1 + w[2] * w[2] * i2;
     if (wsum <= 0.0) return false;
     bool moved = false;
     const double gap = def_.thickness - pr.side * dn;
     if (gap > 1e-9 * def_.thickness) {
       const double lambda = gap / wsum;
-      at(s.x, pr.p) += lambda * inv_mass_[pr.p] * dir;
-      for (int q = 0; q < 3; ++q) at(s.x, tr[q]) -= lambda * w[q] * inv_mass_[tr[q]] * dir;
+      at(s.x, pr.p) += lambda * ip * dir;
+      at(s.x, tr[0]) -= lambda * w[0] * i0 * dir;
+      at(s.x, tr[1]) -= lambda * w[1] * i1 * dir;
+      at(s.x, tr[2]) -= lambda * w[2] * i2 * dir;
       moved = true;
     }
     const Vec3 vr = at(s.v, pr.p) - w[0] * at(s.v, tr[0]) - w[1] * at(s.v, tr[1]) - w[2] * at(s.v, tr[2]);
     const double vn = vr.dot(dir);
     if (vn < 0.0) {  // approaching: an inelastic impulse stops it
-      const double j = -vn / wsum;
-      at(s.v, pr.p) += j * inv_mass_[pr.p] * dir;
-      for (int q = 0; q < 3; ++q) at(s.v, tr[q]) -= j * w[q] * inv_mass_[tr[q]] * dir;
+      // Between layers, Coulomb friction too (Bridson et al. 2002 §7.2): the
+      // relative tangential velocity loses at most μ times the normal change.
+      const Vec3 vt = vr - vn * dir;
+      const double vt_len = vt.norm();
+      const double mu = pr.layered ? def_.layer_friction : 0.0;
+      const double cut = mu > 0.0 && vt_len > 0.0 ? std::min(1.0, mu * -vn / vt_len) : 0.0;
+      if (cut > 0.0) {
+        const Vec3 j = (-vn * dir - cut * vt) / wsum;
+        at(s.v, pr.p) += ip * j;
+        at(s.v, tr[0]) -= w[0] * i0 * j;
+        at(s.v, tr[1]) -= w[1] * i1 * j;
+        at(s.v, tr[2]) -= w[2] * i2 * j;
+      } else {
+        const double j = -vn / wsum;
+        at(s.v, pr.p) += j * ip * dir;
+        at(s.v, tr[0]) -= j * w[0] * i0 * dir;
+        at(s.v, tr[1]) -= j * w[1] * i1 * dir;
+        at(s.v, tr[2]) -= j * w[2] * i2 * dir;
+      }
       moved = true;
     }
     return moved;
@@ -628,6 +714,8 @@ class SelfCollision final : public Effect {
   // seam closes: a hem particle never collides with a triangle or edge
   // touching a hem, or the strips along the seam would block it.
   std::vector<int> hem_;  // per particle: 0, or 1 + its garment's label when it is on a seam's hem
+  bool layered_ = false;     // more than one layer (def_.layer, def_.body set)
+  std::vector<char> held_;   // per particle, layered: within held_distance of the body at the after-step's start
   SelfCollisionStats stats_;
 };
 

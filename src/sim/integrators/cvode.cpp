@@ -173,8 +173,15 @@ class Bdf final : public Integrator {
   Method method() const override { return Method::bdf; }
   IntegratorStats stats() const override { return stats_; }
 
-  void prepare(System&, const State&) override {
+  void prepare(System& sys, const State&) override {
     const auto& st = settings_;
+    for (const auto& e : sys.effects())
+      if (e->needs_every_step())
+        throw SimulationError(std::string("BDF cannot run ") + e->name() +
+                              ": it applies after-step corrections once per frame, and contacts must be resolved "
+                              "after every step (cloth moving centimetres between frames passes through the body "
+                              "unseen). What would work: implicit-euler (what drapes use), or an explicit method "
+                              "with auto_substep");
     if (!(st.rtol > 0.0) || !std::isfinite(st.rtol) || !(st.atol > 0.0) || !std::isfinite(st.atol))
       throw SimulationError("BDF needs tolerances > 0 (got rtol " + fmt(st.rtol) + ", atol " + fmt(st.atol) + ")");
     if (st.max_order < 1 || st.max_order > 5)

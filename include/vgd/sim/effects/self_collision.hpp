@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "vgd/sim/effect.hpp"
+#include "vgd/sim/sdf.hpp"
 
 namespace vgd::sim {
 
@@ -49,6 +50,29 @@ struct SelfCollisionDef {
   // strips along a seam meet edge on while it closes), or seams could not
   // close. Merged particles (System::apply_merges) are joined too.
   std::vector<std::array<int, 2>> joined;
+  // Layers (garments worn over one another, docs/collisions.md): per particle
+  // its garment's layer, 0 next to the body; empty, or one layer, for none.
+  // Between two layers:
+  //  - the side a particle must keep is not the one it came from but the
+  //    body's order: the outer layer's particle stays on the triangle's side
+  //    away from the body (the gradient of `body` at the triangle), so a
+  //    crossing an earlier step left is undone while it is no deeper than
+  //    `layer_depth`. Where the body's normal lies along the triangle (|cos|
+  //    < 0.5: a fold standing out) the side it came from still rules;
+  //  - the outer layer gives way: an inner particle within `held_distance` of
+  //    the body does not move in these corrections;
+  //  - particles the corrections pushed within `body_clearance` of the body
+  //    go back out before the next detection round, so a round sees the
+  //    body's push (which otherwise, running after this effect, pushed the
+  //    inner layer through the outer one unseen);
+  //  - the impulses carry Coulomb friction `layer_friction` (without it a
+  //    T-shirt slid down over a skirt and never came to rest).
+  std::vector<int> layer;
+  const SignedDistanceGrid* body = nullptr;  // not owned: the body collision's grid, which outlives this effect
+  double layer_depth = 0.01;                 // m
+  double held_distance = 0.0045;             // m: 1.5 × the body collision's default clearance
+  double body_clearance = 0.003;             // m: the body collision's clearance
+  double layer_friction = 0.2;               // Coulomb μ between layers
 };
 
 struct SelfCollisionStats {
