@@ -573,6 +573,8 @@ Scene build(const SceneDef& def) {
       sc.fixed = s.pinned;
       for (const auto& sp : s.seams) sc.joined.insert(sc.joined.end(), sp.pairs.begin(), sp.pairs.end());
       // Garments worn over others keep the body's order (layer 0 innermost).
+      // The order comes from the body's distance grid: with the exact (BVH)
+      // query there is none, and layers stay off.
       const sim::SignedDistanceGrid* grid = body ? sim::body_collision_grid(*body) : nullptr;
       if (grid && std::any_of(s.pieces.begin(), s.pieces.end(), [&](const PieceInfo& p) {
             const auto& g = def.cloth[p.cloth].garment;

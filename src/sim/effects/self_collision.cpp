@@ -674,6 +674,9 @@ class SelfCollision final : public Effect {
       const double vt_len = vt.norm();
       const double mu = pr.layered ? def_.layer_friction : 0.0;
       const double cut = mu > 0.0 && vt_len > 0.0 ? std::min(1.0, mu * -vn / vt_len) : 0.0;
+      // Without friction the scalar form, as before layers: single garments
+      // keep their trajectories bit for bit (their crossing counts are chaotic
+      // in the last bit, docs/performance.md).
       if (cut > 0.0) {
         const Vec3 j = (-vn * dir - cut * vt) / wsum;
         at(s.v, pr.p) += ip * j;
