@@ -395,25 +395,26 @@ class MassSpring final : public Effect, public BlockJacobianEffect {
   const char* name() const override { return "mass-spring"; }
   const MassSpringStats& stats() const { return stats_; }
 
-  // Serial: one pass in spring order, bit-for-bit reproducible. Parallel: the
-  // springs are cut into one contiguous chunk per thread; chunk 0 adds into f,
-  // chunk c > 0 into its own buffer over the particles it touches, and the
-  // buffers are added in chunk order. The result depends on the thread count
-  // only through rounding (sums regrouped), and is reproducible for a given count.
+  // Small systems: one pass in spring order. From options.parallel_min_springs
+  // on, the springs are cut into kChunks contiguous chunks, whatever the
+  // thread count: chunk 0 adds into f, chunk c > 0 into its own buffer over the
+  // particles it touches, and the buffers are added in chunk order. Threads
+  // only share out the chunks, so the sum is bit-for-bit the same with 1, 2 or
+  // 8 threads (the two-garment drape, whose contacts amplify any rounding
+  // difference, came to rest with one thread and not with two before).
   void add_forces(const Eval& e, VecX& f) override {
     const int n = static_cast<int>(k_.size());
-    const int threads = omp_get_max_threads();
-    if (threads <= 1 || n < opt_.parallel_min_springs) {
+    if (n < opt_.parallel_min_springs) {
       accumulate_springs(0, n, ia_.data(), ib_.data(), k_.data(), kd_.data(), r_.data(), e.x.data(), e.v.data(),
                          f.data());
       return;
     }
-    partition(threads, static_cast<int>(f.size()));
+    partition(static_cast<int>(f.size()));
     double* out = f.data();
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel if (omp_get_max_threads() > 1)
     {
       const int team = omp_get_num_threads();
-      for (int c = omp_get_thread_num(); c < threads; c += team) {
+      for (int c = omp_get_thread_num(); c < kChunks; c += team) {
         double* dst = out;
         if (c > 0) {
           dst = buffers_[c].data();
@@ -425,7 +426,7 @@ class MassSpring final : public Effect, public BlockJacobianEffect {
 #pragma omp barrier
 #pragma omp for schedule(static)
       for (int d = reduce_lo_; d < reduce_hi_; ++d)
-        for (int c = 1; c < threads; ++c)
+        for (int c = 1; c < kChunks; ++c)
           if (d >= chunks_[c].lo && d < chunks_[c].hi) out[d] += buffers_[c][d];
     }
   }
@@ -645,19 +646,23 @@ class MassSpring final : public Effect, public BlockJacobianEffect {
     int lo = 0, hi = 0;      // dofs touched
   };
 
-  // Cuts the springs into `threads` chunks and sizes the buffers; allocates
-  // only when the thread count changes.
-  void partition(int threads, int dofs) {
-    if (static_cast<int>(chunks_.size()) == threads && buffer_dofs_ == dofs) return;
+  // Chunks of the parallel sum: fixed, so the thread count cannot change the
+  // result; 8 keeps up to 8 cores busy at little cost on fewer.
+  static constexpr int kChunks = 8;
+
+  // Cuts the springs into kChunks chunks and sizes the buffers; allocates
+  // only when the number of dofs changes.
+  void partition(int dofs) {
+    if (static_cast<int>(chunks_.size()) == kChunks && buffer_dofs_ == dofs) return;
     const int n = static_cast<int>(k_.size());
-    chunks_.assign(threads, {});
-    buffers_.assign(threads, VecX());
+    chunks_.assign(kChunks, {});
+    buffers_.assign(kChunks, VecX());
     buffer_dofs_ = dofs;
     reduce_lo_ = dofs, reduce_hi_ = 0;
-    for (int c = 0; c < threads; ++c) {
+    for (int c = 0; c < kChunks; ++c) {
       Chunk& ch = chunks_[c];
-      ch.begin = static_cast<int>(static_cast<long>(n) * c / threads);
-      ch.end = static_cast<int>(static_cast<long>(n) * (c + 1) / threads);
+      ch.begin = static_cast<int>(static_cast<long>(n) * c / kChunks);
+      ch.end = static_cast<int>(static_cast<long>(n) * (c + 1) / kChunks);
       ch.lo = dofs, ch.hi = 0;
       for (int s = ch.begin; s < ch.end; ++s) {
         ch.lo = std::min({ch.lo, ia_[s], ib_[s]});
