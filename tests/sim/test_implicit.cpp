@@ -435,6 +435,47 @@ TEST(ImplicitEuler, ConjugateGradientsReachTheToleranceOnAnSpdSystem) {
   }
 }
 
+// A pinned particle moving at v is, to the step, a free particle so heavy
+// that nothing changes its velocity: implicit Euler must move the chain the
+// same way in both cases. Pulled along the chain (first order in the
+// springs), light particles (1e-5 kg, k = 4 500 N/m: ω h ≈ 100) next to the
+// pin feel its move within the step, through K_fp v_p in the right-hand
+// side. Before that term the pinned chain lagged a step behind and every
+// step was refused (the fingers case in tests/stability).
+TEST(ImplicitEuler, AMovingPinPullsItsNeighboursWithinTheStep) {
+  const int n = 5;
+  const double m = 1e-5, k = 4500.0, rest = 0.005, h = 0.005;
+  const Vec3 v_pin(0.0, 0.3, 0.0);  // m/s, along the chain: stretches the first spring
+  std::vector<std::array<int, 2>> pairs;
+  for (int i = 0; i + 1 < n; ++i) pairs.push_back({i, i + 1});
+  auto make = [&](bool pinned) {
+    Model model = particles(n, m);
+    for (int i = 0; i < n; ++i) at(model.x0, i) = Vec3(0.0, -i * rest, 0.0);
+    if (!pinned) model.mass[0] = 1e12;  // kg: its velocity cannot change
+    std::vector<std::unique_ptr<Effect>> fx;
+    fx.push_back(std::make_unique<Springs>(pairs, k, rest));
+    if (pinned) fx.push_back(make_pins(model, {{0}, v_pin}));
+    return System(std::move(model), std::move(fx));
+  };
+  System pinned = make(true), heavy = make(false);
+  State a = initial_state(pinned.model()), b = initial_state(heavy.model());
+  pinned.apply_prescribed(a);
+  at(b.v, 0) = v_pin;
+  auto ia = make_integrator(implicit_euler(h)), ib = make_integrator(implicit_euler(h));
+  ia->prepare(pinned, a);
+  ib->prepare(heavy, b);
+  for (int step = 1; step <= 10; ++step) {
+    ia->advance(pinned, a, step * h);
+    ib->advance(heavy, b, step * h);
+  }
+  EXPECT_EQ(ia->stats().convergence_failures, 0);
+  EXPECT_EQ(ia->stats().steps, ib->stats().steps);
+  // The chain followed the pin 15 mm up, particle for particle as the heavy one's.
+  EXPECT_NEAR(a.x[3 * (n - 1) + 1], b.x[3 * (n - 1) + 1], 1e-6);
+  EXPECT_GT(a.x[3 * (n - 1) + 1] - pinned.model().x0[3 * (n - 1) + 1], 0.01);
+  for (int i = 1; i < n; ++i) EXPECT_NEAR((at(a.x, i) - at(b.x, i)).norm(), 0.0, 1e-6) << "particle " << i;
+}
+
 TEST(ImplicitEuler, NewtonIterationsSolveTheBackwardEulerEquations) {
   // Large swings and a large step make the springs' nonlinearity matter.
   const double h = 0.05;

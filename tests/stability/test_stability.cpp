@@ -11,10 +11,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "sim/helpers.hpp"
+#include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/io/dxf/import.hpp"
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/data.hpp"
 #include "vgd/scene/json.hpp"
@@ -23,6 +27,9 @@
 #include "vgd/sim/effects/mass_spring.hpp"
 #include "vgd/sim/effects/seam.hpp"
 #include "vgd/sim/run.hpp"
+#include "vgd/xvc/document.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 using namespace vgd;
 using namespace vgd::sim;
@@ -50,6 +57,9 @@ struct CaseDef {
   std::string placement = R"({"origin": [0, 1.5, 0], "u": [1, 0, 0], "v": [0, 0, 1]})";
   std::string pins;         // "pins" member; empty: corners u0v0 (still) and u1v0 (pin_velocity)
   std::string avatar;       // "avatar" member, with a body collision; empty: none
+  // The cloth's shape member; empty: the square grid above. E.g. an "xvc"
+  // member naming a document's pieces (meshed from a real pattern).
+  std::string shape;
 };
 
 std::string json(const CaseDef& c, Method method) {
@@ -71,6 +81,10 @@ std::string json(const CaseDef& c, Method method) {
                          {"piece": "cloth", "sets": ["corner-u1v0"], "velocity": )" +
                                                  c.pin_velocity + "}]";
   const std::string avatar = c.avatar.empty() ? "" : "\"avatar\": " + c.avatar + ",";
+  const std::string shape = !c.shape.empty() ? c.shape
+                                             : R"("grid": {"particles": [)" + std::to_string(c.particles) + ", " +
+                                                   std::to_string(nv) + R"(], "size": [)" + std::to_string(c.size) +
+                                                   ", " + std::to_string(sv) + "]}";
   const std::string collision =
       c.avatar.empty() ? "" : R"(, "collision": {"clearance": "3 mm", "response": "provot", "friction": 0.5})";
   return std::string(R"({"version": 1, "name": "case", )") + avatar +
@@ -80,9 +94,7 @@ std::string json(const CaseDef& c, Method method) {
          ", \"spring.warp\": " + v(4560, "N/m") + ", \"spring.weft\": " + v(2560, "N/m") +
          ", \"spring.shear\": " + v(400, "N/m") + ", \"spring.bend_warp\": " + v(10, "N/m") +
          ", \"spring.bend_weft\": " + v(10, "N/m") + R"(, "spring.damping": "0.005 N.s/m"}},
-    "cloth": [{"name": "cloth", "grid": {"particles": [)" + std::to_string(c.particles) + ", " +
-         std::to_string(nv) + R"(], "size": [)" + std::to_string(c.size) + ", " + std::to_string(sv) +
-         R"(]},
+    "cloth": [{"name": "cloth", )" + shape + R"(,
                "placement": )" + c.placement + R"(,
                "model": ")" + c.model + R"(", "material": "m"}],
     "effects": {"gravity": {}, "viscosity": {"alpha": "0.5 1/s"}, )" + pins + collision +
@@ -277,7 +289,7 @@ TEST_P(Stability, VeryLightParticlesNextToHeavyOnes) {
   mat.damping = 0.005;
   PinDef pins;
   pins.particles = {0, n - 1};
-  System sys(m, test::effects(make_mass_spring(m, {mat}), make_gravity({}), make_viscosity({0.0, 0.5}),
+  System sys(m, sim::test::effects(make_mass_spring(m, {mat}), make_gravity({}), make_viscosity({0.0, 0.5}),
                               make_pins(m, pins)));
   IntegratorSettings st;
   st.method = GetParam();
@@ -304,15 +316,15 @@ TEST_P(Stability, AVeryFineMesh) {
 // up any method, and every pair closes within 2 s.
 TEST_P(Stability, SeamsPullingPiecesThatStartFarApart) {
   const int n = 5;
-  const Model m = test::two_grids(n, n, 0.5);
+  const Model m = sim::test::two_grids(n, n, 0.5);
   SeamDef seam;
   SeamPairs side;
   for (int j = 0; j < n; ++j) side.pairs.push_back({j * n + n - 1, n * n + j * n});
   seam.seams = {side};
   seam.stiffness = 200.0, seam.max_force = 1.0, seam.zip_distance = 0.02;
-  MassSpringMaterial mat = test::soft_cloth();
+  MassSpringMaterial mat = sim::test::soft_cloth();
   mat.warp = mat.weft = 500.0;
-  System sys(m, test::effects(make_mass_spring(m, {mat}), make_viscosity({0.0, 2.0}), make_seam(m, seam)));
+  System sys(m, sim::test::effects(make_mass_spring(m, {mat}), make_viscosity({0.0, 2.0}), make_seam(m, seam)));
   IntegratorSettings st;
   st.method = GetParam();
   st.step = 0.005;
@@ -361,6 +373,41 @@ TEST_P(Stability, AStripPulledUpBetweenTheLegs) {
   expect_contact_case("between the legs (mannequin)", GetParam(), run_case(c, GetParam()));
 }
 
+// Fingers: the mannequin has none, so the test writes a hand of its own — four
+// fingers, boxes 16 mm wide and thick and 80 mm long, 6 mm apart — and pulls
+// a 20 × 2 cm strip (5 mm mesh), lying 1 cm above them, down over them by
+// both ends, which move 5 cm down and 5 cm inwards in 0.25 s: the strip
+// wraps the fingers' square edges, taut (its path over the hand ends 2 %
+// longer than the strip) and pressed into the gaps between the fingers, gaps
+// a little more than one 5 mm distance-grid cell wide.
+TEST_P(Stability, AStripPulledDownOverFingers) {
+  const auto obj = vgd::test::binary_dir() / "test-scratch" / "stability" / "fingers.obj";
+  std::filesystem::create_directories(obj.parent_path());
+  {
+    std::ofstream out(obj);
+    int base = 1;
+    for (int f = 0; f < 4; ++f) {
+      const double x0 = -0.041 + 0.022 * f, x1 = x0 + 0.016;
+      for (int k = 0; k < 8; ++k)
+        out << "v " << (k & 1 ? x1 : x0) << ' ' << (k & 2 ? 0.016 : 0.0) << ' ' << (k & 4 ? 0.04 : -0.04) << '\n';
+      // Twelve outward-facing triangles of the box (corner k = x | y << 1 | z << 2).
+      const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      for (const auto& r : q) {
+        out << "f " << base + r[0] << ' ' << base + r[1] << ' ' << base + r[2] << '\n';
+        out << "f " << base + r[0] << ' ' << base + r[2] << ' ' << base + r[3] << '\n';
+      }
+      base += 8;
+    }
+  }
+  CaseDef c;
+  c.avatar = R"({"file": {"path": ")" + obj.string() + R"(", "unit": "m", "up": "y"}})";
+  c.particles = 41, c.size = 0.2, c.particles_v = 5, c.size_v = 0.02, c.duration = 0.25;
+  c.placement = R"({"origin": [-0.1, 0.026, -0.01], "u": [1, 0, 0], "v": [0, 0, 1]})";
+  c.pins = R"("pins": [{"piece": "cloth", "sets": ["edge-u0"], "velocity": [0.2, -0.2, 0]},
+                        {"piece": "cloth", "sets": ["edge-u1"], "velocity": [-0.2, -0.2, 0]}])";
+  expect_contact_case("a strip pulled down over four fingers", GetParam(), run_case(c, GetParam()));
+}
+
 // Deep self-contact folds: a 0.6 m square (3.75 cm mesh) dropped onto a
 // 0.1 m sphere piles up on itself around it, self-collision on (3 mm).
 TEST_P(Stability, DeepSelfContactFolds) {
@@ -371,6 +418,55 @@ TEST_P(Stability, DeepSelfContactFolds) {
   c.pins = R"("pins": [])";
   c.effects = R"(, "self_collision": {"thickness": "3 mm"})";
   expect_contact_case("self-contact folds (sphere)", GetParam(), run_case(c, GetParam()));
+}
+
+// Sliver triangles straight from a real DXF: the front of MEN_CLASSIC_TEE
+// (Gerber, ../shared) imported as it is, its outline resampled at 2 cm and
+// triangulated without refinement (mesh.min_angle 1°, no area bound): the
+// constrained Delaunay triangulation of the outline alone, as a mesher that
+// adds no interior point would give it — 99 nodes, all on the outline, 97
+// long thin triangles, the thinnest with a 4° angle (vgd mesh reports them).
+// The piece hangs from two outline nodes for 1 s with each cloth model.
+TEST_P(Stability, SliverTrianglesStraightFromARealDxf) {
+  VGD_REQUIRE_SHARED();
+  const auto xvc_path = vgd::test::binary_dir() / "test-scratch" / "stability" / "men-classic-tee-slivers.xvc";
+  std::filesystem::create_directories(xvc_path.parent_path());
+  {
+    const auto imported = dxf::import_file(vgd::test::shared_dxf("MEN_CLASSIC_TEE.DXF"));
+    xvc::Document doc = xvc::from_style(imported.style);
+    xvc::set_parameter(doc, "mesh.spacing", 0.02, "m");
+    xvc::set_parameter(doc, "mesh.min_angle", 1.0, "deg");
+    xvc::set_parameter(doc, "mesh.max_area", 1.0, "m2");
+    xvc::save_file(doc, xvc_path);
+  }
+  struct Variant {
+    const char* model;
+    bool bending;
+  };
+  for (const Variant& m : {Variant{"mass-spring", false}, Variant{"strain-rosette", false}, Variant{"strain-rosette", true}}) {
+    CaseDef c;
+    c.model = m.model;
+    c.shape = R"("xvc": {"file": ")" + xvc_path.string() + R"(", "pieces": ["REGULAR TEEFR"]}, "bending": )" +
+              (m.bending ? "true" : "false");
+    c.placement = R"({"origin": [0, 1.0, 0], "u": [1, 0, 0], "v": [0, 1, 0]})";
+    c.pins = R"("pins": [{"piece": "cloth", "particles": [0, 45]}])";
+    const std::string what =
+        std::string("slivers from MEN_CLASSIC_TEE.DXF, ") + m.model + (m.bending ? " with bending" : "");
+    const Outcome o = run_case(c, GetParam());
+    expect_stable(what, GetParam(), o, 20.0, false);
+    if (m.bending) {
+      // Discrete-shell bending needs each triangle's curvature from its three
+      // hinges: a 4° sliver leaves it undetermined, and the scene is refused
+      // naming the triangle and what would work.
+      EXPECT_EQ(o.status, "refused");
+      EXPECT_NE(o.message.find("sliver"), std::string::npos) << o.message;
+      EXPECT_NE(o.message.find("What would work"), std::string::npos) << o.message;
+    } else {
+      // The membranes take it with every method: explicit ones sub-step to
+      // the slivers' limit.
+      EXPECT_EQ(o.status, "completed") << what << ": " << o.message;
+    }
+  }
 }
 
 // The 5 mm strain-rosette mesh on a 10 cm square (21 × 21): BDF at order 5

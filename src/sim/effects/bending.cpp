@@ -422,7 +422,9 @@ class Bending final : public Effect {
       if (!lu.isInvertible())
         throw SimulationError("bending: triangle " + std::to_string(t) +
                               " has curvature gauges that do not determine its curvature (a degenerate or "
-                              "sliver triangle in the pattern); remesh the piece");
+                              "sliver triangle in the pattern). What would work: remesh the piece with quality "
+                              "triangles (mesh.min_angle 20-30 degrees, the mesher's default 25), or run the "
+                              "strain-rosette membrane without bending (cloth \"bending\": false)");
       R[t] = lu.inverse();
       for (int k = 0; k < 3; ++k)
         if (th_[3 * t + k] < 0) R[t].col(k).setZero();
