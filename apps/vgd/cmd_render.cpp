@@ -9,17 +9,25 @@
 // frame: the last unless --frame says). Writes OUTPUT/<view>.png
 // for each view and prints what it wrote. OpenGL 3.3 core in an OSMesa
 // off-screen context; no display needed.
+//
+// Pieces take their looks (colour, texture) from the garment's XVC document:
+// --look FILE, or the document a drape folder's certificate.json names.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
+#include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/avatar_io.hpp"
+#include "vgd/xvc/io.hpp"
 
 namespace {
 
@@ -28,8 +36,8 @@ namespace render = vgd::render;
 
 struct Options {
   std::string input, avatar, output = "previews", views = "front,back,left,right,three-quarter", size = "1024x1024";
-  std::string colour, body_colour, fit = "body";
-  bool piece_colours = false, no_floor = false, no_shadow = false;
+  std::string colour, body_colour, fit = "body", look;
+  bool piece_colours = false, no_floor = false, no_shadow = false, no_texture = false;
   int supersample = 3, frame = -1;
 };
 
@@ -49,39 +57,36 @@ render::Colour parse_colour_option(const std::string& name, const std::string& t
   return *c;
 }
 
-// Per face of an OBJ file, the index of the `g`/`o` group it follows (read_obj
-// keeps faces and group names in file order; this pairs them).
-std::vector<int> face_groups(const fs::path& file) {
-  std::ifstream in(file);
-  std::vector<int> groups;
-  int group = -1;
-  for (std::string line; std::getline(in, line);) {
-    const auto t = vgd::trim(line);
-    if (t.size() > 1 && (t[0] == 'g' || t[0] == 'o') && (t[1] == ' ' || t[1] == '\t')) ++group;
-    else if (t.size() > 1 && t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) groups.push_back(std::max(group, 0));
-  }
-  return groups;
-}
-
-// One render mesh per group of an OBJ (its own vertices only).
+// One render mesh per group of an OBJ (its own vertices only), with the
+// file's texture coordinates (`vt`: metres of pattern in vgd's garment.obj)
+// when every face of the group has them.
 std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind kind) {
   const auto obj = vgd::io::obj::read_obj(file);
-  const auto groups = face_groups(file);
   const int n_groups = std::max<int>(1, static_cast<int>(obj.groups.size()));
+  auto group_of = [&](std::size_t f) { return static_cast<std::size_t>(std::clamp(obj.face_group[f], 0, n_groups - 1)); };
   std::vector<render::Mesh> meshes(static_cast<std::size_t>(n_groups));
-  std::vector<std::vector<int>> remap(meshes.size(), std::vector<int>(obj.vertices.size(), -1));
+  std::vector<char> textured(meshes.size(), 1);
+  for (std::size_t f = 0; f < obj.faces.size(); ++f)
+    if (obj.face_texcoords[f][0] < 0) textured[group_of(f)] = 0;
+  // (vertex, texture coordinate) -> render vertex: a vertex with two texture
+  // coordinates (a cut in texture space) becomes two render vertices.
+  std::vector<std::map<std::pair<int, int>, int>> remap(meshes.size());
   for (std::size_t f = 0; f < obj.faces.size(); ++f) {
-    const int g = f < groups.size() ? std::min(groups[f], n_groups - 1) : 0;
-    auto& m = meshes[static_cast<std::size_t>(g)];
+    const std::size_t g = group_of(f);
+    auto& m = meshes[g];
     std::array<int, 3> tri{};
     for (int k = 0; k < 3; ++k) {
-      int& r = remap[static_cast<std::size_t>(g)][static_cast<std::size_t>(obj.faces[f][k])];
-      if (r < 0) {
-        r = static_cast<int>(m.positions.size());
-        const auto& v = obj.vertices[static_cast<std::size_t>(obj.faces[f][k])];
-        m.positions.push_back({static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])});
+      const int v = obj.faces[f][k], t = textured[g] ? obj.face_texcoords[f][k] : -1;
+      const auto [it, fresh] = remap[g].try_emplace({v, t}, static_cast<int>(m.positions.size()));
+      if (fresh) {
+        const auto& p = obj.vertices[static_cast<std::size_t>(v)];
+        m.positions.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+        if (t >= 0) {
+          const auto& c = obj.texcoords[static_cast<std::size_t>(t)];
+          m.uv.push_back({static_cast<float>(c[0]), static_cast<float>(c[1])});
+        }
       }
-      tri[k] = r;
+      tri[k] = it->second;
     }
     m.triangles.push_back(tri);
   }
@@ -106,6 +111,7 @@ std::vector<render::Mesh> meshes_of_trj(const fs::path& file, int frame, const v
   const auto x = reader.positions(f);
   const auto& topo = reader.topology();
   const bool pieces = !topo.pieces.empty() && topo.triangle_piece.size() == topo.triangles.size();
+  const bool uv = topo.uv.size() == static_cast<std::size_t>(topo.num_particles);
   std::vector<render::Mesh> meshes(pieces ? topo.pieces.size() : 1);
   std::vector<std::vector<int>> remap(meshes.size(), std::vector<int>(static_cast<std::size_t>(topo.num_particles), -1));
   for (std::size_t t = 0; t < topo.triangles.size(); ++t) {
@@ -118,6 +124,7 @@ std::vector<render::Mesh> meshes_of_trj(const fs::path& file, int frame, const v
       if (r < 0) {
         r = static_cast<int>(m.positions.size());
         m.positions.push_back({x[3 * p], x[3 * p + 1], x[3 * p + 2]});
+        if (uv) m.uv.push_back({static_cast<float>(topo.uv[p][0]), static_cast<float>(topo.uv[p][1])});
       }
       tri[k] = r;
     }
@@ -143,13 +150,90 @@ render::Mesh body_mesh(const fs::path& file) {
   return m;
 }
 
-// The scene: the garment's pieces and the body, coloured.
+// The garment document the pieces take their looks from: --look, else the
+// one a drape folder's certificate.json names (inputs.garment), when the drape
+// had a single garment and its document can still be read (else a warning,
+// and flat colours). The path is as the drape was given it: tried as it is,
+// then relative to the folder.
+std::optional<vgd::xvc::Document> look_document(const Options& o, const fs::path& folder, vgd::Diagnostics& diags) {
+  if (!o.look.empty()) return vgd::xvc::load_file(o.look);
+  if (folder.empty()) return std::nullopt;
+  const fs::path cert = folder / "certificate.json";
+  std::error_code ec;
+  if (!fs::exists(cert, ec)) return std::nullopt;
+  const auto j = nlohmann::json::parse(vgd::read_file(cert), nullptr, /*allow_exceptions=*/false);
+  const auto inputs = j.is_object() ? j.find("inputs") : j.end();
+  if (inputs == j.end() || !inputs->is_object() || !inputs->contains("garment") || !(*inputs)["garment"].is_string())
+    return std::nullopt;
+  if (inputs->contains("garment_2")) {
+    diags.info(cert.string(), "", "several garments: flat colours (--look FILE applies one document's looks)");
+    return std::nullopt;
+  }
+  const fs::path named = (*inputs)["garment"].get<std::string>();
+  fs::path file = named;
+  if (!fs::exists(file, ec) && named.is_relative() && fs::exists(folder / named, ec)) file = folder / named;
+  try {
+    return vgd::xvc::load_file(file);
+  } catch (const vgd::Error& e) {
+    diags.warn(cert.string(), "", "the garment document cannot be read (" + std::string(e.what()) +
+                                      "): flat colours; --look FILE gives it");
+    return std::nullopt;
+  }
+}
+
+// Each piece's colour and texture from the document (io::vrml::looks_from_xvc,
+// as the VRML and glTF exports use them). A piece the document gives no colour
+// keeps the default fabric colour. A textured piece shows the image as it is
+// (the texture replaces the colour, as in VRML97). A texture file that is
+// missing or not a PNG is an error naming it (--no-texture draws flat colours).
+void apply_looks(std::vector<render::Mesh*>& pieces, const vgd::xvc::Document& doc, bool textures,
+                 vgd::Diagnostics& diags) {
+  std::vector<std::string> names;
+  for (const auto* m : pieces) names.push_back(m->name);
+  const auto looks = vgd::io::vrml::looks_from_xvc(doc, names, &diags);
+  const fs::path doc_dir = fs::path(doc.name()).parent_path();
+  std::map<std::string, std::shared_ptr<const render::Texture>> loaded;  // one upload per file and placement
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    render::Mesh& m = *pieces[i];
+    const auto& look = looks[i];
+    // looks_from_xvc marks a look the document did not colour "default".
+    if (look.source.rfind("default", 0) != 0)
+      m.colour = {static_cast<float>(look.colour.r), static_cast<float>(look.colour.g), static_cast<float>(look.colour.b)};
+    if (!textures || look.texture.empty()) continue;
+    if (m.uv.empty()) {
+      diags.warn("", m.name, "no texture coordinates (a garment.obj from an older vgd drape: drape again): flat colour");
+      continue;
+    }
+    const fs::path named = look.texture;
+    const fs::path file = named.is_absolute() || doc_dir.empty() ? named : doc_dir / named;
+    const std::string key = file.string() + "|" + vgd::format_double(look.repeat_u) + "|" +
+                            vgd::format_double(look.repeat_v) + "|" + vgd::format_double(look.rotation_deg);
+    auto& texture = loaded[key];
+    if (!texture) {
+      auto t = std::make_shared<render::Texture>();
+      try {
+        t->image = render::read_png(file);
+      } catch (const vgd::Error& e) {
+        throw vgd::Error(file.string(), "", "cannot read the texture of piece " + m.name + " (" + doc.name() +
+                                                "): " + e.diagnostic().message + "; --no-texture draws flat colours");
+      }
+      t->repeat_m = {look.repeat_u, look.repeat_v};
+      t->rotation_rad = look.rotation_deg * M_PI / 180.0;
+      texture = std::move(t);
+    }
+    m.texture = texture;
+    m.colour = {1, 1, 1};
+  }
+}
+
+// The scene: the garment's pieces and the body, coloured (and textured).
 render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   render::Scene scene;
   const fs::path input = o.input;
   std::error_code ec;
-  fs::path garment = input, avatar_obj;
+  fs::path garment = input, avatar_obj, folder;
   if (fs::is_directory(input, ec)) {
+    folder = input;
     garment = input / "garment.obj";
     if (!fs::exists(garment, ec))
       throw vgd::Error(input.string(), "", "not a drape folder: garment.obj is missing (vgd drape GARMENT -o DIR writes it)");
@@ -164,11 +248,22 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   const render::Colour fabric = o.colour.empty() ? render::kFabric : parse_colour_option("--colour", o.colour);
   int index = 0;
   auto pieces = trj ? meshes_of_trj(input, o.frame, common) : meshes_of_obj(garment, render::MeshKind::garment);
+  std::vector<render::Mesh*> garment_meshes;
   for (auto& m : pieces) {
     m.kind = render::MeshKind::garment;
     m.colour = o.piece_colours ? render::piece_colour(index) : fabric;
     ++index;
     scene.meshes.push_back(std::move(m));
+  }
+  for (auto& m : scene.meshes) garment_meshes.push_back(&m);
+  // Colours asked for on the command line win over the document's looks.
+  if (o.colour.empty() && !o.piece_colours) {
+    vgd::Diagnostics diags;
+    if (const auto doc = look_document(o, folder, diags)) {
+      apply_looks(garment_meshes, *doc, !o.no_texture, diags);
+      vgd::cli::say(common, "vgd: looks from " + doc->name());
+    }
+    vgd::cli::print_diagnostics(diags, common);
   }
   const render::Colour body = o.body_colour.empty() ? render::kBody : parse_colour_option("--body-colour", o.body_colour);
   if (!o.avatar.empty()) {
@@ -197,6 +292,9 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
   sub->add_option("-o,--output", o->output, "Output folder for <view>.png")->capture_default_str();
   sub->add_option("--colour,--color", o->colour, "Garment colour: #rrggbb, #rgb or a name (red, navy, denim, ...)");
   sub->add_flag("--piece-colours,--piece-colors", o->piece_colours, "A distinct colour per piece");
+  sub->add_option("--look", o->look, "Garment document (.xvc) whose piece colours and textures to draw; default: the "
+                                     "one a drape folder's certificate.json names");
+  sub->add_flag("--no-texture", o->no_texture, "Flat colours: draw no texture");
   sub->add_option("--body-colour,--body-color", o->body_colour, "Body colour (default a neutral light grey)");
   sub->add_option("--fit", o->fit, "Frame the views on the body (default) or on the garment (closer)")
       ->check(CLI::IsMember({"body", "garment"}))
@@ -207,7 +305,8 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
   sub->add_flag("--no-floor", o->no_floor, "No ground (and so no shadow)");
   sub->add_flag("--no-shadow", o->no_shadow, "No floor shadow");
   sub->footer("Views look at the body's bounding box: front from +Z, left from the body's left (+X), three-quarter "
-              "from the front-left. Same input, same bytes (docs/render.md).\n"
+              "from the front-left. Pieces take the document's colours and textures (PNG) unless --colour or "
+              "--piece-colours is given. Same input, same bytes (docs/render.md).\n"
               "Exit codes: 0 written, 1 bad input or rendering failed, 2 usage.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     // Views and size first: a typo should not wait for the files to load.

@@ -65,6 +65,7 @@ namespace vgd::render::gl {
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                     \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                               \
   X(PFNGLTEXPARAMETERFVPROC, TexParameterfv)                             \
+  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                             \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                               \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                             \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                           \

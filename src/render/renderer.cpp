@@ -1,16 +1,18 @@
 // The drawing code (OpenGL 3.3 core), independent of the context that runs it.
 //
 // Index
-//   [shaders]   GLSL sources: meshes, floor, shadow depth
+//   [shaders]   GLSL sources: meshes (flat and textured), floor, shadow depth
 //   [math]      look-at, perspective and orthographic matrices
 //   [gl]        loading functions, compiling programs
-//   [scene]     uploading meshes and the floor
+//   [scene]     uploading meshes, their textures and the floor
 //   [draw]      shadow pass, then floor and meshes
 #include "vgd/render/renderer.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gl_functions.hpp"
@@ -28,22 +30,39 @@ using Vec3f = Eigen::Vector3f;
 // Meshes: per-vertex normals, lit on the side facing the camera (cloth has two
 // sides), a sky/ground ambient term, a key and a fill light that follow the
 // camera, a faint specular and rim. Lighting is done in linear RGB.
-constexpr const char* kMeshVertex = R"(#version 330 core
+// Meshes: per-vertex normals, lit on the side facing the camera (cloth has two
+// sides), a sky/ground ambient term, a key and a fill light that follow the
+// camera, a faint specular and rim. Lighting is done in linear RGB. Compiled
+// twice: TEXTURED 0 (flat colour) and 1 (the colour times an sRGB texture,
+// sampled as linear RGB with trilinear mipmapping so fine checks do not alias).
+// The untextured variant preprocesses to the same code as before textures.
+constexpr const char* kMeshVertex = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+#if TEXTURED
+layout(location = 2) in vec2 a_texcoord;
+out vec2 v_texcoord;
+#endif
 uniform mat4 u_view_projection;
 out vec3 v_position;
 out vec3 v_normal;
 void main() {
   v_position = a_position;
   v_normal = a_normal;
+#if TEXTURED
+  v_texcoord = a_texcoord;
+#endif
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
 )";
 
-constexpr const char* kMeshFragment = R"(#version 330 core
+constexpr const char* kMeshFragment = R"(
 in vec3 v_position;
 in vec3 v_normal;
+#if TEXTURED
+in vec2 v_texcoord;
+uniform sampler2D u_texture;  // sRGB texels, read as linear RGB
+#endif
 uniform vec3 u_eye;
 uniform vec3 u_colour;     // linear RGB
 uniform vec3 u_key;        // unit vector towards the key light
@@ -61,10 +80,19 @@ void main() {
   float fill = max(dot(n, u_fill), 0.0);
   float spec = key > 0.0 ? u_specular * pow(max(dot(n, normalize(u_key + v)), 0.0), u_shininess) : 0.0;
   float rim = 0.10 * pow(1.0 - max(dot(n, v), 0.0), 3.0);
-  vec3 c = u_colour * (ambient + 0.80 * key + 0.25 * fill) + vec3(spec + rim);
+  vec3 albedo = u_colour;
+#if TEXTURED
+  albedo *= texture(u_texture, v_texcoord).rgb;
+#endif
+  vec3 c = albedo * (ambient + 0.80 * key + 0.25 * fill) + vec3(spec + rim);
   frag_colour = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }
 )";
+
+// The mesh shaders' source with the variant chosen.
+std::string mesh_source(const char* body, bool textured) {
+  return std::string("#version 330 core\n#define TEXTURED ") + (textured ? "1" : "0") + body;
+}
 
 // The floor: its colour darkened by the percentage-closer-filtered shadow map
 // (16 taps on a Poisson disc, each a bilinear 2 x 2 comparison), fading into
@@ -172,6 +200,7 @@ float linear(float srgb) { return std::pow(std::clamp(srgb, 0.0f, 1.0f), 2.2f); 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ebo = 0;
   GLsizei indices = 0;
+  GLuint texture = 0;  // 0 = flat colour; owned by Renderer::Impl::textures
   Colour colour;
   MeshKind kind = MeshKind::garment;
 };
@@ -195,8 +224,9 @@ std::string gl::Functions::load(Renderer::ProcLoader loader) {
 
 struct Renderer::Impl {
   gl::Functions gl;
-  GLuint mesh_program = 0, floor_program = 0, depth_program = 0;
+  GLuint mesh_program = 0, textured_program = 0, floor_program = 0, depth_program = 0;
   std::vector<GpuMesh> meshes;
+  std::vector<GLuint> textures;
   GLuint floor_vao = 0, floor_vbo = 0;
   GLuint shadow_fbo = 0, shadow_texture = 0;
   int shadow_size = 0;
@@ -249,6 +279,26 @@ struct Renderer::Impl {
       gl.DeleteBuffers(1, &m.ebo);
     }
     meshes.clear();
+    for (GLuint t : textures) gl.DeleteTextures(1, &t);
+    textures.clear();
+  }
+
+  // A texture with its mipmaps: sRGB storage (so filtering and mipmaps average
+  // light, not gamma-encoded values), repeated in both directions. RGBA8 rows
+  // are 4-byte aligned, so the default unpack alignment fits.
+  GLuint upload_texture(const Image& image) {
+    GLuint t = 0;
+    gl.GenTextures(1, &t);
+    gl.BindTexture(GL_TEXTURE_2D, t);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                  image.rgba.data());
+    gl.GenerateMipmap(GL_TEXTURE_2D);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    textures.push_back(t);
+    return t;
   }
 
   // The shadow map's depth texture and framebuffer, (re)made at this size.
@@ -286,13 +336,23 @@ struct Renderer::Impl {
     return orthographic(r, r, 0.01f * r, 4 * r) * view;
   }
 
-  void draw_meshes(GLuint program_id, bool lit) {
+  // The depth pass draws every mesh with `depth_program`; the lit pass picks
+  // the flat or the textured mesh program for each mesh.
+  void draw_meshes(bool lit) {
+    GLuint current = lit ? 0 : depth_program;
     for (const auto& m : meshes) {
       if (lit) {
-        set_linear(program_id, "u_colour", m.colour);
+        const GLuint p = m.texture ? textured_program : mesh_program;
+        if (p != current) gl.UseProgram(current = p);
+        set_linear(p, "u_colour", m.colour);
         const bool body = m.kind == MeshKind::body;
-        set(program_id, "u_specular", body ? 0.12f : 0.04f);
-        set(program_id, "u_shininess", body ? 24.0f : 12.0f);
+        set(p, "u_specular", body ? 0.12f : 0.04f);
+        set(p, "u_shininess", body ? 24.0f : 12.0f);
+        if (m.texture) {
+          gl.ActiveTexture(GL_TEXTURE1);
+          gl.BindTexture(GL_TEXTURE_2D, m.texture);
+          gl.Uniform1i(uniform(p, "u_texture"), 1);
+        }
       }
       gl.BindVertexArray(m.vao);
       gl.DrawElements(GL_TRIANGLES, m.indices, GL_UNSIGNED_INT, nullptr);
@@ -305,7 +365,8 @@ Renderer::Renderer(ProcLoader loader) : impl_(std::make_unique<Impl>()) {
   const std::string missing = impl_->gl.load(loader);
   if (!missing.empty()) throw Error("", "OpenGL", "the context lacks " + missing + " (OpenGL 3.3 core is needed)");
   auto& I = *impl_;
-  I.mesh_program = I.program(kMeshVertex, kMeshFragment);
+  I.mesh_program = I.program(mesh_source(kMeshVertex, false).c_str(), mesh_source(kMeshFragment, false).c_str());
+  I.textured_program = I.program(mesh_source(kMeshVertex, true).c_str(), mesh_source(kMeshFragment, true).c_str());
   I.floor_program = I.program(kFloorVertex, kFloorFragment);
   I.depth_program = I.program(kDepthVertex, kDepthFragment);
   I.gl.GenVertexArrays(1, &I.floor_vao);
@@ -320,6 +381,7 @@ Renderer::~Renderer() {
   if (I.shadow_fbo) I.gl.DeleteFramebuffers(1, &I.shadow_fbo);
   if (I.shadow_texture) I.gl.DeleteTextures(1, &I.shadow_texture);
   I.gl.DeleteProgram(I.mesh_program);
+  I.gl.DeleteProgram(I.textured_program);
   I.gl.DeleteProgram(I.floor_program);
   I.gl.DeleteProgram(I.depth_program);
 }
@@ -336,17 +398,33 @@ void Renderer::set_scene(const Scene& input) {
   I.scene_box = bounds(scene);
   I.body_box = bounds(scene, MeshKind::body);
 
-  // One VAO per mesh: interleaved position and normal, 32-bit indices.
+  // One VAO per mesh: interleaved position, normal and (textured meshes)
+  // texture coordinate in repeats, 32-bit indices. Each texture is uploaded once.
+  std::vector<std::pair<const Texture*, GLuint>> uploaded;
   for (const auto& m : scene.meshes) {
     if (m.triangles.empty()) continue;
     GpuMesh g;
     g.colour = m.colour;
     g.kind = m.kind;
+    const Texture* tex = m.texture.get();
+    if (tex) {
+      auto it = std::find_if(uploaded.begin(), uploaded.end(), [&](const auto& u) { return u.first == tex; });
+      g.texture = it != uploaded.end() ? it->second : uploaded.emplace_back(tex, I.upload_texture(tex->image)).second;
+    }
+    // Pattern metres to repeats, turned as the document says; t grows up the
+    // image (row 0 on top at t = 0), hence -v.
+    const double cr = std::cos(tex ? tex->rotation_rad : 0.0), sr = std::sin(tex ? tex->rotation_rad : 0.0);
+    const int stride = tex ? 8 : 6;
     std::vector<float> vertices;
-    vertices.reserve(m.positions.size() * 6);
+    vertices.reserve(m.positions.size() * static_cast<std::size_t>(stride));
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
       vertices.insert(vertices.end(), m.positions[v].begin(), m.positions[v].end());
       vertices.insert(vertices.end(), m.normals[v].begin(), m.normals[v].end());
+      if (tex) {
+        const double u = m.uv[v][0], w = m.uv[v][1];
+        vertices.push_back(static_cast<float>((cr * u - sr * w) / tex->repeat_m[0]));
+        vertices.push_back(static_cast<float>(-(sr * u + cr * w) / tex->repeat_m[1]));
+      }
     }
     std::vector<GLuint> indices;
     indices.reserve(m.triangles.size() * 3);
@@ -362,10 +440,15 @@ void Renderer::set_scene(const Scene& input) {
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ebo);
     gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)), indices.data(),
                   GL_STATIC_DRAW);
-    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    const GLsizei bytes = stride * static_cast<GLsizei>(sizeof(float));
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, bytes, nullptr);
     gl.EnableVertexAttribArray(0);
-    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(3 * sizeof(float)));
     gl.EnableVertexAttribArray(1);
+    if (tex) {
+      gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(6 * sizeof(float)));
+      gl.EnableVertexAttribArray(2);
+    }
     g.indices = static_cast<GLsizei>(indices.size());
     I.meshes.push_back(g);
   }
@@ -415,7 +498,7 @@ void Renderer::draw(const Camera& camera, const Target& target, const RenderOpti
     gl.Clear(GL_DEPTH_BUFFER_BIT);
     gl.UseProgram(I.depth_program);
     I.set(I.depth_program, "u_view_projection", light_vp);
-    I.draw_meshes(I.depth_program, false);
+    I.draw_meshes(false);
   }
 
   // 2. The target: background, then the floor, then the meshes.
@@ -459,13 +542,15 @@ void Renderer::draw(const Camera& camera, const Target& target, const RenderOpti
   const Vec3f toward = (eye - look).normalized();
   const Vec3f right = (-toward).cross(up).normalized();
   const Vec3f cam_up = right.cross(-toward);
-  const GLuint p = I.mesh_program;
-  gl.UseProgram(p);
-  I.set(p, "u_view_projection", vp);
-  I.set(p, "u_eye", eye);
-  I.set(p, "u_key", Vec3f(-0.45f * right + 0.60f * cam_up + 0.70f * toward).normalized());
-  I.set(p, "u_fill", Vec3f(0.70f * right + 0.05f * cam_up + 0.70f * toward).normalized());
-  I.draw_meshes(p, true);
+  for (const GLuint p : {I.textured_program, I.mesh_program}) {
+    gl.UseProgram(p);
+    I.set(p, "u_view_projection", vp);
+    I.set(p, "u_eye", eye);
+    I.set(p, "u_key", Vec3f(-0.45f * right + 0.60f * cam_up + 0.70f * toward).normalized());
+    I.set(p, "u_fill", Vec3f(0.70f * right + 0.05f * cam_up + 0.70f * toward).normalized());
+  }
+  I.draw_meshes(true);
+  gl.ActiveTexture(GL_TEXTURE0);
   gl.BindVertexArray(0);
 }
 

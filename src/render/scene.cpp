@@ -193,6 +193,21 @@ void check_scene(const Scene& scene) {
     if (!m.normals.empty() && m.normals.size() != m.positions.size())
       throw Error("", name, "has " + std::to_string(m.normals.size()) + " normals for " +
                                 std::to_string(m.positions.size()) + " vertices");
+    if (!m.uv.empty() && m.uv.size() != m.positions.size())
+      throw Error("", name, "has " + std::to_string(m.uv.size()) + " texture coordinates for " +
+                                std::to_string(m.positions.size()) + " vertices");
+    for (const auto& c : m.uv)
+      if (!std::isfinite(c[0]) || !std::isfinite(c[1]))
+        throw Error("", name, "a texture coordinate is not a finite number");
+    if (m.texture) {
+      const Texture& t = *m.texture;
+      if (m.uv.empty()) throw Error("", name, "has a texture but no texture coordinates");
+      if (t.image.empty() || t.image.rgba.size() != static_cast<std::size_t>(t.image.width) * t.image.height * 4)
+        throw Error("", name, "has an empty or malformed texture image");
+      if (!(t.repeat_m[0] > 0) || !(t.repeat_m[1] > 0) || !std::isfinite(t.repeat_m[0]) ||
+          !std::isfinite(t.repeat_m[1]) || !std::isfinite(t.rotation_rad))
+        throw Error("", name, "the texture's repeat must be positive metres and its rotation finite");
+    }
   }
 }
 

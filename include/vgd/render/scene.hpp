@@ -6,10 +6,13 @@
 // render` command from a drape folder or a trajectory, the studio from its
 // live simulation. The renderer never reads files.
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "vgd/render/image.hpp"
 
 namespace vgd::render {
 
@@ -36,6 +39,17 @@ enum class MeshKind {
   body,     // the avatar: what the camera presets are framed on
 };
 
+// A fabric image repeated over a piece (XVC TEXTURE, docs/xvc.md): the mesh's
+// pattern coordinates (Mesh::uv, m) are turned by `rotation_rad` and divided by
+// `repeat_m`, so one copy of the image covers repeat_m[0] × repeat_m[1] metres
+// of fabric, u along the grain line. The image's top row is at v = 0 and its
+// rows go down as v falls, as in the VRML and glTF exports.
+struct Texture {
+  Image image;                               // sRGB pixels, row 0 at the top; alpha is ignored
+  std::array<double, 2> repeat_m{0.1, 0.1};  // m of fabric per repeat along u, v (XVC SCALE2D)
+  double rotation_rad = 0;                   // counter-clockwise on the fabric (XVC ROTATION2D)
+};
+
 struct Mesh {
   std::string name;  // a piece's name, "body", ...
   MeshKind kind = MeshKind::garment;
@@ -46,6 +60,12 @@ struct Mesh {
   // side facing the camera.
   std::vector<std::array<float, 3>> normals;
   Colour colour = kFabric;
+  // Optional pattern coordinates per vertex, m (sim::Model::uv; `vt` in
+  // garment.obj), and the texture drawn with them. The texture multiplies
+  // `colour` (set it white to show the image as it is). A mesh with a texture
+  // needs uv; pieces of one garment may share one texture.
+  std::vector<std::array<float, 2>> uv;
+  std::shared_ptr<const Texture> texture;
 };
 
 struct Scene {

@@ -1,6 +1,6 @@
 // OBJ frame sequences: what is written reads back (vertex and face counts,
-// coordinates), files are named frame_0000.obj, ..., and the files of a run
-// that stopped early stay complete.
+// coordinates, pattern coordinates as `vt`), files are named frame_0000.obj,
+// ..., and the files of a run that stopped early stay complete.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -122,5 +122,69 @@ TEST(ObjFrames, TheReaderNamesTheLineOfAMalformedFile) {
   } catch (const Error& e) {
     EXPECT_EQ(e.diagnostic().line, 4);
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ObjFrames, PatternCoordinatesRoundTripAsVt) {
+  // garment.obj: the model's uv (m) as `vt`, one per vertex with its index, faces `f a/a b/b c/c`.
+  sim::Model m = grid();
+  m.pieces = {"FRONT", "BACK"};
+  for (std::size_t t = 0; t < m.triangle_piece.size(); ++t) m.triangle_piece[t] = static_cast<int>(t % 2);
+  m.uv[7] = sim::Vec2(0.123456789, -0.5);
+  const auto dir = test::scratch_dir("obj_vt");
+  const std::string text = io::obj::frame_text(m, 0.0, m.x0);
+  EXPECT_NE(text.find("\nvt 0.123456789 -0.5\n"), std::string::npos);
+  write_file_atomic(dir / "vt.obj", text);
+  const auto r = io::obj::read_obj(dir / "vt.obj");
+  ASSERT_EQ(r.texcoords.size(), m.uv.size());
+  for (std::size_t i = 0; i < m.uv.size(); ++i) {
+    EXPECT_NEAR(r.texcoords[i][0], m.uv[i].x(), 1e-12) << i;
+    EXPECT_NEAR(r.texcoords[i][1], m.uv[i].y(), 1e-12) << i;
+  }
+  ASSERT_EQ(r.faces.size(), m.triangles.size());
+  ASSERT_EQ(r.face_texcoords.size(), r.faces.size());
+  for (std::size_t f = 0; f < r.faces.size(); ++f) EXPECT_EQ(r.face_texcoords[f], r.faces[f]) << f;
+  EXPECT_EQ(r.groups, (std::vector<std::string>{"FRONT", "BACK"}));
+  EXPECT_EQ(r.face_group.front(), 0);
+  EXPECT_EQ(r.face_group.back(), 1);
+}
+
+TEST(ObjFrames, FilesWithoutVtReadAsBefore) {
+  // Frame sequences stay without vt (the sink keeps no uv); faces then have no texture coordinates.
+  const auto dir = test::scratch_dir("obj_no_vt");
+  sim::Model m = grid();
+  m.uv.clear();
+  write_file_atomic(dir / "plain.obj", io::obj::frame_text(m, 0.0, m.x0));
+  const auto r = io::obj::read_obj(dir / "plain.obj");
+  EXPECT_TRUE(r.texcoords.empty());
+  ASSERT_EQ(r.faces.size(), m.triangles.size());
+  for (std::size_t f = 0; f < r.faces.size(); ++f) {
+    EXPECT_EQ(r.faces[f], m.triangles[f]);
+    EXPECT_EQ(r.face_texcoords[f], (std::array<int, 3>{-1, -1, -1}));
+  }
+  // Other writers' forms: v/vt/vn, v//vn, negative indices, a third vt value.
+  write_file_atomic(dir / "forms.obj",
+                    "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
+                    "f 1/1/1 2/2/1 3/3/1\nf -3//1 -2//1 -1//1\nf 1/-3 2/-2 3/-1\n");
+  const auto forms = io::obj::read_obj(dir / "forms.obj");
+  ASSERT_EQ(forms.faces.size(), 3u);
+  EXPECT_EQ(forms.faces[1], (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(forms.face_texcoords[0], (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(forms.face_texcoords[1], (std::array<int, 3>{-1, -1, -1}));
+  EXPECT_EQ(forms.face_texcoords[2], (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(forms.face_group, (std::vector<int>{-1, -1, -1}));
+}
+
+TEST(ObjFrames, ATextureIndexOutOfRangeOrOnSomeCornersIsRefused) {
+  const auto dir = test::scratch_dir("obj_bad_vt");
+  write_file_atomic(dir / "range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/2\n");
+  EXPECT_THROW(io::obj::read_obj(dir / "range.obj"), Error);
+  write_file_atomic(dir / "some.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3\n");
+  try {
+    io::obj::read_obj(dir / "some.obj");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.diagnostic().line, 5);
+    EXPECT_NE(std::string(e.what()).find("some corners"), std::string::npos) << e.what();
   }
 }
