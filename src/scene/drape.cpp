@@ -9,6 +9,7 @@
 #include "vgd/scene/data.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/sim/effects/seam.hpp"
+#include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/xvc/io.hpp"
 
 namespace vgd::scene {
@@ -213,6 +214,11 @@ DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& s
     c.stages.push_back({"sewing", run_wall, r.summary.simulated_s});
   }
   for (const auto& p : sys.profile()) c.effect_seconds.emplace_back(p.name, p.seconds);
+  for (const auto& e : sys.effects())
+    if (std::string(e->name()) == "self-collision") {
+      const auto& st = sim::self_collision_stats(*e);
+      c.self_detections = st.detections, c.self_pairs = st.pairs_total, c.self_reverted = st.reverted;
+    }
   c.steps = r.summary.stats.steps;
   c.force_evaluations = r.summary.stats.rhs_evaluations;
   c.linear_iterations = r.summary.stats.linear_iterations;

@@ -381,7 +381,8 @@ TEST_P(Stability, AStripPulledUpBetweenTheLegs) {
 // longer than the strip) and pressed into the gaps between the fingers, gaps
 // a little more than one 5 mm distance-grid cell wide.
 TEST_P(Stability, AStripPulledDownOverFingers) {
-  const auto obj = vgd::test::binary_dir() / "test-scratch" / "stability" / "fingers.obj";
+  // One file per integrator: ctest runs the instances side by side.
+  const auto obj = vgd::test::binary_dir() / "test-scratch" / "stability" / ("fingers-" + name_of(GetParam()) + ".obj");
   std::filesystem::create_directories(obj.parent_path());
   {
     std::ofstream out(obj);
@@ -429,7 +430,8 @@ TEST_P(Stability, DeepSelfContactFolds) {
 // The piece hangs from two outline nodes for 1 s with each cloth model.
 TEST_P(Stability, SliverTrianglesStraightFromARealDxf) {
   VGD_REQUIRE_SHARED();
-  const auto xvc_path = vgd::test::binary_dir() / "test-scratch" / "stability" / "men-classic-tee-slivers.xvc";
+  const auto xvc_path = vgd::test::binary_dir() / "test-scratch" / "stability" /
+                        ("men-classic-tee-slivers-" + name_of(GetParam()) + ".xvc");  // per instance: run side by side
   std::filesystem::create_directories(xvc_path.parent_path());
   {
     const auto imported = dxf::import_file(vgd::test::shared_dxf("MEN_CLASSIC_TEE.DXF"));

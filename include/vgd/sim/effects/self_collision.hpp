@@ -80,6 +80,8 @@ struct SelfCollisionStats {
   int crossings = 0;              // of those, particles that had gone through their triangle in the last step
   long pairs_total = 0;           // whole run
   double min_distance = 0.0;      // m: smallest pair distance after the last correction (thickness if none)
+  long reverted = 0;              // whole run: particles the fail-safe put back to their step's start
+  long detections = 0;            // whole run: detection passes (rounds and fail-safe included)
 };
 
 std::unique_ptr<Effect> make_self_collision(const Model& model, const SelfCollisionDef& def);
