@@ -250,6 +250,79 @@ TEST(SelfCollision, JoinedParticlesDoNotCollide) {
   }
 }
 
+// An edge already through a triangle when the step starts: the corrections
+// keep the side each pair started on, so only the history-free untangling
+// pulls its nearer end (1 mm under) back over the plane, to the thickness;
+// with it off the crossing stays.
+TEST(SelfCollision, AnEdgeThroughATriangleAtTheStartIsPulledBack) {
+  Model m = test::particles(6, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0);
+  at(m.x0, 1) = Vec3(0.1, 0, 0);
+  at(m.x0, 2) = Vec3(0, 0.1, 0);
+  at(m.x0, 3) = Vec3(0.02, 0.02, -0.001);  // through: 1 mm under
+  at(m.x0, 4) = Vec3(0.02, 0.02, 0.02);    // its edge's other end, 20 mm over
+  at(m.x0, 5) = Vec3(0.2, 0.2, 0.02);
+  m.triangles = {{0, 1, 2}, {3, 4, 5}};
+  m.triangle_piece = {0, 0};
+  m.pieces = {"p"};
+  for (int i = 0; i < 6; ++i) m.uv.push_back(Vec2(at(m.x0, i).x(), at(m.x0, i).y()));
+  for (const int passes : {4, 0}) {
+    SelfCollisionDef def;
+    def.thickness = 0.003;
+    def.untangle_passes = passes;
+    auto e = make_self_collision(m, def);
+    State s = initial_state(m);
+    at(s.v, 3) = Vec3(0, 0, -0.1);  // still going down
+    e->after_step(m, s);
+    const Vec3 w(0.6, 0.2, 0.2);
+    const double under = at(s.x, 3).z() - (w[0] * at(s.x, 0).z() + w[1] * at(s.x, 1).z() + w[2] * at(s.x, 2).z());
+    if (passes > 0) {
+      EXPECT_EQ(self_collision_stats(*e).tangled, 2);  // edges 3–4 and 3–5
+      EXPECT_NEAR(under, 0.003, 1e-5);  // over the plane, at the thickness (the triangle tilts a little)
+      // The approach is stopped: no relative velocity into the triangle left.
+      const double vt = w[0] * at(s.v, 0).z() + w[1] * at(s.v, 1).z() + w[2] * at(s.v, 2).z();
+      EXPECT_GE(at(s.v, 3).z() - vt, -1e-12);
+    } else {
+      EXPECT_LT(under, 0.0);  // left through
+    }
+  }
+}
+
+// Seam hems are exempt from colliding with each other while seams close;
+// once every seam pair is one particle they are ordinary cloth: particle 3
+// (a hem, falling through a triangle with a hem corner) passes before the
+// merge and is stopped after it.
+TEST(SelfCollision, SewnHemsCollideOnceEverySeamIsSewn) {
+  Model m = test::particles(6, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0);
+  at(m.x0, 1) = Vec3(0.1, 0, 0);
+  at(m.x0, 2) = Vec3(0, 0.1, 0);
+  at(m.x0, 3) = Vec3(0.02, 0.02, 0.002);
+  at(m.x0, 4) = at(m.x0, 3);  // 3's seam partner
+  at(m.x0, 5) = at(m.x0, 0);  // 0's seam partner
+  // (4, 5, 1): the partners' triangle, so that both hems are of one garment.
+  m.triangles = {{0, 1, 2}, {4, 5, 1}};
+  m.triangle_piece = {0, 0};
+  m.pieces = {"p"};
+  for (int i = 0; i < 6; ++i) m.uv.push_back(Vec2(at(m.x0, i).x(), at(m.x0, i).y()));
+  for (const bool sewn : {false, true}) {
+    SelfCollisionDef def;
+    def.thickness = 0.003;
+    def.joined = {{3, 4}, {0, 5}};
+    auto e = make_self_collision(m, def);
+    if (sewn) e->particles_merged(m, {0, 1, 2, 3, 3, 0});
+    State s = initial_state(m);
+    e->after_step(m, s);      // remembers the side: over
+    at(s.x, 3).z() = -0.001;  // through in one step
+    at(s.x, 4) = at(s.x, 3);
+    e->after_step(m, s);
+    if (sewn)
+      EXPECT_GT(at(s.x, 3).z(), 0.0) << "a sewn hem is ordinary cloth";
+    else
+      EXPECT_EQ(at(s.x, 3).z(), -0.001) << "an open seam's hem passes";
+  }
+}
+
 // After a merge the copies of one particle are one: no collision between them.
 TEST(SelfCollision, MergedCopiesDoNotCollide) {
   Model m = triangle_and_particle(Vec3(0.0, 0.0, 0.0005));

@@ -19,6 +19,12 @@
 // their closest-point direction before the step: a fold can pass two edges
 // through each other with no corner near a face (found by the fold test).
 // The repulsion force is point–triangle only.
+//
+// After those, a history-free pass (untangle): any edge found through a
+// triangle (within one layer, not exempt) has its end nearer the plane pulled
+// back through it, whatever side the step started on: the corrections above
+// defend the side a pair had at the step's start, so a crossing that came in
+// with the start would otherwise stay for good.
 // The scene switches this effect on only when it asks for self-collisions.
 #include <array>
 #include <memory>
@@ -43,6 +49,11 @@ struct SelfCollisionDef {
   // next step defended the wrong side, and a T-shirt's seams pulling against
   // that made the contacts grow from 20 to 10⁶ pairs in 0.6 s.
   int rounds = 4;
+  // History-free untangling after each step (Gauss–Seidel passes; 0 = off):
+  // edges found through a triangle are pulled back whatever the step started
+  // with (self_collision.cpp, untangle).
+  int untangle_passes = 4;
+  int untangle_every = 1;  // steps between untanglings (every 4th left a skirt crossed)
   std::vector<int> fixed;      // particles never moved (the scene's pins)
   // Particles that are, or are about to become, one (seam pairs): a particle
   // never collides with a triangle or an edge holding its partner, and a
@@ -61,17 +72,12 @@ struct SelfCollisionDef {
   //    < 0.5: a fold standing out) the side it came from still rules;
   //  - the outer layer gives way: an inner particle within `held_distance` of
   //    the body does not move in these corrections;
-  //  - particles the corrections pushed within `body_clearance` of the body
-  //    go back out before the next detection round, so a round sees the
-  //    body's push (which otherwise, running after this effect, pushed the
-  //    inner layer through the outer one unseen);
   //  - the impulses carry Coulomb friction `layer_friction` (without it a
   //    T-shirt slid down over a skirt and never came to rest).
   std::vector<int> layer;
   const SignedDistanceGrid* body = nullptr;  // not owned: the body collision's grid, which outlives this effect
   double layer_depth = 0.01;                 // m
   double held_distance = 0.0045;             // m: 1.5 × the body collision's default clearance
-  double body_clearance = 0.003;             // m: the body collision's clearance
   double layer_friction = 0.2;               // Coulomb μ between layers
 };
 
@@ -82,6 +88,8 @@ struct SelfCollisionStats {
   double min_distance = 0.0;      // m: smallest pair distance after the last correction (thickness if none)
   long reverted = 0;              // whole run: particles the fail-safe put back to their step's start
   long detections = 0;            // whole run: detection passes (rounds and fail-safe included)
+  int tangled = 0;                // edges through a triangle at the end of the last step, before untangling
+  long untangled = 0;             // whole run: untangling moves
 };
 
 std::unique_ptr<Effect> make_self_collision(const Model& model, const SelfCollisionDef& def);
