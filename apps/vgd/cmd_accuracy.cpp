@@ -3,32 +3,49 @@
 // Problems with a known answer, every integrator at several steps (fixed-step
 // methods) or tolerances (BDF), both cloth models, one or two resolutions:
 //
-//   flag     the seed's flag in its gusty wind (data/scenes/flag.json) for 0.5 s
-//            (over 2 s the flapping flag forgets its start: every method ends
-//            hundreds of mm from any other, docs/accuracy-vs-time.md);
-//            reference: RK4 at 1/32 of its stability limit
-//   hanging  a square hanging from two corners (data/scenes/hanging-cloth.json)
-//            settling towards its static equilibrium for 4 s; reference: BDF
-//            of order 5 at rtol 1e-8 (a converged fine-tolerance solve)
+//   flag        the seed's flag in its gusty wind (data/scenes/flag.json) for 0.5 s
+//               (over 2 s the flapping flag forgets its start: every method ends
+//               hundreds of mm from any other, docs/accuracy-vs-time.md);
+//               reference: RK4 at 1/32 of its stability limit
+//   hanging     a square hanging from two corners (data/scenes/hanging-cloth.json)
+//               settling towards its static equilibrium for 4 s; reference: BDF
+//               of order 5 at rtol 1e-8 (a converged fine-tolerance solve)
+//   cantilever  the lab's tip-loaded strip (vgd lab tip-cantilever): 50 × 10 mm
+//               of denim with ν = 0, clamped, a dead tip load k = P L²/B = 2,
+//               released straight and damped to rest in 0.5 s; reference: the
+//               elastica (scene::lab::tip_load_elastica, no ../shared at run
+//               time); strain rosette only (the mass-spring strip has no linear
+//               bending stiffness: no elastica to compare with)
+//   drape       data/scenes/drape-sphere.json on a coarse grid, the first 0.32 s
+//               (falls 0.3 m, lands, its sides still falling); reference: RK4 at
+//               1/128 of its stability limit (BDF refuses contact)
 //
 // Error: the largest distance (mm) of any particle from the reference at the
-// final time. CPU time: std::clock of the run (1 thread). Counts: IntegratorStats.
+// final time; for the cantilever, the distance (mm) of the strip's tip (mean
+// of its end column, as the lab measures it) from the elastica's tip.
+// CPU time: std::clock of the run (1 thread). Counts: IntegratorStats.
 // A run the engine refuses before it starts (an explicit step above the
-// stability limit) is marked refused; one stopped by a blow-up, failed.
+// stability limit, BDF with contact) is marked refused; one stopped by a
+// blow-up, failed.
 //
 // Writes accuracy.csv and one work-precision diagram (error against CPU time,
 // log–log, one curve per method, the Pareto front ringed) per problem × model
 // × resolution: work-precision-<problem>-<model>-<resolution>.png.
+// --problems cantilever,drape runs only the problems listed: regenerating some
+// diagrams without the full run's 20 minutes.
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -40,7 +57,11 @@
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/data.hpp"
 #include "vgd/scene/json.hpp"
+#include "vgd/scene/lab.hpp"
 #include "vgd/scene/quality.hpp"
+#include "vgd/sim/effects/basic.hpp"
+#include "vgd/sim/effects/bending.hpp"
+#include "vgd/sim/effects/strain_rosette.hpp"
 #include "vgd/sim/run.hpp"
 
 namespace vgd::cli {
@@ -61,9 +82,11 @@ struct Row {
   std::string status = "ok", message;  // ok, refused, failed, unavailable
 };
 
-// The problem `name` with `model` at `resolution` particles along u.
+// The shipped-scene problem `name` (flag, hanging, drape) with `model` at
+// `resolution` particles along u.
 scene::SceneDef problem(const std::string& name, scene::ClothModel model, int resolution, double duration) {
-  scene::SceneDef def = scene::load_scene(scene::shipped_scene(name == "flag" ? "flag" : "hanging-cloth"));
+  const std::string file = name == "flag" ? "flag" : name == "drape" ? "drape-sphere" : "hanging-cloth";
+  scene::SceneDef def = scene::load_scene(scene::shipped_scene(file));
   def.outputs.clear();
   def.run.duration = duration;
   auto& c = def.cloth.front();
@@ -71,6 +94,9 @@ scene::SceneDef problem(const std::string& name, scene::ClothModel model, int re
   const double ratio = static_cast<double>(c.grid->nv) / c.grid->nu;
   c.grid->nv = std::max(2, static_cast<int>(std::lround(resolution * ratio)));
   c.grid->nu = resolution;
+  // The sphere's distance grid at 10 mm instead of 5: every run builds its
+  // own, and at 5 mm the builds took longer than the quick run's drape runs.
+  if (name == "drape") def.effects.collision->grid.spacing = 0.01;
   if (name == "flag") {
     // The seed's flag material without its Provot limit: a projection after
     // every step makes the trajectory depend on the step, so no step size
@@ -82,19 +108,106 @@ scene::SceneDef problem(const std::string& name, scene::ClothModel model, int re
   return def;
 }
 
+// A problem at one model and resolution, ready to run: a fresh system per run.
+struct Setup {
+  std::function<std::unique_ptr<sim::System>()> make;
+  double duration = 0.0, fps = 25.0;  // s simulated; frames per s (BDF runs after-step hooks once a frame)
+  sim::IntegratorSettings base;       // the scene's settings (tolerances, CG), which every run starts from
+  bool contact = false;               // body or self-collision, seams: the presets' contact branch
+  // Error (mm) of final positions against a known answer; empty: against the reference run.
+  std::function<double(const sim::VecX&)> known_error;
+};
+
+Setup scene_setup(const scene::SceneDef& def) {
+  Setup s;
+  s.make = [def] { return std::move(scene::build(def).system); };
+  s.duration = def.run.duration, s.fps = def.run.fps;
+  s.base = def.integrator.settings;
+  s.contact = scene::has_contact(def.effects);
+  return s;
+}
+
+// The cantilever's dead tip load: constant forces on the tip column, no
+// Jacobian (they do not depend on x or v).
+class TipLoad final : public sim::Effect {
+ public:
+  explicit TipLoad(std::vector<std::pair<int, sim::Vec3>> loads) : loads_(std::move(loads)) {}
+  const char* name() const override { return "tip-load"; }
+  void add_forces(const sim::Eval&, sim::VecX& f) override {
+    for (const auto& [p, force] : loads_) f.segment<3>(3 * p) += force;
+  }
+  bool add_jacobian(const sim::Eval&, sim::Triplets&, sim::Triplets&) override { return true; }
+
+ private:
+  std::vector<std::pair<int, sim::Vec3>> loads_;
+};
+
+// The tip-loaded cantilever of `vgd lab tip-cantilever` (scene/lab.cpp builds
+// its specimen internally, so it is rebuilt here the same way): a strip along
+// the warp, 10 mm wide in two cells, clamped by two held columns (the clamp
+// acts mid-cell: `cells` cells of L/(cells + ½) beyond it), ν = 0 so that the
+// strip's rigidity is B_warp and the elastica's single EI holds, a dead tip
+// load k = P L²/B = 2 (the tip 25 mm down) on the straight strip at t = 0, no
+// gravity. Denim and L = 50 mm, half the lab's length (the elastica depends
+// only on k): its first mode is ~12× faster than shirting's at 100 mm, so it
+// settles within the run at an explicit cost the quick run can afford; the
+// mass-proportional drag α = 50/s is about critical for that mode.
+constexpr double kCantileverL = 0.05, kCantileverWidth = 0.01, kCantileverK = 2.0, kCantileverAlpha = 50.0;
+
+Setup cantilever_setup(int cells, double duration) {
+  scene::MaterialDef mat = scene::load_xvc_material(scene::data_file("materials/denim.xvc"), "denim");
+  mat.orthotropic->nu_warp_weft = 0.0;
+  mat.orthotropic->nu_weft_warp = sim::kDerived;
+  const sim::OrthotropicMaterial o = scene::orthotropic_of(mat);
+  const double L = kCantileverL, w = kCantileverWidth, h = L / (cells + 0.5);
+  const double B = sim::bending_rigidity_strip(o, 0.0), P = kCantileverK * B / (L * L);  // N/m of width
+  const int nu = cells + 2, nv = 3;
+  Setup s;
+  s.make = [=] {
+    sim::Model m = sim::make_grid(nu, nv, h, w / (nv - 1), sim::Vec3(-0.5 * h, 0, 0), sim::Vec3::UnitX(),
+                                  sim::Vec3::UnitZ(), 1e-6);
+    m.mass = sim::lump_masses(m.uv, m.triangles, mat.density);
+    std::vector<std::unique_ptr<sim::Effect>> effects;
+    effects.push_back(sim::make_strain_rosette(m, {o}));
+    effects.push_back(sim::make_bending(m, {o}));
+    effects.push_back(sim::make_viscosity({0.0, kCantileverAlpha}));
+    sim::PinDef clamp;
+    std::vector<std::pair<int, sim::Vec3>> loads;
+    for (int j = 0; j < nv; ++j) {
+      clamp.particles.push_back(j * nu), clamp.particles.push_back(j * nu + 1);
+      const double share = (j == 0 || j == nv - 1) ? 0.5 : 1.0;  // half at the corners, as the lab
+      loads.emplace_back(j * nu + nu - 1, sim::Vec3(0, -P * w / (nv - 1) * share, 0));
+    }
+    effects.push_back(sim::make_pins(m, clamp));
+    effects.push_back(std::make_unique<TipLoad>(std::move(loads)));
+    return std::make_unique<sim::System>(std::move(m), std::move(effects));
+  };
+  s.duration = duration;  // base: the default settings
+  const scene::lab::Elastica e = scene::lab::tip_load_elastica(kCantileverK);
+  s.known_error = [=](const sim::VecX& x) {
+    double u = 0.0, dw = 0.0;  // mean tip shortening and deflection (m)
+    for (int j = 0; j < nv; ++j) {
+      const int p = j * nu + nu - 1;
+      u += (L - x[3 * p]) / nv, dw += -x[3 * p + 1] / nv;
+    }
+    return 1000.0 * std::hypot(u - e.u_over_L * L, dw - e.w_over_L * L);
+  };
+  return s;
+}
+
 struct Outcome {
   sim::VecX x;  // final positions (m), full particle set
   Row row;
 };
 
-// One run of `def` with `settings`, 1 thread; the integrator's step for
+// One run of `setup` with `settings`, 1 thread; the integrator's step for
 // fixed-step methods is settings.step as given (no sub-stepping).
-Outcome run_once(const scene::SceneDef& def, sim::IntegratorSettings settings) {
+Outcome run_once(const Setup& setup, sim::IntegratorSettings settings) {
   Outcome out;
   out.row.integrator = sim::to_string(settings.method);
   out.row.step_or_tol = settings.method == sim::Method::bdf ? settings.rtol : settings.step;
-  scene::Scene s = scene::build(def);
-  auto& sys = *s.system;
+  const std::unique_ptr<sim::System> system = setup.make();
+  auto& sys = *system;
   settings.auto_substep = false;
   std::unique_ptr<sim::Integrator> integ;
   sim::State st = sim::initial_state(sys.model());
@@ -110,8 +223,8 @@ Outcome run_once(const scene::SceneDef& def, sim::IntegratorSettings settings) {
     return out;
   }
   try {
-    const int frames = static_cast<int>(std::floor(def.run.duration * def.run.fps + 1e-9));
-    for (int k = 1; k <= frames; ++k) integ->advance(sys, st, k / def.run.fps);
+    const int frames = static_cast<int>(std::floor(setup.duration * setup.fps + 1e-9));
+    for (int k = 1; k <= frames; ++k) integ->advance(sys, st, k / setup.fps);
     out.x = sys.expand(st.x);
   } catch (const sim::SimulationError& e) {
     out.row.status = "failed";
@@ -276,35 +389,49 @@ std::string csv_number(double v) {
 }  // namespace
 
 // `vgd bench accuracy`: see the top of this file. Returns an exit code.
-int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir) {
+int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems) {
   omp_set_num_threads(1);
   std::filesystem::create_directories(out_dir);
   std::vector<Row> rows;
+  using Models = std::vector<scene::ClothModel>;
+  const Models both{scene::ClothModel::mass_spring, scene::ClothModel::strain_rosette};
   struct Case {
     std::string name;
     double duration;
-    std::vector<int> resolutions;
+    std::vector<int> resolutions;  // particles along u (cantilever: along the strip, the two held columns included)
+    Models models;
+    std::vector<double> fractions;  // of the explicit limits; empty: the default below
   };
-  std::vector<Case> cases(2);
-  cases[0].name = "flag", cases[1].name = "hanging";
-  cases[0].duration = 0.5, cases[1].duration = quick ? 1.0 : 4.0;
-  cases[0].resolutions = quick ? std::vector<int>{10} : std::vector<int>{15, 30};
-  cases[1].resolutions = quick ? std::vector<int>{7} : std::vector<int>{9, 17};
+  // The cantilever ends at rest, where every stable run sits on the same
+  // discrete equilibrium: smaller explicit steps only cost (midpoint at ¼ of
+  // its limit would be most of the quick run), so it runs fewer.
+  std::vector<Case> cases{
+      {"flag", 0.5, quick ? std::vector<int>{10} : std::vector<int>{15, 30}, both, {}},
+      {"hanging", quick ? 1.0 : 4.0, quick ? std::vector<int>{7} : std::vector<int>{9, 17}, both, {}},
+      // 5, 10 and 20 cells along the strip.
+      {"cantilever", 0.5, quick ? std::vector<int>{7} : std::vector<int>{7, 12, 22}, {scene::ClothModel::strain_rosette},
+       quick ? std::vector<double>{2.0, 1.0} : std::vector<double>{2.0, 1.0, 0.25}},
+      // 0.32 s: landed, the sides still falling. By 0.48 s folds make it as
+      // sensitive as the flag (RK4 at 1/64 of its limit 5 mm from 1/256).
+      {"drape", 0.32, quick ? std::vector<int>{9} : std::vector<int>{9, 17}, both, {}}};
+  if (!problems.empty())
+    std::erase_if(cases, [&](const Case& c) { return std::find(problems.begin(), problems.end(), c.name) == problems.end(); });
   const std::vector<double> fractions = quick ? std::vector<double>{2.0, 1.0, 0.25} : std::vector<double>{2.0, 1.0, 0.5, 0.25, 0.125};
   const std::vector<double> implicit_steps = quick ? std::vector<double>{0.01, 0.0025} : std::vector<double>{0.02, 0.01, 0.005, 0.0025, 0.00125};
   const std::vector<double> tolerances = quick ? std::vector<double>{1e-3, 1e-5} : std::vector<double>{1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
   if (!json)
-    std::printf("%-8s %-15s %4s %-17s %10s %12s %9s %9s %8s  %s\n", "problem", "model", "res", "integrator", "step/tol",
+    std::printf("%-10s %-15s %4s %-17s %10s %12s %9s %9s %8s  %s\n", "problem", "model", "res", "integrator", "step/tol",
                 "error mm", "cpu s", "RHS", "Jac", "status");
   for (const auto& cs : cases)
-    for (const auto model : {scene::ClothModel::mass_spring, scene::ClothModel::strain_rosette})
+    for (const auto model : cs.models)
       for (const int res : cs.resolutions) {
-        const scene::SceneDef def = problem(cs.name, model, res, cs.duration);
+        const Setup setup = cs.name == "cantilever" ? cantilever_setup(res - 2, cs.duration)
+                                                    : scene_setup(problem(cs.name, model, res, cs.duration));
         const std::string model_name = scene::to_string(model);
         auto finish = [&](Row r) {
           r.problem = cs.name, r.model = model_name, r.resolution = res;
           if (!json) {
-            std::printf("%-8s %-15s %4d %-17s %10.3g %12.4g %9.3f %9ld %8ld  %s%s%s\n", r.problem.c_str(),
+            std::printf("%-10s %-15s %4d %-17s %10.3g %12.4g %9.3f %9ld %8ld  %s%s%s\n", r.problem.c_str(),
                         r.model.c_str(), r.resolution, r.integrator.c_str(), r.step_or_tol, r.error_mm, r.cpu_s, r.rhs,
                         r.jac, r.status.c_str(), r.message.empty() ? "" : ": ", r.message.substr(0, 70).c_str());
             std::fflush(stdout);
@@ -312,59 +439,74 @@ int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir) 
           rows.push_back(std::move(r));
         };
         // The explicit stability limits of this system.
-        scene::Scene probe = scene::build(def);
-        const sim::Stiffness stiff = probe.system->stiffness();
-        // The reference.
-        sim::IntegratorSettings ref = probe.integrator;
-        if (cs.name == "flag") {
-          ref.method = sim::Method::rk4;
-          ref.step = sim::stability_limit(sim::Method::rk4, stiff) / 32;
+        const sim::Stiffness stiff = setup.make()->stiffness();
+        // The reference: a known answer, or a fine solve.
+        Outcome reference;
+        if (setup.known_error) {
+          reference.row.integrator = "reference-elastica";
+          reference.row.error_mm = 0.0;
+          finish(reference.row);
         } else {
-          ref.method = sim::Method::bdf;
-          ref.rtol = 1e-8;
-          ref.atol = 1e-10;
-          // Order 5 for the reference: the settling cloth is smooth, and at
-          // 1e-8 the default order 2 (kept for stability) is itself off by
-          // more than the errors measured against it.
-          ref.max_order = 5;
+          sim::IntegratorSettings ref = setup.base;
+          if (cs.name == "hanging") {
+            ref.method = sim::Method::bdf;
+            ref.rtol = 1e-8;
+            ref.atol = 1e-10;
+            // Order 5 for the reference: the settling cloth is smooth, and at
+            // 1e-8 the default order 2 (kept for stability) is itself off by
+            // more than the errors measured against it.
+            ref.max_order = 5;
+          } else {
+            // flag: 1/32 of the limit. drape (BDF refuses contact): 1/128, as
+            // contact makes every method first order (1/32 was 0.02–0.04 mm
+            // from 1/256, as far as midpoint's own error).
+            ref.method = sim::Method::rk4;
+            ref.step = sim::stability_limit(sim::Method::rk4, stiff) / (cs.name == "drape" ? 128 : 32);
+          }
+          reference = run_once(setup, ref);
+          Row rr = reference.row;
+          rr.integrator = "reference-" + rr.integrator;
+          rr.error_mm = 0.0;
+          finish(rr);
+          if (reference.row.status != "ok") continue;
         }
-        const Outcome reference = run_once(def, ref);
-        Row rr = reference.row;
-        rr.integrator = "reference-" + rr.integrator;
-        rr.error_mm = 0.0;
-        const bool have_ref = reference.row.status == "ok";
-        finish(rr);
-        if (!have_ref) continue;
+        auto error_of = [&](const Outcome& o) {
+          return setup.known_error ? setup.known_error(o.x) : max_distance_mm(o.x, reference.x);
+        };
         // Every method at its steps or tolerances.
         for (const auto method : {sim::Method::symplectic_euler, sim::Method::midpoint, sim::Method::rk4,
                                   sim::Method::implicit_euler, sim::Method::bdf}) {
           std::vector<sim::IntegratorSettings> runs;
-          sim::IntegratorSettings st = probe.integrator;
+          sim::IntegratorSettings st = setup.base;
           st.method = method;
           if (sim::is_explicit(method)) {
             const double limit = sim::stability_limit(method, stiff) * st.safety;
             // 2× the raw limit (to be refused), then fractions of the safe limit.
-            for (const double f : fractions) st.step = f > 1 ? limit / st.safety * f : limit * f, runs.push_back(st);
+            const auto& fs = cs.fractions.empty() ? fractions : cs.fractions;
+            for (const double f : fs) st.step = f > 1 ? limit / st.safety * f : limit * f, runs.push_back(st);
           } else if (method == sim::Method::implicit_euler) {
             st.cg_tolerance = 1e-8;
+            st.cg_max_iterations = std::max(st.cg_max_iterations, 1000);  // the drape scene caps it at 100
             for (const double h : implicit_steps) st.step = h, runs.push_back(st);
           } else {
             for (const double tol : tolerances) st.rtol = tol, st.atol = tol * 1e-2, runs.push_back(st);
           }
           for (const auto& settings : runs) {
-            Outcome o = run_once(def, settings);
-            if (o.row.status == "ok") o.row.error_mm = max_distance_mm(o.x, reference.x);
+            Outcome o = run_once(setup, settings);
+            if (o.row.status == "ok") o.row.error_mm = error_of(o);
             finish(std::move(o.row));
           }
         }
         // The quality presets (scene/quality.hpp) as a scene or --quality
-        // would run them: an explicit preset's step is its fraction of the limit.
+        // would run them: an explicit preset's step is its fraction of the
+        // limit, an implicit one's its steps per frame.
         for (const auto q : {scene::Quality::preview, scene::Quality::standard, scene::Quality::precise}) {
-          sim::IntegratorSettings st = scene::quality_integrator(q, scene::has_contact(def.effects)).settings;
+          const scene::IntegratorDef preset = scene::quality_integrator(q, setup.contact);
+          sim::IntegratorSettings st = preset.settings;
           st.step = sim::is_explicit(st.method) ? sim::stability_limit(st.method, stiff) * st.safety
-                                                : 1.0 / (def.run.fps * 4);
-          Outcome o = run_once(def, st);
-          if (o.row.status == "ok") o.row.error_mm = max_distance_mm(o.x, reference.x);
+                                                : 1.0 / (setup.fps * std::max(1, preset.iterations_per_frame));
+          Outcome o = run_once(setup, st);
+          if (o.row.status == "ok") o.row.error_mm = error_of(o);
           o.row.integrator = std::string("preset-") + scene::to_string(q);
           finish(std::move(o.row));
         }

@@ -38,7 +38,7 @@
 
 namespace vgd::cli {
 // cmd_accuracy.cpp
-int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir);
+int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
 }  // namespace vgd::cli
 
 namespace {
@@ -435,6 +435,10 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
   accuracy->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
   accuracy->add_flag("--quick", o->quick, "Coarse grids, short runs and fewer steps (well under a minute)");
   auto accuracy_out = std::make_shared<std::string>("accuracy");
+  auto accuracy_problems = std::make_shared<std::vector<std::string>>();
+  accuracy->add_option("--problems", *accuracy_problems, "Only these problems (default all)")
+      ->check(CLI::IsMember({"flag", "hanging", "cantilever", "drape"}))
+      ->delimiter(',');
   accuracy->add_option("-o,--output", *accuracy_out, "Folder for accuracy.csv and the work-precision PNGs")
       ->capture_default_str();
   std::vector<CLI::App*> scene_cmds;
@@ -449,9 +453,10 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
                 "Also keep the cloth from passing through itself (against Blender's self-collision figures where known)");
     scene_cmds.push_back(c);
   }
-  return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, scene_cmds, scene_duration, scene_self]() -> int {
+  return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, accuracy_problems, scene_cmds,
+                                 scene_duration, scene_self]() -> int {
     if (effects->parsed()) return effects_bench(o->json, o->quick);
-    if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out);
+    if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out, *accuracy_problems);
     for (auto* c : scene_cmds)
       if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self);
     if (!engine->parsed()) return vgd::cli::kUsage;
