@@ -257,10 +257,14 @@ int scene_bench(const std::string& name, bool json, double duration, bool self_c
   for (const int t : thread_counts) {
     SceneRecord r = run_scene(name, t, duration, self_collision);
     if (!json) {
-      std::printf("%-13s %3d %9d %9d %7.2f %8.2f %12.3f %12.1f %7.1fx %9.3f %7s %9d  %s%s%s\n",
+      // No Blender figure for this scene (sew-cylinder with self-collision): a dash, not 0.
+      const bool known = r.blender_s > 0 && r.per_simulated_s() > 0;
+      const std::string blender = known ? vgd::format_fixed(r.blender_s, 1) : "-";
+      const std::string speedup = known ? vgd::format_fixed(r.blender_s / r.per_simulated_s(), 1) + "x" : "-";
+      std::printf("%-13s %3d %9d %9d %7.2f %8.2f %12.3f %12s %8s %9.3f %7s %9d  %s%s%s\n",
                   (r.scene + (self_collision ? "+self" : "")).c_str(), r.threads,
-                  r.particles, r.body_triangles, r.simulated_s, r.wall_s, r.per_simulated_s(), r.blender_s,
-                  r.per_simulated_s() > 0 ? r.blender_s / r.per_simulated_s() : 0.0, r.max_penetration * 1000,
+                  r.particles, r.body_triangles, r.simulated_s, r.wall_s, r.per_simulated_s(), blender.c_str(),
+                  speedup.c_str(), r.max_penetration * 1000,
                   r.seam_pairs ? (std::to_string(r.seams_closed) + "/" + std::to_string(r.seam_pairs)).c_str() : "-",
                   r.crossings, r.status.c_str(), r.message.empty() ? "" : ": ", r.message.substr(0, 80).c_str());
       std::fflush(stdout);

@@ -359,7 +359,7 @@ class SelfCollision final : public Effect {
     // left undetected becomes the "side" the next step defends.
     bool clean = false;
     for (int round = 0; round < std::max(1, def_.rounds); ++round) {
-      const int crossings = detect(s);
+      const int crossings = detect(s, round > 0);
       if (round == 0) {
         stats_.crossings = crossings;
         stats_.pairs_total += static_cast<long>(pairs_.size() + edge_pairs_.size());
@@ -367,8 +367,10 @@ class SelfCollision final : public Effect {
         clean = true;
         break;
       }
+      x_round_ = s.x;
       correct(s);
       rejoin(s);
+      for (int i = 0; i < n_; ++i) moved_[i] = moved_[i] || at(s.x, i) != at(x_round_, i);
     }
     if (!clean) revert_crossed(s);
     untangle(s);
@@ -392,10 +394,45 @@ class SelfCollision final : public Effect {
  private:
   // Pairs within the thickness, or crossed, over the step from x_prev_ to
   // s.x: pairs_, edge_pairs_ and the repulsion's near_. Returns the number of
-  // point–triangle crossings.
-  int detect(const State& s) {
+  // point–triangle crossings. Incremental (a round after a correction): a
+  // pair none of whose particles the correction moved (moved_) is what the
+  // last detection found, and is kept; only pairs with a moved particle are
+  // looked for again (a triangle that did not move meets only the moved
+  // particles, from their own hash). Most of a correction's particles are
+  // few: the later rounds cost a fraction of the first.
+  int detect(const State& s, bool incremental = false) {
     ++stats_.detections;
     const double th = def_.thickness;
+    std::vector<Pair> kept_pairs, kept_near;
+    std::vector<EdgePair> kept_edges;
+    int kept_crossings = 0;
+    if (static_cast<int>(moved_.size()) != n_) moved_.assign(n_, 0), incremental = false;
+    auto still = [&](int i) { return !incremental || !moved_[i]; };
+    auto tri_still = [&](int t) { return still(tris_[t][0]) && still(tris_[t][1]) && still(tris_[t][2]); };
+    if (incremental) {
+      // The moved particles and their neighbours: an edge with one moved end
+      // is tested from its other end too (the moved end's own box may miss
+      // the triangle's).
+      moved_list_.clear();
+      for (int i = 0; i < n_; ++i) {
+        bool touched = moved_[i];
+        for (int q : adj_[i]) touched = touched || moved_[q];
+        if (touched) moved_list_.push_back(i);
+      }
+      for (const Pair& pr : pairs_) {
+        if (!still(pr.p) || !tri_still(pr.t)) continue;
+        kept_pairs.push_back(pr);
+        const auto& tr = tris_[pr.t];
+        Vec3 nrm, w;
+        double dn;
+        if (project(at(s.x, pr.p), at(s.x, tr[0]), at(s.x, tr[1]), at(s.x, tr[2]), nrm, dn, w) && pr.side * dn < 0.0)
+          ++kept_crossings;
+      }
+      for (const Pair& pr : near_)
+        if (still(pr.p) && tri_still(pr.t)) kept_near.push_back(pr);
+      for (const EdgePair& ep : edge_pairs_)
+        if (still(ep.a0) && still(ep.a1) && still(ep.b0) && still(ep.b1)) kept_edges.push_back(ep);
+    }
     // How far each particle moved this step. A pair can only have crossed, or
     // come within th, if it is within th plus their two motions now: the
     // particles are hashed by their swept boxes grown by th, each triangle
@@ -405,6 +442,7 @@ class SelfCollision final : public Effect {
     disp_.resize(n_);
     for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
     hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
+    if (incremental) moved_hash_.build_boxes(x_prev_, s.x, moved_list_, cell_, th);
     if (layered_)
       for (std::size_t l = 0; l < layer_hash_.size(); ++l)
         if (!layer_particles_[l].empty()) layer_hash_[l].build_boxes(x_prev_, s.x, layer_particles_[l], cell_, th);
@@ -464,6 +502,7 @@ class SelfCollision final : public Effect {
           const double cosine = unit.dot(g) / std::max(g.norm(), 1e-12);
           if (std::abs(cosine) >= 0.5) facing = cosine > 0.0 ? 1.0 : -1.0;
         }
+        bool only_moved = false;  // an unmoved triangle in an incremental detection
         auto visit = [&](int p) {
           if (stamp[p] == t) return;
           stamp[p] = t;
@@ -475,8 +514,10 @@ class SelfCollision final : public Effect {
           const Vec3 phi = at(s.x, p).cwiseMax(at(x_prev_, p)) + Vec3::Constant(reach);
           if ((plo.array() > hi.array()).any() || (phi.array() < lo.array()).any()) return;
           const double lim = th + disp_[p] + tri_motion;
-          // Point–triangle.
-          if (!skip(p, tr)) {
+          // Point–triangle (not for an unmoved particle against an unmoved
+          // triangle: the last detection's pair is kept).
+          const bool known = only_moved && !moved_[p];
+          if (!known && !skip(p, tr)) {
             Vec3 nrm, w;
             double dn;
             if (between) {
@@ -515,6 +556,7 @@ class SelfCollision final : public Effect {
           const double hp = (at(s.x, p) - a).dot(unit);
           for (int q : adj_[p]) {
             if (edges_from[q] == t) continue;  // tested from q already
+            if (known && !moved_[q]) continue;  // neither end moved: kept
             const double elim = th + std::max(disp_[p], disp_[q]) + tri_motion;
             const double hq = (at(s.x, q) - a).dot(unit);
             if ((hp > elim && hq > elim) || (hp < -elim && hq < -elim)) continue;
@@ -530,6 +572,13 @@ class SelfCollision final : public Effect {
             }
           }
         };
+        only_moved = incremental && tri_still(t);
+        if (only_moved) {
+          // Only the moved particles, any layer: the grown box, the visit's
+          // own test takes each layer's reach.
+          moved_hash_.for_each_in_box(lo, hi, visit);
+          continue;
+        }
         hash_.for_each_in_box(lo0, hi0, visit);
         if (layered_)
           for (std::size_t l = 0; l < layer_hash_.size(); ++l)
@@ -543,6 +592,10 @@ class SelfCollision final : public Effect {
         near.insert(near.end(), my_near.begin(), my_near.end());
       }
     }
+    pairs_.insert(pairs_.end(), kept_pairs.begin(), kept_pairs.end());
+    near.insert(near.end(), kept_near.begin(), kept_near.end());
+    edge_pairs_.insert(edge_pairs_.end(), kept_edges.begin(), kept_edges.end());
+    crossings += kept_crossings;
     for (const auto& e : edges_by_thread) edge_pairs_.insert(edge_pairs_.end(), e.begin(), e.end());
     // Threads finish in any order: sort, so the Gauss–Seidel passes below see
     // the pairs in one order whatever the thread count.
@@ -559,6 +612,7 @@ class SelfCollision final : public Effect {
                                   }),
                       edge_pairs_.end());
     stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
+    std::fill(moved_.begin(), moved_.end(), 0);  // moves from here on are the next detection's
     return crossings;
   }
 
@@ -573,7 +627,7 @@ class SelfCollision final : public Effect {
   void revert_crossed(State& s) {
     std::vector<char> back(n_, 0);
     for (int k = 0; k < kMaxReverts; ++k) {
-      if (k > 0) detect(s);
+      if (k > 0) detect(s, true);  // only around what was put back (and the last round moved)
       bool any = false;
       auto mark = [&](int i) {
         if (inv_mass_[i] == 0.0) return;
@@ -603,7 +657,7 @@ class SelfCollision final : public Effect {
       long moved = 0;
       for (int i = 0; i < n_; ++i) {
         if (!back[rep_.empty() ? i : rep_[i]] || inv_mass_[i] == 0.0) continue;
-        if (at(s.x, i) != at(x_prev_, i)) ++moved;
+        if (at(s.x, i) != at(x_prev_, i)) ++moved, moved_[i] = 1;
         at(s.x, i) = at(x_prev_, i);
         at(s.v, i).setZero();
       }
@@ -921,6 +975,10 @@ class SelfCollision final : public Effect {
   bool searched_ = false;   // near_ has been filled once
   bool merged_once_ = false;
   long untangle_clock_ = 0;
+  VecX x_round_;                 // positions before a round's correction
+  std::vector<char> moved_;      // per particle: moved since the last detection (corrections, the fail-safe)
+  std::vector<int> moved_list_;  // the same, listed
+  SpatialHash moved_hash_;       // the moved particles, by their swept boxes
   SpatialHash tri_hash_;     // untangling: triangles by their boxes
   VecX tri_lo_, tri_hi_;     // m: the triangles' boxes
   std::vector<int> seen_;    // untangling: per triangle, the last edge that met it  // after-steps seen: untangling runs every untangle_every  // after a merge, x0 is no longer the previous position
