@@ -580,6 +580,10 @@ Scene build(const SceneDef& def) {
             const auto& g = def.cloth[p.cloth].garment;
             return g && g->layer != 0;
           })) {
+        // The layers' order is read from the grid where the body is at rest.
+        if (e.collision->velocity != Vec3::Zero())
+          throw Error(def.source.string(), "effects.collision.body_velocity",
+                      "garments in layers need a body at rest (the layers' order comes from its distance grid)");
         sc.body = grid;
         sc.held_distance = 1.5 * e.collision->clearance;
         sc.layer.assign(model.num_particles(), 0);

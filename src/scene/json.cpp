@@ -450,6 +450,7 @@ EffectsDef read_effects(Object o) {
     else o.context().fail(c.at("query"), "unknown query '" + query + "' (use grid or exact)");
     c.number("grid_spacing", d.grid.spacing, dim::length);
     c.number("grid_band", d.grid.band, dim::length);
+    c.vector("body_velocity", d.velocity, dim::velocity);
     c.string("seam_response", e.collision_seam_response);
     if (e.collision_seam_response != "seed" && e.collision_seam_response != "slide" &&
         e.collision_seam_response != "glide" &&

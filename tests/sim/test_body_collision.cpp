@@ -170,6 +170,29 @@ TEST(BodyCollision, ProvotFrictionHoldsBelowTheAngleOfRepose) {
   EXPECT_LT((at(s.x, 0) - start).dot(sl.down), 1e-4);
 }
 
+// A body that moves (BodyCollisionDef::velocity): a particle resting on a
+// slab lifted at 0.5 m/s and pushed sideways at 0.2 m/s rides on it — the
+// response acts on the velocity relative to the body, friction (μ = 1)
+// carries it along — and ends where the slab took it, moving with it. The
+// slab at rest keeps it where it was.
+TEST(BodyCollision, AMovingBodyCarriesAParticleRestingOnIt) {
+  const Vec3 vb(0.2, 0.5, 0.0);
+  for (const bool moving : {false, true}) {
+    Slope sl = slope(0.0, Vec3::Zero(), 1.0, ContactResponse::provot);
+    sl.def.min_bounce_speed = 1.0;  // no bounce off the rising slab
+    if (moving) sl.def.velocity = vb;
+    const Vec3 start = at(sl.model.x0, 0);
+    const double t = 0.5;
+    const State s = run(sl, t);
+    const Vec3 moved = moving ? Vec3(vb * t) : Vec3::Zero();
+    const Vec3 want_v = moving ? vb : Vec3::Zero();
+    RecordProperty(moving ? "moving_offset_m" : "static_offset_m", sci((at(s.x, 0) - start - moved).norm()));
+    EXPECT_NEAR(at(s.x, 0).y(), start.y() + moved.y(), 1e-3);  // on the slab, at the clearance
+    EXPECT_NEAR(at(s.x, 0).x(), start.x() + moved.x(), 5e-3);  // carried by friction (lags its first steps)
+    EXPECT_LT((at(s.v, 0) - want_v).norm(), 0.02);
+  }
+}
+
 TEST(BodyCollision, ProvotBouncesFastImpactsWithRestitution) {
   Slope sl = slope(0.0, Vec3::Zero(), 0.5, ContactResponse::provot);
   at(sl.model.x0, 0) = Vec3(0, 0.1 + 0.02, 0);

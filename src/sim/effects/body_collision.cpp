@@ -96,20 +96,22 @@ class BodyCollision final : public Effect {
     const double near = 1.5 * c;  // within this, a particle counts as touching for the force constraint
     double* x = s.x.data();
     double* v = s.v.data();
+    // A moving body: positions in its frame, velocities relative to it.
+    const Vec3 offset = def_.velocity * s.t, vb = def_.velocity;
 #pragma omp parallel for schedule(static) if (n_ >= kParallelMinParticles) \
     reduction(+ : in_contact, contacts, stuck) reduction(max : max_pen, max_viol)
     for (int i = 0; i < n_; ++i) {
       if (role_[i] & kFixed) continue;
       Eigen::Map<Vec3> xi(x + 3 * i), vi(v + 3 * i);
       if (contact_[i] == kStuckContact) {
-        xi = anchor_[i];
-        vi.setZero();
+        xi = anchor_[i] + offset;  // anchors are kept in the body's frame
+        vi = vb;
         ++in_contact;
         ++stuck;
         continue;
       }
       Vec3 nrm;
-      const double d = query(xi, nrm);
+      const double d = query(xi - offset, nrm);
       contact_[i] = 0;
       if (d >= near) continue;
       contact_[i] = 1;
@@ -121,21 +123,22 @@ class BodyCollision final : public Effect {
       max_viol = std::max(max_viol, c - d);
       xi += (c - d) * nrm;  // out to the clearance along the normal
       if (role_[i] & kSticky) {
-        anchor_[i] = xi;
-        vi.setZero();
+        anchor_[i] = xi - offset;
+        vi = vb;
         contact_[i] = kStuckContact;
         ++stuck;
         continue;
       }
-      const double vn = vi.dot(nrm);
+      const Vec3 vr = vi - vb;  // relative to the body
+      const double vn = vr.dot(nrm);
       if (vn >= 0.0) continue;  // already leaving
       if (role_[i] & kSeam) {
-        vi = def_.seam_contact == SeamContact::seed ? keep_magnitude_tangential(vi, nrm, vn) : Vec3(vi - vn * nrm);
+        vi = vb + (def_.seam_contact == SeamContact::seed ? keep_magnitude_tangential(vr, nrm, vn) : Vec3(vr - vn * nrm));
         continue;
       }
-      const Vec3 vt = vi - vn * nrm;
+      const Vec3 vt = vr - vn * nrm;
       if (def_.response == ContactResponse::slide) {
-        vi = vt;
+        vi = vb + vt;
         continue;
       }
       // Provot: bounce fast impacts, stop slow ones; Coulomb friction takes at
@@ -144,7 +147,7 @@ class BodyCollision final : public Effect {
       const double dvn = -(1.0 + e) * vn;
       const double vt_len = vt.norm();
       const double keep = vt_len > 0.0 ? std::max(0.0, 1.0 - def_.friction * dvn / vt_len) : 0.0;
-      vi = keep * vt - e * vn * nrm;
+      vi = vb + keep * vt - e * vn * nrm;
       // The step moved the particle with its velocity before friction: take
       // back the tangential part friction removed (x = x0 + h v_after), or a
       // particle held by static friction would creep h² g sin θ per step.

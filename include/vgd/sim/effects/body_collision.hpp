@@ -69,6 +69,12 @@ struct BodyCollisionDef {
   std::vector<int> fixed;             // particles never moved (the scene's pins)
   BodyQuery query = BodyQuery::grid;
   SdfOptions grid;                    // spacing and band of the distance grid
+  // m/s: the body moves rigidly, by velocity × t from where `body` puts it at
+  // t = 0 (a hanger lifted, a mannequin carried). Its distance grid is built
+  // once all the same: a query asks at the particle's position in the body's
+  // frame, and the response acts on the velocity relative to the body.
+  // Deforming bodies (an animated avatar) are not supported.
+  Vec3 velocity = Vec3::Zero();
 };
 
 struct BodyCollisionStats {
