@@ -490,6 +490,12 @@ class SelfCollision final : public Effect {
         lo.array() -= depth;
         hi.array() += depth;
         const double tri_motion = std::max({disp_[tr[0]], disp_[tr[1]], disp_[tr[2]]});
+        // The triangle's edges' boxes, once per triangle rather than per candidate edge.
+        Vec3 edge_lo[3], edge_hi[3];
+        for (int k = 0; k < 3; ++k) {
+          edge_lo[k] = at(s.x, tr[k]).cwiseMin(at(s.x, tr[(k + 1) % 3]));
+          edge_hi[k] = at(s.x, tr[k]).cwiseMax(at(s.x, tr[(k + 1) % 3]));
+        }
         const Vec3 tn = (b - a).cross(c - a);
         const double tn_len = tn.norm();
         const Vec3 unit = tn_len > 0.0 ? Vec3(tn / tn_len) : Vec3::Zero();
@@ -564,9 +570,9 @@ class SelfCollision final : public Effect {
             const Vec3 ehi = at(s.x, p).cwiseMax(at(s.x, q)) + Vec3::Constant(elim);
             for (int k = 0; k < 3; ++k) {
               const int b0 = tr[k], b1 = tr[(k + 1) % 3];
-              const Vec3 blo = at(s.x, b0).cwiseMin(at(s.x, b1)), bhi = at(s.x, b0).cwiseMax(at(s.x, b1));
-              if ((blo.array() > ehi.array()).any() || (bhi.array() < elo.array()).any()) continue;
+              // Edges sharing a particle first (cheap, and common: the triangle's neighbours).
               if (same(p, b0) || same(p, b1) || same(q, b0) || same(q, b1)) continue;
+              if ((edge_lo[k].array() > ehi.array()).any() || (edge_hi[k].array() < elo.array()).any()) continue;
               if (on_one_hem(hem_[p] | hem_[q], hem_[b0] | hem_[b1])) continue;
               edge_pair(s, p, q, b0, b1, th, elim - th, my_edges);
             }
