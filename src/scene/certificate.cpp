@@ -223,7 +223,8 @@ std::string to_json(const Certificate& c) {
                   {"linear_iterations", c.linear_iterations}};
   if (c.self_detections >= 0)
     j["profile"]["self_collision"] = {
-        {"detections", c.self_detections}, {"pairs", c.self_pairs}, {"reverted_particles", c.self_reverted}};
+        {"detections", c.self_detections}, {"pairs", c.self_pairs}, {"reverted_particles", c.self_reverted},
+        {"untangling_moves", c.self_untangled}};
   j["cloth"] = {{"particles", c.particles}, {"triangles", c.triangles}};
   j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
                       {"deepest_at_m", json::array({c.deepest_at.x(), c.deepest_at.y(), c.deepest_at.z()})},

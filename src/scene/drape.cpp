@@ -217,7 +217,7 @@ DrapeResult run_drape(const SceneDef& def, const std::vector<sim::FrameSink*>& s
   for (const auto& e : sys.effects())
     if (std::string(e->name()) == "self-collision") {
       const auto& st = sim::self_collision_stats(*e);
-      c.self_detections = st.detections, c.self_pairs = st.pairs_total, c.self_reverted = st.reverted;
+      c.self_detections = st.detections, c.self_pairs = st.pairs_total, c.self_reverted = st.reverted, c.self_untangled = st.untangled;
     }
   c.steps = r.summary.stats.steps;
   c.force_evaluations = r.summary.stats.rhs_evaluations;

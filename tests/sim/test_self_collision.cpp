@@ -278,12 +278,14 @@ TEST(SelfCollision, AnEdgeThroughATriangleAtTheStartIsPulledBack) {
     const double under = at(s.x, 3).z() - (w[0] * at(s.x, 0).z() + w[1] * at(s.x, 1).z() + w[2] * at(s.x, 2).z());
     if (passes > 0) {
       EXPECT_EQ(self_collision_stats(*e).tangled, 2);  // edges 3–4 and 3–5
+      EXPECT_GE(self_collision_stats(*e).untangled, 1);
       EXPECT_NEAR(under, 0.003, 1e-5);  // over the plane, at the thickness (the triangle tilts a little)
       // The approach is stopped: no relative velocity into the triangle left.
       const double vt = w[0] * at(s.v, 0).z() + w[1] * at(s.v, 1).z() + w[2] * at(s.v, 2).z();
       EXPECT_GE(at(s.v, 3).z() - vt, -1e-12);
     } else {
       EXPECT_LT(under, 0.0);  // left through
+      EXPECT_EQ(self_collision_stats(*e).untangled, 0);
     }
   }
 }

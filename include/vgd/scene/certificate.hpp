@@ -70,7 +70,7 @@ struct Certificate {
   long steps = 0, force_evaluations = 0, linear_iterations = 0;
   // Self-collision's work over the run (absent: -1): detection passes, pairs
   // found, particles its fail-safe put back to their step's start.
-  long self_detections = -1, self_pairs = 0, self_reverted = 0;
+  long self_detections = -1, self_pairs = 0, self_reverted = 0, self_untangled = 0;
   // The state reached.
   int particles = 0, triangles = 0;
   double max_penetration = 0;   // m, exact
