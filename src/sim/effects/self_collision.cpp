@@ -442,7 +442,10 @@ class SelfCollision final : public Effect {
     disp_.resize(n_);
     for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
     hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
-    if (incremental) moved_hash_.build_boxes(x_prev_, s.x, moved_list_, cell_, th);
+    if (incremental) {
+      moved_hash_.build_boxes(x_prev_, s.x, moved_list_, cell_, th);
+      mark_coarse_cells(s);
+    }
     if (layered_)
       for (std::size_t l = 0; l < layer_hash_.size(); ++l)
         if (!layer_particles_[l].empty()) layer_hash_[l].build_boxes(x_prev_, s.x, layer_particles_[l], cell_, th);
@@ -580,6 +583,7 @@ class SelfCollision final : public Effect {
         };
         only_moved = incremental && tri_still(t);
         if (only_moved) {
+          if (!near_moved(lo, hi)) continue;  // no moved particle's cell anywhere near
           // Only the moved particles, any layer: the grown box, the visit's
           // own test takes each layer's reach.
           moved_hash_.for_each_in_box(lo, hi, visit);
@@ -620,6 +624,44 @@ class SelfCollision final : public Effect {
     stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
     std::fill(moved_.begin(), moved_.end(), 0);  // moves from here on are the next detection's
     return crossings;
+  }
+
+  // Incremental rounds: an unmoved triangle meets only the moved particles,
+  // mostly few and in one region, yet looking for them in their hash cost a
+  // dozen or more cell lookups for every triangle (more than the first
+  // round's whole detection, over a step's rounds). The coarse cells (kCoarse
+  // cells wide) the moved particles' boxes meet are listed first: a triangle
+  // whose grown box meets none of them cannot meet a moved particle's cell
+  // (a coarse cell holds whole cells) and is passed over, so the pairs found
+  // are the same.
+  static constexpr int kCoarse = 4;
+  void mark_coarse_cells(const State& s) {
+    coarse_.clear();
+    const double inv = 1.0 / (kCoarse * cell_), pad = def_.thickness;
+    for (int i : moved_list_) {
+      const Vec3 lo = at(s.x, i).cwiseMin(at(x_prev_, i)) - Vec3::Constant(pad);
+      const Vec3 hi = at(s.x, i).cwiseMax(at(x_prev_, i)) + Vec3::Constant(pad);
+      for_each_coarse(lo, hi, inv, [&](std::uint64_t k) { coarse_.push_back(k); });
+    }
+    std::sort(coarse_.begin(), coarse_.end());
+    coarse_.erase(std::unique(coarse_.begin(), coarse_.end()), coarse_.end());
+  }
+  bool near_moved(const Vec3& lo, const Vec3& hi) const {
+    bool hit = false;
+    for_each_coarse(lo, hi, 1.0 / (kCoarse * cell_), [&](std::uint64_t k) {
+      hit = hit || std::binary_search(coarse_.begin(), coarse_.end(), k);
+    });
+    return hit;
+  }
+  template <class F>
+  static void for_each_coarse(const Vec3& lo, const Vec3& hi, double inv, F&& f) {
+    auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v * inv)); };
+    constexpr std::uint64_t m = (1u << 21) - 1;
+    for (std::int64_t k = cell(lo.z()); k <= cell(hi.z()); ++k)
+      for (std::int64_t j = cell(lo.y()); j <= cell(hi.y()); ++j)
+        for (std::int64_t i = cell(lo.x()); i <= cell(hi.x()); ++i)
+          f((static_cast<std::uint64_t>(i) & m) | ((static_cast<std::uint64_t>(j) & m) << 21) |
+            ((static_cast<std::uint64_t>(k) & m) << 42));
   }
 
   // The fail-safe after the rounds: a pair still crossed (on the wrong side
@@ -701,26 +743,38 @@ class SelfCollision final : public Effect {
     struct Hit {
       int p, q, t;
     };
+    // Edges by particle in parallel; each thread's hits joined in thread
+    // order (static schedule: particle order, as with one thread).
+    std::vector<std::vector<Hit>> hits_by_thread;
+#pragma omp parallel if (nt >= kParallelMinTriangles)
+    {
+#pragma omp single
+      hits_by_thread.resize(omp_get_num_threads());
+      std::vector<Hit> my_hits;
+      std::vector<int> seen(nt, -1);  // per triangle, the last edge that met it
+      int edge = 0;
+#pragma omp for schedule(static) nowait
+      for (int p = 0; p < n_; ++p)
+        for (int q : adj_[p]) {
+          if (q < p) continue;
+          ++edge;
+          const Vec3 lo = at(s.x, p).cwiseMin(at(s.x, q)), hi = at(s.x, p).cwiseMax(at(s.x, q));
+          tri_hash_.for_each_in_box(lo, hi, [&](int t) {
+            if (seen[t] == edge) return;  // met in another cell
+            seen[t] = edge;
+            const auto& tr = tris_[t];
+            if ((at(tri_lo_, t).array() > hi.array()).any() || (at(tri_hi_, t).array() < lo.array()).any()) return;
+            for (int k : tr)
+              if (same(p, k) || same(q, k)) return;
+            if (layered_ && (def_.layer[p] != def_.layer[tr[0]] || def_.layer[q] != def_.layer[tr[0]])) return;
+            if (on_one_hem(hem_[p] | hem_[q], hem_[tr[0]] | hem_[tr[1]] | hem_[tr[2]])) return;
+            if (through(s.x, p, q, tr)) my_hits.push_back({p, q, t});
+          });
+        }
+      hits_by_thread[omp_get_thread_num()] = std::move(my_hits);
+    }
     std::vector<Hit> hits;
-    seen_.assign(nt, -1);
-    int edge = 0;
-    for (int p = 0; p < n_; ++p)
-      for (int q : adj_[p]) {
-        if (q < p) continue;
-        ++edge;
-        const Vec3 lo = at(s.x, p).cwiseMin(at(s.x, q)), hi = at(s.x, p).cwiseMax(at(s.x, q));
-        tri_hash_.for_each_in_box(lo, hi, [&](int t) {
-          if (seen_[t] == edge) return;  // met in another cell
-          seen_[t] = edge;
-          const auto& tr = tris_[t];
-          if ((at(tri_lo_, t).array() > hi.array()).any() || (at(tri_hi_, t).array() < lo.array()).any()) return;
-          for (int k : tr)
-            if (same(p, k) || same(q, k)) return;
-          if (layered_ && (def_.layer[p] != def_.layer[tr[0]] || def_.layer[q] != def_.layer[tr[0]])) return;
-          if (on_one_hem(hem_[p] | hem_[q], hem_[tr[0]] | hem_[tr[1]] | hem_[tr[2]])) return;
-          if (through(s.x, p, q, tr)) hits.push_back({p, q, t});
-        });
-      }
+    for (const auto& h : hits_by_thread) hits.insert(hits.end(), h.begin(), h.end());
     stats_.tangled = static_cast<int>(hits.size());
     for (int pass = 0; pass < def_.untangle_passes && !hits.empty(); ++pass) {
       bool moved = false;
@@ -985,9 +1039,9 @@ class SelfCollision final : public Effect {
   std::vector<char> moved_;      // per particle: moved since the last detection (corrections, the fail-safe)
   std::vector<int> moved_list_;  // the same, listed
   SpatialHash moved_hash_;       // the moved particles, by their swept boxes
+  std::vector<std::uint64_t> coarse_;  // the coarse cells their boxes meet, sorted (mark_coarse_cells)
   SpatialHash tri_hash_;     // untangling: triangles by their boxes
   VecX tri_lo_, tri_hi_;     // m: the triangles' boxes
-  std::vector<int> seen_;    // untangling: per triangle, the last edge that met it  // after-steps seen: untangling runs every untangle_every  // after a merge, x0 is no longer the previous position
   std::vector<EdgePair> edge_pairs_;
   std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
   VecX x_prev_;
