@@ -576,6 +576,10 @@ Scene build(const SceneDef& def) {
       // The order comes from the body's distance grid: with the exact (BVH)
       // query there is none, and layers stay off.
       const sim::SignedDistanceGrid* grid = body ? sim::body_collision_grid(*body) : nullptr;
+      // Every garment: the corrections never leave cloth inside the body
+      // (self_collision.cpp, out_of_body). The grid is in the body's frame,
+      // so a moving body keeps only its own push.
+      if (grid && e.collision->velocity == Vec3::Zero()) sc.body = grid;
       if (grid && std::any_of(s.pieces.begin(), s.pieces.end(), [&](const PieceInfo& p) {
             const auto& g = def.cloth[p.cloth].garment;
             return g && g->layer != 0;

@@ -75,7 +75,11 @@ struct SelfCollisionDef {
   //  - the impulses carry Coulomb friction `layer_friction` (without it a
   //    T-shirt slid down over a skirt and never came to rest).
   std::vector<int> layer;
-  const SignedDistanceGrid* body = nullptr;  // not owned: the body collision's grid, which outlives this effect
+  // Not owned: the body collision's grid, which outlives this effect (a body
+  // at rest). Given, it is one more constraint of the corrections and the
+  // untangling: a particle they push inside the body goes back to its surface
+  // (hem particles excepted while seams sew). Layers need it.
+  const SignedDistanceGrid* body = nullptr;
   double layer_depth = 0.01;                 // m
   double held_distance = 0.0045;             // m: 1.5 × the body collision's default clearance
   double layer_friction = 0.2;               // Coulomb μ between layers
