@@ -1,6 +1,8 @@
 // Signed distance grid and triangle BVH of a closed mesh (include/vgd/sim/sdf.hpp).
 #include "vgd/sim/sdf.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -8,6 +10,11 @@
 #include <utility>
 
 namespace vgd::sim {
+
+namespace {
+// Below this many grid nodes the threads cost more than the band they share.
+constexpr std::size_t kParallelMinNodes = 100000;
+}  // namespace
 
 // ---------------------------------------------------------------------------
 // Pseudo-normals
@@ -28,7 +35,8 @@ MeshNormals::MeshNormals(const mesh::SurfaceMesh& m) {
     for (int k = 0; k < 3; ++k) {
       const int i = tr[k], j = tr[(k + 1) % 3], l = tr[(k + 2) % 3];
       // Angle at corner i, the weight of this face in i's pseudo-normal.
-      const Vec3 e1 = (m.vertices[j] - m.vertices[i]).normalized(), e2 = (m.vertices[l] - m.vertices[i]).normalized();
+      const Vec3 e1 = (m.vertices[j] - m.vertices[i]).normalized(),
+                 e2 = (m.vertices[l] - m.vertices[i]).normalized();
       const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
       vertex_[i] += angle * face_[t];
       // Eigen leaves a default-constructed vector uninitialised: insert zero first.
@@ -131,34 +139,44 @@ SignedDistanceGrid::SignedDistanceGrid(const mesh::SurfaceMesh& m, const SdfOpti
   std::vector<float> dist(count, std::numeric_limits<float>::infinity());
   std::vector<signed char> sign(count, 0);
   const float bandf = static_cast<float>(band_);
-  for (int t = 0; t < m.num_triangles(); ++t) {
-    const auto& tr = m.triangles[t];
-    const Vec3 &a = m.vertices[tr[0]], &b = m.vertices[tr[1]], &c = m.vertices[tr[2]];
-    const Vec3 tlo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(band_) - origin_;
-    const Vec3 thi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(band_) - origin_;
-    const int i0 = std::max(0, static_cast<int>(std::ceil(tlo.x() * inv_h_)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(tlo.y() * inv_h_)));
-    const int k0 = std::max(0, static_cast<int>(std::ceil(tlo.z() * inv_h_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(thi.x() * inv_h_)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(thi.y() * inv_h_)));
-    const int k1 = std::min(nz_ - 1, static_cast<int>(std::floor(thi.z() * inv_h_)));
-    const Vec3& fn = normals.face_normal(t);
-    for (int k = k0; k <= k1; ++k)
-      for (int j = j0; j <= j1; ++j) {
-        const std::size_t row = (static_cast<std::size_t>(k) * ny_ + j) * nx_;
-        for (int i = i0; i <= i1; ++i) {
-          const Vec3 p = origin_ + h_ * Vec3(i, j, k);
-          // The plane distance bounds the triangle distance from below: a cheap rejection.
-          const double plane = std::abs((p - a).dot(fn));
-          if (plane >= band_ || plane >= dist[row + i]) continue;
-          Vec3 bary;
-          const Vec3 q = closest_point_on_triangle(p, a, b, c, bary);
-          const double d = (p - q).norm();
-          if (d >= band_ || d >= dist[row + i]) continue;
-          dist[row + i] = static_cast<float>(d);
-          sign[row + i] = (p - q).dot(normals.pseudo_normal(t, bary)) < 0 ? -1 : 1;
+  // Threads take slabs of z and every triangle's nodes in their slab: each
+  // node still sees the triangles in order, so the grid does not depend on
+  // the thread count.
+#pragma omp parallel if (count >= kParallelMinNodes)
+  {
+    const int slabs = omp_get_num_threads(), slab = omp_get_thread_num();
+    const int slab_lo = static_cast<int>(static_cast<long>(nz_) * slab / slabs);
+    const int slab_hi = static_cast<int>(static_cast<long>(nz_) * (slab + 1) / slabs) - 1;
+    for (int t = 0; t < m.num_triangles(); ++t) {
+      const auto& tr = m.triangles[t];
+      const Vec3 &a = m.vertices[tr[0]], &b = m.vertices[tr[1]], &c = m.vertices[tr[2]];
+      const Vec3 tlo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(band_) - origin_;
+      const Vec3 thi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(band_) - origin_;
+      const int i0 = std::max(0, static_cast<int>(std::ceil(tlo.x() * inv_h_)));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(tlo.y() * inv_h_)));
+      const int k0 = std::max(slab_lo, static_cast<int>(std::ceil(tlo.z() * inv_h_)));
+      const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(thi.x() * inv_h_)));
+      const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(thi.y() * inv_h_)));
+      const int k1 = std::min(slab_hi, static_cast<int>(std::floor(thi.z() * inv_h_)));
+      if (k0 > k1) continue;
+      const Vec3& fn = normals.face_normal(t);
+      for (int k = k0; k <= k1; ++k)
+        for (int j = j0; j <= j1; ++j) {
+          const std::size_t row = (static_cast<std::size_t>(k) * ny_ + j) * nx_;
+          for (int i = i0; i <= i1; ++i) {
+            const Vec3 p = origin_ + h_ * Vec3(i, j, k);
+            // The plane distance bounds the triangle distance from below: a cheap rejection.
+            const double plane = std::abs((p - a).dot(fn));
+            if (plane >= band_ || plane >= dist[row + i]) continue;
+            Vec3 bary;
+            const Vec3 q = closest_point_on_triangle(p, a, b, c, bary);
+            const double d = (p - q).norm();
+            if (d >= band_ || d >= dist[row + i]) continue;
+            dist[row + i] = static_cast<float>(d);
+            sign[row + i] = (p - q).dot(normals.pseudo_normal(t, bary)) < 0 ? -1 : 1;
+          }
         }
-      }
+    }
   }
 
   // Far field: nodes reachable from the box boundary without crossing the band
@@ -182,7 +200,8 @@ SignedDistanceGrid::SignedDistanceGrid(const mesh::SurfaceMesh& m, const SdfOpti
   while (!stack.empty()) {
     const std::size_t n = stack.back();
     stack.pop_back();
-    const int i = static_cast<int>(n % nx_), j = static_cast<int>((n / nx_) % ny_), k = static_cast<int>(n / (static_cast<std::size_t>(nx_) * ny_));
+    const int i = static_cast<int>(n % nx_), j = static_cast<int>((n / nx_) % ny_),
+              k = static_cast<int>(n / (static_cast<std::size_t>(nx_) * ny_));
     if (i > 0) seed(i - 1, j, k);
     if (i < nx_ - 1) seed(i + 1, j, k);
     if (j > 0) seed(i, j - 1, k);
@@ -331,7 +350,8 @@ TriangleBvh::Closest TriangleBvh::closest(const Vec3& p, double max_distance) co
     }
     // Nearer child last, so that it is searched first.
     const int a = nd.first, b = nd.first + 1;
-    const double da = box_distance2(nodes_[a].lo, nodes_[a].hi, p), db = box_distance2(nodes_[b].lo, nodes_[b].hi, p);
+    const double da = box_distance2(nodes_[a].lo, nodes_[a].hi, p),
+                 db = box_distance2(nodes_[b].lo, nodes_[b].hi, p);
     if (da < db) {
       stack[top++] = b;
       stack[top++] = a;

@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include <omp.h>
+
 #include "helpers.hpp"
 #include "surfaces.hpp"
 #include "vgd/sim/sdf.hpp"
@@ -73,6 +75,20 @@ TEST(Sdf, GridMatchesTheExactMeshDistanceNearTheSurface) {
   EXPECT_LT(worst_analytic, kFacetError + 0.00025);
   // Gradient ≈ radial: the facets themselves are up to ~3° off radial.
   EXPECT_LT(worst_angle, 4.0 * M_PI / 180.0);
+}
+
+// The narrow band is built in z slabs on the threads: every node sees the
+// triangles in the same order, so the grid is the same bit for bit.
+TEST(Sdf, GridDoesNotDependOnTheThreadCount) {
+  const auto sphere = test::uv_sphere(kR);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const SignedDistanceGrid one(sphere, {0.005, 0.02});
+  omp_set_num_threads(3);  // more slabs than this machine's cores, uneven ones
+  const SignedDistanceGrid three(sphere, {0.005, 0.02});
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.band_nodes(), three.band_nodes());
+  for (const Vec3& p : shell_points(2000, 0.02)) EXPECT_EQ(one.distance(p), three.distance(p)) << p.transpose();
 }
 
 TEST(Sdf, FarFieldHasTheRightSign) {
