@@ -14,6 +14,9 @@
 // vgd bench accuracy (issue 7, cmd_accuracy.cpp): error against CPU time for
 // every integrator on problems with a known answer.
 //
+// vgd bench dress (issue 4, cmd_bench_dress.cpp): two garments from flat
+// pieces to rest, against the 10 s target.
+//
 // Explicit methods run with automatic sub-stepping, so each takes its own
 // stable step; implicit Euler takes the scene's step, BDF its own adaptive
 // ones. A model or integrator this build lacks is reported as unavailable, a
@@ -39,6 +42,8 @@
 namespace vgd::cli {
 // cmd_accuracy.cpp
 int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
+// cmd_bench_dress.cpp
+int bench_dress(double spacing, const std::string& size, double time_limit, bool json);
 }  // namespace vgd::cli
 
 namespace {
@@ -450,6 +455,20 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       ->delimiter(',');
   accuracy->add_option("-o,--output", *accuracy_out, "Folder for accuracy.csv and the work-precision PNGs")
       ->capture_default_str();
+  auto* dress = sub->add_subcommand(
+      "dress", "The A-line skirt and the T-shirt over it, flat pieces to rest on the size-38 mannequin (about 5 000 "
+               "particles), 1 thread and every core, per stage and per effect, against the 10 s target");
+  dress->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
+  auto dress_spacing = std::make_shared<double>(0.019);
+  auto dress_size = std::make_shared<std::string>("38");
+  auto dress_limit = std::make_shared<double>(8.0);
+  dress->add_option("--spacing", *dress_spacing, "Mesh spacing, m (0.019: about 5 000 particles; the drape's default is 0.015)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  dress->add_option("--size", *dress_size, "Garment and mannequin size")->capture_default_str();
+  dress->add_option("--time-limit", *dress_limit, "Simulated seconds at most")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   std::vector<CLI::App*> scene_cmds;
   for (const auto& [name, what] :
        {std::pair{"drape-sphere", "A 71 x 71 cloth dropped on a 4 992-triangle sphere, 2.4 s (data/scenes/drape-sphere.json)"},
@@ -463,8 +482,9 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
     scene_cmds.push_back(c);
   }
   return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, accuracy_problems, scene_cmds,
-                                 scene_duration, scene_self]() -> int {
+                                 scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit]() -> int {
     if (effects->parsed()) return effects_bench(o->json, o->quick);
+    if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, o->json);
     if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out, *accuracy_problems);
     for (auto* c : scene_cmds)
       if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self);

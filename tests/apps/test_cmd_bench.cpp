@@ -34,5 +34,30 @@ TEST(CliBench, DrapeSphereWithSelfCollisionHasNoCrossingsAndNoPenetration) {
   }
 }
 
+// vgd bench dress: the scene of the dressing target (two garments, about
+// 5 000 particles, a 5 000–20 000-triangle body) comes to rest with every
+// check passed, on one thread and on every core, the same run on both (the
+// simulation does not depend on the thread count). Its speed is the
+// benchmark's to report (docs/performance.md).
+TEST(CliBench, DressComesToRestWithEveryCheckPassed) {
+  const auto r = run_vgd({"bench", "dress", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json list = json::parse(r.out);
+  ASSERT_FALSE(list.empty());
+  for (const auto& rec : list) {
+    SCOPED_TRACE(rec.dump());
+    EXPECT_TRUE(rec["passed"].get<bool>());
+    EXPECT_EQ(rec["stop"], "rest");
+    EXPECT_EQ(rec["seams_closed"], rec["seam_pairs"]);
+    EXPECT_EQ(rec["crossing_triangle_pairs"].get<int>(), 0);
+    EXPECT_NEAR(rec["particles"].get<int>(), 5000, 500);
+    EXPECT_GE(rec["body_triangles"].get<int>(), 5000);
+    EXPECT_LE(rec["body_triangles"].get<int>(), 20000);
+    for (const char* stage : {"placing", "sewing", "settling"}) EXPECT_TRUE(rec["stages"].contains(stage)) << stage;
+    EXPECT_TRUE(rec["effect_seconds"].contains("self-collision"));
+    EXPECT_EQ(rec["simulated_s"], list.front()["simulated_s"]);
+  }
+}
+
 }  // namespace
 }  // namespace vgd::test
