@@ -364,3 +364,35 @@ TEST(SeamRun, ProgressCountsOpenPairsAndTheirGapsWhenMergingIsOff) {
   EXPECT_LE(rp->total.mean_gap, rp->total.max_gap);
   EXPECT_FALSE(sys.effects()[1]->finished());
 }
+
+// The last open pair of a seam that has stopped closing merges once it has
+// stalled for last_stitch_frames frames within last_stitch_distance; before
+// that, beyond that distance, or with the rule off, it is left open.
+TEST(SeamMerge, TheLastStalledPairOfASeamMergesAfterItsFrames) {
+  Model m = test::particles(4, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0), at(m.x0, 1) = Vec3(0.001, 0, 0);     // within the merge distance
+  at(m.x0, 2) = Vec3(0, 0.1, 0), at(m.x0, 3) = Vec3(0.03, 0.1, 0);  // 3 cm apart, held there
+  const State s = initial_state(m);
+  // Frames until the stalled pair (2, 3) is asked to merge; -1 for never (30 frames).
+  auto frames_until_last = [&](double distance) {
+    SeamDef def;
+    def.seams = {SeamPairs{"side", {{0, 1}, {2, 3}}}};
+    def.last_stitch_distance = distance;
+    def.last_stitch_frames = 10;
+    auto e = make_seam(m, def);
+    for (int frame = 1; frame <= 30; ++frame) {
+      std::vector<std::array<int, 2>> out;
+      e->merge_requests(m, s, out);
+      for (const auto& pair : out)
+        if (pair == std::array<int, 2>{2, 3}) return frame;
+      if (frame == 1) {
+        EXPECT_EQ(out, (std::vector<std::array<int, 2>>{{0, 1}}));
+        e->particles_merged(m, {0, 0, 1, 2});  // the close pair merged: (2, 3) is the seam's last
+      }
+    }
+    return -1;
+  };
+  EXPECT_EQ(frames_until_last(0.05), 10);  // no nearer than at the start from the first frame: ten in a row
+  EXPECT_EQ(frames_until_last(0.02), -1);  // farther than the last stitch reaches
+  EXPECT_EQ(frames_until_last(0.0), -1);   // off
+}

@@ -52,7 +52,8 @@ class Seam final : public Effect {
  public:
   Seam(const Model& m, const SeamDef& d)
       : law_{d.law, d.stiffness, d.max_force}, c_(d.damping), merge_distance_(d.merge_distance),
-        zip_distance_(d.zip_distance), merge_(d.merge) {
+        zip_distance_(d.zip_distance), last_distance_(d.last_stitch_distance),
+        last_frames_(d.last_stitch_frames), merge_(d.merge) {
     auto bad = [](const std::string& what) { throw SimulationError("seam: " + what); };
     auto check = [&](const char* field, double v, const char* unit) {
       if (!std::isfinite(v) || v < 0.0)
@@ -62,6 +63,8 @@ class Seam final : public Effect {
     check("damping", d.damping, " N·s/m");
     check("merge_distance", d.merge_distance, " m");
     check("zip_distance", d.zip_distance, " m");
+    check("last_stitch_distance", d.last_stitch_distance, " m");
+    if (d.last_stitch_frames < 1) bad("last_stitch_frames = " + std::to_string(d.last_stitch_frames) + "; it must be ≥ 1");
     if (d.law == SeamLaw::saturating && !(d.max_force > 0.0 && std::isfinite(d.max_force)))
       bad("max_force = " + fmt(d.max_force) + " N; the saturating law needs a finite force > 0");
     const int n = m.num_particles();
@@ -84,6 +87,7 @@ class Seam final : public Effect {
     report_.total.total = static_cast<int>(pairs_.size());
     gap_.assign(pairs_.size(), 0.0);
     closed_.assign(pairs_.size(), 0);
+    stalled_.assign(pairs_.size(), 0);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       open_.push_back(static_cast<int>(p));
       gap_[p] = (at(m.x0, pairs_[p].a) - at(m.x0, pairs_[p].b)).norm();
@@ -150,13 +154,18 @@ class Seam final : public Effect {
       return (p > 0 && closed_[p - 1] && pairs_[p - 1].seam == pairs_[p].seam) ||
              (p + 1 < n && closed_[p + 1] && pairs_[p + 1].seam == pairs_[p].seam);
     };
+    std::vector<int> open_in_seam(report_.seams.size(), 0);
+    for (int p : open_) ++open_in_seam[pairs_[p].seam];
     for (int p : open_) {
       const double before = gap_[p];
       gap_[p] = (at(full.x, pairs_[p].a) - at(full.x, pairs_[p].b)).norm();
       // Only a pair that has stopped closing (less than 2 % nearer than a frame
       // ago) zips: one still closing on its own is left to do so gently.
       const bool stalled = gap_[p] > 0.98 * before;
-      if (merge_ && (gap_[p] < merge_distance_ || (gap_[p] < zip_distance_ && stalled && sewn_neighbour(p))))
+      stalled_[p] = stalled ? stalled_[p] + 1 : 0;
+      const bool last = open_in_seam[pairs_[p].seam] == 1 && stalled_[p] >= last_frames_ && gap_[p] < last_distance_;
+      if (merge_ &&
+          (gap_[p] < merge_distance_ || (gap_[p] < zip_distance_ && stalled && sewn_neighbour(p)) || last))
         out.push_back({pairs_[p].a, pairs_[p].b});
     }
     summarise();
@@ -208,12 +217,14 @@ class Seam final : public Effect {
   }
 
   Law law_;
-  double c_, merge_distance_, zip_distance_;
+  double c_, merge_distance_, zip_distance_, last_distance_;
+  int last_frames_;
   bool merge_;
   std::vector<Pair> pairs_;
   std::vector<int> open_;      // pairs not yet merged
   std::vector<double> gap_;    // m, per pair, at the last frame boundary
   std::vector<char> closed_;
+  std::vector<int> stalled_;  // per pair: frames in a row it has not closed by 2 %
   SeamReport report_;
 };
 

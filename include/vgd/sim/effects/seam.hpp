@@ -60,6 +60,13 @@ struct SeamDef {
   // zipper from its sewn end instead of stalling a few millimetres open where
   // the cloth is tight (a sleeve cap's ease, an armpit). 0 = off.
   double zip_distance = 0.0;
+  // m: the last open pair of a seam, stalled (as above) for last_stitch_frames
+  // frames in a row, merges once closer than this: where four pieces meet (an
+  // armpit) the last corner pair could hang 3–5 cm apart for good, each
+  // particle held on its own side of the crease, and the drape never came to
+  // rest. 0 = off.
+  double last_stitch_distance = 0.0;
+  int last_stitch_frames = 10;
   bool merge = true;              // false: pairs are pulled together but never merged
 };
 
