@@ -78,7 +78,7 @@ struct SelfCollisionDef {
   // Not owned: the body collision's grid, which outlives this effect (a body
   // at rest). Given, it is one more constraint of the corrections and the
   // untangling: a particle they push inside the body goes back to its surface
-  // (hem particles excepted while seams sew). Layers need it.
+  // (the strips along the seams excepted while seams sew). Layers need it.
   const SignedDistanceGrid* body = nullptr;
   double layer_depth = 0.01;                 // m
   double held_distance = 0.0045;             // m: 1.5 × the body collision's default clearance
