@@ -164,12 +164,14 @@ TEST(CliDrape, TwoGarmentsDoNotPassThroughEachOtherWhileSewing) {
 // The whole dressing: the skirt and the T-shirt over it, from flat pieces to
 // rest, every seam sewn, nothing inside the body by more than 1 mm and no
 // cloth triangle through another, within either garment or between them
-// (measured: rest after 2.6 s simulated, 34 s wall; docs/drape.md).
+// (measured: rest after 5.64 s simulated, 47 s wall on two threads — the
+// layers slip on each other in bursts for seconds; docs/drape.md). The
+// drape's default time limit, 8 s.
 TEST(CliDrape, SkirtAndTShirtOverItComeToRestUntangled) {
   const auto out = scratch_dir("drape-two-rest");
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(),
                           (source_dir() / "data/garments/t-shirt.xvc").string(), "-o", out.string(), "--time-limit",
-                          "6", "-q"});
+                          "8", "-q"});
   EXPECT_EQ(r.code, 0) << r.err;
   const json c = read_json(out / "certificate.json");
   EXPECT_TRUE(c["passed"].get<bool>());
