@@ -445,10 +445,7 @@ class SelfCollision final : public Effect {
     disp_.resize(n_);
     for (int i = 0; i < n_; ++i) disp_[i] = (at(s.x, i) - at(x_prev_, i)).norm();
     hash_.build_boxes(x_prev_, s.x, n_, cell_, th);
-    if (incremental) {
-      moved_hash_.build_boxes(x_prev_, s.x, moved_list_, cell_, th);
-      mark_coarse_cells(s);
-    }
+    if (incremental) moved_hash_.build_boxes(x_prev_, s.x, moved_list_, cell_, th);
     if (layered_)
       for (std::size_t l = 0; l < layer_hash_.size(); ++l)
         if (!layer_particles_[l].empty()) layer_hash_[l].build_boxes(x_prev_, s.x, layer_particles_[l], cell_, th);
@@ -586,7 +583,6 @@ class SelfCollision final : public Effect {
         };
         only_moved = incremental && tri_still(t);
         if (only_moved) {
-          if (!near_moved(lo, hi)) continue;  // no moved particle's cell anywhere near
           // Only the moved particles, any layer: the grown box, the visit's
           // own test takes each layer's reach.
           moved_hash_.for_each_in_box(lo, hi, visit);
@@ -627,44 +623,6 @@ class SelfCollision final : public Effect {
     stats_.pairs = static_cast<int>(pairs_.size() + edge_pairs_.size());
     std::fill(moved_.begin(), moved_.end(), 0);  // moves from here on are the next detection's
     return crossings;
-  }
-
-  // Incremental rounds: an unmoved triangle meets only the moved particles,
-  // mostly few and in one region, yet looking for them in their hash cost a
-  // dozen or more cell lookups for every triangle (more than the first
-  // round's whole detection, over a step's rounds). The coarse cells (kCoarse
-  // cells wide) the moved particles' boxes meet are listed first: a triangle
-  // whose grown box meets none of them cannot meet a moved particle's cell
-  // (a coarse cell holds whole cells) and is passed over, so the pairs found
-  // are the same.
-  static constexpr int kCoarse = 4;
-  void mark_coarse_cells(const State& s) {
-    coarse_.clear();
-    const double inv = 1.0 / (kCoarse * cell_), pad = def_.thickness;
-    for (int i : moved_list_) {
-      const Vec3 lo = at(s.x, i).cwiseMin(at(x_prev_, i)) - Vec3::Constant(pad);
-      const Vec3 hi = at(s.x, i).cwiseMax(at(x_prev_, i)) + Vec3::Constant(pad);
-      for_each_coarse(lo, hi, inv, [&](std::uint64_t k) { coarse_.push_back(k); });
-    }
-    std::sort(coarse_.begin(), coarse_.end());
-    coarse_.erase(std::unique(coarse_.begin(), coarse_.end()), coarse_.end());
-  }
-  bool near_moved(const Vec3& lo, const Vec3& hi) const {
-    bool hit = false;
-    for_each_coarse(lo, hi, 1.0 / (kCoarse * cell_), [&](std::uint64_t k) {
-      hit = hit || std::binary_search(coarse_.begin(), coarse_.end(), k);
-    });
-    return hit;
-  }
-  template <class F>
-  static void for_each_coarse(const Vec3& lo, const Vec3& hi, double inv, F&& f) {
-    auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v * inv)); };
-    constexpr std::uint64_t m = (1u << 21) - 1;
-    for (std::int64_t k = cell(lo.z()); k <= cell(hi.z()); ++k)
-      for (std::int64_t j = cell(lo.y()); j <= cell(hi.y()); ++j)
-        for (std::int64_t i = cell(lo.x()); i <= cell(hi.x()); ++i)
-          f((static_cast<std::uint64_t>(i) & m) | ((static_cast<std::uint64_t>(j) & m) << 21) |
-            ((static_cast<std::uint64_t>(k) & m) << 42));
   }
 
   // The fail-safe after the rounds: a pair still crossed (on the wrong side
@@ -1073,7 +1031,6 @@ class SelfCollision final : public Effect {
   std::vector<char> moved_;      // per particle: moved since the last detection (corrections, the fail-safe)
   std::vector<int> moved_list_;  // the same, listed
   SpatialHash moved_hash_;       // the moved particles, by their swept boxes
-  std::vector<std::uint64_t> coarse_;  // the coarse cells their boxes meet, sorted (mark_coarse_cells)
   SpatialHash tri_hash_;     // untangling: triangles by their boxes
   VecX tri_lo_, tri_hi_;     // m: the triangles' boxes
   std::vector<EdgePair> edge_pairs_;
