@@ -478,6 +478,8 @@ EffectsDef read_effects(Object o) {
     c.number("damping", d.effect.damping, dim::damping);
     c.number("merge_distance", d.effect.merge_distance, dim::length);
     c.number("zip_distance", d.effect.zip_distance, dim::length);
+    c.number("last_stitch_distance", d.effect.last_stitch_distance, dim::length);
+    c.integer("last_stitch_frames", d.effect.last_stitch_frames);
     c.flag("merge", d.effect.merge);
     std::string law = "saturating";
     c.string("law", law);

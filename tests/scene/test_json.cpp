@@ -57,6 +57,20 @@ TEST(SceneFile, QuantitiesWithUnitsAreConvertedToSI) {
   EXPECT_DOUBLE_EQ(d.materials.at("cloth").values.density, 0.15);
 }
 
+// The seams' last stitch (docs/seams.md) reads with its unit and is checked.
+TEST(SceneFile, TheSeamsLastStitchReads) {
+  json j = tiny_scene();
+  j["effects"]["seams"] = {{"last_stitch_distance", "5 cm"}, {"last_stitch_frames", 12}};
+  const SceneDef d = parse(j);
+  ASSERT_TRUE(d.effects.seams);
+  EXPECT_DOUBLE_EQ(d.effects.seams->effect.last_stitch_distance, 0.05);
+  EXPECT_EQ(d.effects.seams->effect.last_stitch_frames, 12);
+  expect_scene_error([](json& k) { k["effects"]["seams"] = {{"last_stitch_frames", 0}}; },
+                     "effects.seams.last_stitch_frames", ">= 1");
+  expect_scene_error([](json& k) { k["effects"]["seams"] = {{"last_stitch_distance", -0.01}}; },
+                     "effects.seams.last_stitch_distance", ">= 0");
+}
+
 TEST(SceneFile, IterationsPerFrameSetTheStepAsInTheSeed) {
   json j = tiny_scene();
   j["integrator"].erase("step");
