@@ -6,6 +6,7 @@
 // framebuffer objects, so a small one is enough.
 #include <GL/osmesa.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -45,10 +46,18 @@ extern "C" const char* __lsan_default_suppressions() { return "leak:libOSMesa.so
 
 struct OffscreenContext::Impl {
   OSMesaContext context = nullptr;
-  std::vector<unsigned char> buffer = std::vector<unsigned char>(kBufferSize * kBufferSize * 4);
+  int width = kBufferSize, height = kBufferSize;
+  std::vector<unsigned char> buffer;
 };
 
-OffscreenContext::OffscreenContext() : impl_(std::make_unique<Impl>()) {
+OffscreenContext::OffscreenContext() : OffscreenContext(kBufferSize, kBufferSize) {}
+
+OffscreenContext::OffscreenContext(int width, int height) : impl_(std::make_unique<Impl>()) {
+  if (width < 1 || height < 1 || width > 4096 || height > 4096)
+    throw Error("", "OSMesa", "a " + std::to_string(width) + " x " + std::to_string(height) +
+                                  " off-screen buffer is out of range (1-4096 pixels per side)");
+  impl_->width = width, impl_->height = height;
+  impl_->buffer.assign(static_cast<std::size_t>(width) * height * 4, 0);
   pin_llvmpipe_threads();
   const int attributes[] = {OSMESA_FORMAT,       OSMESA_RGBA,         OSMESA_DEPTH_BITS,
                             24,                  OSMESA_STENCIL_BITS, 0,
@@ -66,8 +75,20 @@ OffscreenContext::~OffscreenContext() {
 }
 
 void OffscreenContext::make_current() {
-  if (!OSMesaMakeCurrent(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, kBufferSize, kBufferSize))
+  if (!OSMesaMakeCurrent(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, impl_->width, impl_->height))
     throw Error("", "OSMesa", "cannot make the off-screen context current");
+}
+
+Image OffscreenContext::read_back() {
+  make_current();
+  using Finish = void (*)();
+  reinterpret_cast<Finish>(OSMesaGetProcAddress("glFinish"))();
+  // OSMesa's buffer holds the bottom row first (OSMESA_Y_UP).
+  Image img(impl_->width, impl_->height);
+  const std::size_t row = static_cast<std::size_t>(impl_->width) * 4;
+  for (int y = 0; y < impl_->height; ++y)
+    std::copy_n(impl_->buffer.data() + (impl_->height - 1 - y) * row, row, img.rgba.data() + y * row);
+  return img;
 }
 
 Renderer::ProcLoader OffscreenContext::loader() {

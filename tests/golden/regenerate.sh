@@ -2,7 +2,8 @@
 # Regenerates the golden previews in tests/golden/ (docs/qa.md) after an
 # intended change to the drape or the renderer. Builds the qa test and runs
 # its golden test with VGD_UPDATE_GOLDENS=1: it drapes the A-line skirt and
-# renders it exactly as the comparison does, then writes the PNGs here.
+# renders it exactly as the comparison does, then writes the PNGs here; the
+# studio test does the same for the studio's first frame.
 #
 #   tests/golden/regenerate.sh [BUILD_DIR]      (default: build)
 #
@@ -12,4 +13,6 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build}
 cmake --build "$build" --target vgd_test_qa
 VGD_UPDATE_GOLDENS=1 "$build/tests/qa/vgd_test_qa" --gtest_filter='Golden.TheRedrapedSkirtMatchesItsGoldenPreviews'
-ls -l "$root/tests/golden/a-line-skirt/"
+cmake --build "$build" --target vgd_test_studio
+VGD_UPDATE_GOLDENS=1 "$build/tests/studio/vgd_test_studio" --gtest_filter='Studio.TheFirstFrameWithTheTShirtMatchesItsGolden'
+ls -l "$root/tests/golden/a-line-skirt/" "$root/tests/golden/studio/"

@@ -29,12 +29,18 @@ inline constexpr int kLpNumThreads = 2;
 class OffscreenContext {
  public:
   OffscreenContext();
+  // A context whose own colour buffer is width × height pixels (1–4096 each),
+  // for drawing into the default framebuffer (the studio's off-screen frames).
+  OffscreenContext(int width, int height);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;
   OffscreenContext& operator=(const OffscreenContext&) = delete;
 
   void make_current();
   static Renderer::ProcLoader loader();  // OSMesaGetProcAddress
+  // The context's own colour buffer after the drawing so far (glFinish), row
+  // 0 at the top. Makes the context current.
+  Image read_back();
 
  private:
   struct Impl;

@@ -1,0 +1,124 @@
+// vgd-studio: the designer's GUI (docs/studio.md).
+//
+//   vgd-studio data/garments/t-shirt.xvc                    a window (GLFW, OpenGL 3.3)
+//   vgd-studio --headless --script session.txt              off-screen, scripted (tests, QA)
+//   vgd-studio --headless t-shirt.xvc --screenshot s.png    one frame of the studio as a PNG
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/render/image.hpp"
+#include "vgd/studio/harness.hpp"
+#include "vgd/studio/studio.hpp"
+
+namespace {
+
+struct Options {
+  std::string file, script, screenshot;
+  bool headless = false;
+  int width = 1280, height = 800, threads = 0;
+};
+
+int run_window(const Options& o) {
+  glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "vgd-studio: GLFW %d: %s\n", code, text); });
+  if (!glfwInit()) {
+    std::fprintf(stderr, "vgd-studio: error: no display to open a window on (use --headless for off-screen runs)\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "vgd studio", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "vgd-studio: error: cannot open an OpenGL 3.3 window\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui::StyleColorsLight();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  int code = 0;
+  try {
+    vgd::studio::init_gl(reinterpret_cast<vgd::studio::GlLoader>(glfwGetProcAddress));
+    {
+      vgd::studio::Studio studio;
+      studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
+      if (!o.file.empty()) studio.open(o.file);
+      while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        vgd::studio::new_frame_gl();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        studio.draw();
+        ImGui::Render();
+        vgd::studio::render_gl(ImGui::GetDrawData());
+        glfwSwapBuffers(window);
+      }
+    }
+    vgd::studio::shutdown_gl();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vgd-studio: error: %s\n", e.what());
+    code = 1;
+  }
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+int run_headless(const Options& o) {
+  vgd::studio::Harness h(o.width, o.height);
+  if (!o.file.empty() && !h.studio().open(o.file)) {
+    std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
+    return 1;
+  }
+  if (!o.script.empty()) h.run_script(o.script);
+  h.frames(3);
+  if (!o.screenshot.empty()) vgd::render::write_png(h.screenshot(), o.screenshot);
+  std::printf("%s\n", h.studio().status().c_str());
+  return h.studio().status_is_error() ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vgd studio: open an XVC garment, pick seams, choose a quality preset, drape it and see it in 3-D"};
+  Options o;
+  app.add_option("FILE", o.file, "XVC document to open")->check(CLI::ExistingFile);
+  app.add_flag("--headless", o.headless, "No window: draw off-screen (OSMesa), for scripts and screenshots");
+  app.add_option("--script", o.script,
+                 "With --headless: run these studio commands (open, click, click-stretch, key, type, frames, "
+                 "wait-drape, screenshot, save, expect-status; docs/studio.md)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--screenshot", o.screenshot, "With --headless: write the last frame to this PNG");
+  app.add_option("--width", o.width, "Window or off-screen width, pixels (default 1280)")->check(CLI::Range(640, 4096));
+  app.add_option("--height", o.height, "Window or off-screen height, pixels (default 800)")->check(CLI::Range(480, 4096));
+  app.add_option("--threads", o.threads, "Threads for the drape's force kernels (default 0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  app.footer("Exit codes: 0 done, 1 bad input or a failed script line (the message names it), 3 the studio ended "
+             "with an error in its status bar.");
+  CLI11_PARSE(app, argc, argv);
+  if (!o.headless && (!o.script.empty() || !o.screenshot.empty())) {
+    std::fprintf(stderr, "vgd-studio: error: --script and --screenshot need --headless\n");
+    return 2;
+  }
+  omp_set_num_threads(o.threads > 0 ? o.threads : omp_get_num_procs());
+  try {
+    return o.headless ? run_headless(o) : run_window(o);
+  } catch (const vgd::Error& e) {
+    std::fprintf(stderr, "vgd-studio: error: %s\n", e.diagnostic().format().c_str());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vgd-studio: error: %s\n", e.what());
+    return 1;
+  }
+}

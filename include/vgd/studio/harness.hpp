@@ -1,0 +1,71 @@
+#pragma once
+// The studio without a window: an OSMesa context the size of the "screen",
+// ImGui fed with synthetic mouse and keyboard input (ImGui 1.86: io.MousePos,
+// io.MouseDown, io.KeysDown), and the frame read back as an image. Tests and
+// `vgd-studio --headless --script` drive the studio through it, so what they
+// check is what a user's clicks do.
+//
+//   Harness h(1280, 800);
+//   h.studio().open("data/garments/t-shirt.xvc");
+//   h.click("quality");            // opens the combo
+//   h.click("quality:precise");    // picks the item
+//   h.click("Drape");
+//   h.studio().wait_for_drape();
+//   render::write_png(h.screenshot(), "studio.png");
+//
+// Deterministic: the same script gives the same pixels on the same machine
+// (ImGui's own font; llvmpipe's thread count pinned; time steps fixed at
+// 1/60 s per frame).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "vgd/render/image.hpp"
+#include "vgd/studio/studio.hpp"
+
+namespace vgd::studio {
+
+class Harness {
+ public:
+  Harness(int width = 1280, int height = 800);
+  ~Harness();
+  Harness(const Harness&) = delete;
+  Harness& operator=(const Harness&) = delete;
+
+  Studio& studio();
+
+  // One frame: input as set, NewFrame, draw, Render, draw into the buffer.
+  void frame();
+  // Several frames (animations, popups opening, the preview catching up).
+  void frames(int n);
+  // Moves the mouse to (x, y) and clicks the left button (four frames: move,
+  // press, release, settle).
+  void click_at(float x, float y, bool shift = false);
+  // Clicks the middle of a named widget of the last frame (Studio::widget);
+  // throws vgd::Error naming it when there is no such widget on screen.
+  void click(std::string_view widget, bool shift = false);
+  // Drags with the left button from (x0, y0) to (x1, y1) in `steps` moves.
+  void drag(float x0, float y0, float x1, float y1, int steps = 8);
+  // Presses a key with modifiers: "ctrl+z", "ctrl+shift+z", "ctrl+s", "delete",
+  // "f5", "escape", "enter".
+  void key(std::string_view chord);
+  // Types text into the focused text field.
+  void type(std::string_view text);
+  // The last frame, row 0 at the top.
+  render::Image screenshot();
+
+  // Runs a script, one command per line ('#' starts a comment):
+  //   open FILE | save [FILE] | click WIDGET | click-stretch PATTERN SEQ
+  //   key CHORD | type TEXT | frames N | wait-drape | screenshot FILE.png
+  //   expect-status TEXT (fails unless the status bar contains TEXT)
+  // Paths are relative to the script's folder. Throws vgd::Error naming the
+  // script, the line and the problem.
+  void run_script(const std::filesystem::path& script);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vgd::studio

@@ -1,0 +1,129 @@
+#pragma once
+// vgd studio: the designer's window onto the pipeline (seed 000's VIGDES,
+// seed 002's interactive seam picking), drawn with Dear ImGui.
+//
+//   tree       the XVC document as a tree; select an element, edit its
+//              attributes (undoable commands), delete it
+//   patterns   the pieces of one size, flat; hover a stretch of an outline
+//              and click to pick it, pick a second, "Add seam"
+//   simulate   size, quality preset (preview / standard / precise), self-
+//              collision, mesh spacing, time limit; "Drape" runs the drape on
+//              a worker thread with per-stage progress, "Stop" ends it
+//   preview    the body and the garment in 3-D (the render stage's off-screen
+//              renderer, shown as a texture), updated live while draping;
+//              drag to turn it
+//
+// Immediate mode, as the XVC commands expect (commands.hpp): every panel is
+// drawn from the Document each frame and every change goes back as a Command
+// through one UndoStack, so undo, the tree and the saved file never drift.
+//
+// The Studio knows nothing about windows. A host makes the ImGui context and
+// an OpenGL 3.3 context, calls init_gl() once, then per frame new_frame_gl(),
+// ImGui::NewFrame(),
+// Studio::draw(), ImGui::Render() and render_gl(). Two hosts exist: the GLFW
+// window of apps/vgd-studio, and the Harness (harness.hpp), an OSMesa
+// off-screen host that scripts and tests drive with synthetic mouse and keys.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vgd/scene/certificate.hpp"
+#include "vgd/scene/drape.hpp"
+#include "vgd/xvc/document.hpp"
+
+struct ImDrawData;
+
+namespace vgd::studio {
+
+// A widget's box on screen, pixels, from the last frame.
+struct Rect {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  float cx() const { return 0.5f * (x0 + x1); }
+  float cy() const { return 0.5f * (y0 + y1); }
+};
+
+// Loads the OpenGL functions of the current context through `loader`
+// (OSMesaGetProcAddress, glfwGetProcAddress) and sets up ImGui's OpenGL 3
+// renderer. An ImGui context must exist. Throws vgd::Error when it fails.
+using GlProc = void (*)();
+using GlLoader = GlProc (*)(const char* name);
+void init_gl(GlLoader loader);
+void shutdown_gl();
+// Before ImGui::NewFrame(): makes the renderer's font texture and shaders the
+// first time.
+void new_frame_gl();
+// Draws ImGui's frame into the current framebuffer.
+void render_gl(ImDrawData* data);
+
+// The io.KeysDown index hosts give F5 (GLFW_KEY_F5); letters are at their
+// upper-case ASCII codes (as GLFW's are).
+inline constexpr int kF5Key = 294;
+
+// Where the drape stands, for the progress bar.
+struct DrapeStatus {
+  bool running = false;
+  std::string stage;          // placing, sewing, settling, done, stopped, failed
+  double t = 0, time_limit = 0;  // s simulated
+  double wall_s = 0;
+  int seams_closed = 0, seam_pairs = 0;
+  std::string message;        // the outcome when finished
+};
+
+class Studio {
+ public:
+  Studio();
+  ~Studio();
+  Studio(const Studio&) = delete;
+  Studio& operator=(const Studio&) = delete;
+
+  // Opens an XVC document; on failure keeps the current one, shows the error
+  // (naming the file and the problem) and returns false.
+  bool open(const std::filesystem::path& file);
+  // Saves to `file` (or where it came from) through a temporary file renamed
+  // into place. Shows and returns false on failure.
+  bool save(const std::filesystem::path& file = {});
+
+  // Builds the frame's widgets; between ImGui::NewFrame() and ImGui::Render().
+  void draw();
+
+  // ---- state, for hosts, scripts and tests ----
+  const xvc::Document& document() const;
+  const std::filesystem::path& file() const;
+  bool modified() const;
+  const std::string& status() const;       // the last message of the status bar
+  bool status_is_error() const;
+  // Drape settings (quality, size, ...), as the simulate panel shows them.
+  scene::DrapeOptions& drape_options();
+  DrapeStatus drape_status() const;
+  // The certificate of the last finished drape.
+  const std::optional<scene::Certificate>& certificate() const;
+  // Blocks until the drape worker has finished (for scripts and tests).
+  void wait_for_drape();
+  // The id of the element selected in the tree ("" when none).
+  const std::string& selected() const;
+  // The stretches picked for the next seam: (pattern id, C2DSEQ id).
+  const std::vector<std::pair<std::string, std::string>>& picked() const;
+
+  // Boxes of the last frame's named widgets: buttons and menu items by their
+  // label ("Drape", "Add seam", "Undo"), combo items as "<combo>:<item>"
+  // ("quality:precise", "size:38"), tree rows as "tree:<id>".
+  std::optional<Rect> widget(std::string_view name) const;
+  // The screen point of the middle of a stretch in the pattern view (to
+  // click it), if it is shown.
+  std::optional<Rect> stretch_on_screen(std::string_view pattern_id, std::string_view stretch_id) const;
+
+  // Called after the 3-D preview drew off-screen, to make the UI's GL context
+  // current again (both may be OSMesa contexts in one thread).
+  void set_restore_context(std::function<void()> restore);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vgd::studio

@@ -1,0 +1,223 @@
+#include "vgd/studio/harness.hpp"
+
+#include <imgui.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/render/image.hpp"
+#include "vgd/render/offscreen.hpp"
+
+namespace vgd::studio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Key indices of the harness's own key map (ImGui 1.86: io.KeyMap[ImGuiKey_*]
+// says which io.KeysDown[] index each named key is).
+constexpr int kKeyBase = 256;
+
+int key_index(std::string_view name) {
+  if (name.size() == 1 && name[0] >= 'a' && name[0] <= 'z') return 'A' + (name[0] - 'a');
+  if (name == "delete") return kKeyBase + ImGuiKey_Delete;
+  if (name == "escape") return kKeyBase + ImGuiKey_Escape;
+  if (name == "enter") return kKeyBase + ImGuiKey_Enter;
+  if (name == "tab") return kKeyBase + ImGuiKey_Tab;
+  if (name == "backspace") return kKeyBase + ImGuiKey_Backspace;
+  if (name == "f5") return kF5Key;
+  return -1;
+}
+
+}  // namespace
+
+struct Harness::Impl {
+  int width, height;
+  render::OffscreenContext context;
+  ImGuiContext* imgui = nullptr;
+  std::unique_ptr<Studio> studio;
+
+  Impl(int w, int h) : width(w), height(h), context(w, h) {
+    IMGUI_CHECKVERSION();
+    imgui = ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // no imgui.ini next to the tests
+    io.LogFilename = nullptr;
+    io.DisplaySize = {static_cast<float>(w), static_cast<float>(h)};
+    io.DeltaTime = 1.0f / 60.0f;
+    for (int k = 0; k < ImGuiKey_COUNT; ++k) io.KeyMap[k] = kKeyBase + k;
+    // Letters are their ASCII codes (ImGui's text shortcuts and the studio's read KeyMap).
+    io.KeyMap[ImGuiKey_A] = 'A', io.KeyMap[ImGuiKey_C] = 'C', io.KeyMap[ImGuiKey_V] = 'V';
+    io.KeyMap[ImGuiKey_X] = 'X', io.KeyMap[ImGuiKey_Y] = 'Y', io.KeyMap[ImGuiKey_Z] = 'Z';
+    ImGui::StyleColorsLight();
+    context.make_current();
+    init_gl(render::OffscreenContext::loader());
+    studio = std::make_unique<Studio>();
+    studio->set_restore_context([this] { context.make_current(); });
+  }
+
+  ~Impl() {
+    studio.reset();
+    context.make_current();
+    shutdown_gl();
+    ImGui::DestroyContext(imgui);
+  }
+
+  void frame() {
+    context.make_current();
+    ImGui::SetCurrentContext(imgui);
+    new_frame_gl();
+    ImGui::NewFrame();
+    studio->draw();
+    ImGui::Render();
+    render_gl(ImGui::GetDrawData());
+  }
+};
+
+Harness::Harness(int width, int height) : impl_(std::make_unique<Impl>(width, height)) {}
+Harness::~Harness() = default;
+
+Studio& Harness::studio() { return *impl_->studio; }
+
+void Harness::frame() {
+  ImGui::SetCurrentContext(impl_->imgui);
+  impl_->frame();
+}
+
+void Harness::frames(int n) {
+  for (int i = 0; i < n; ++i) frame();
+}
+
+void Harness::click_at(float x, float y, bool shift) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = {x, y};
+  io.KeyShift = shift;
+  frame();
+  io.MouseDown[0] = true;
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  io.KeyShift = false;
+  frame();
+}
+
+void Harness::click(std::string_view name, bool shift) {
+  auto r = studio().widget(name);
+  if (!r) {
+    frame();  // the widget may appear once the last input is seen
+    r = studio().widget(name);
+  }
+  if (!r) throw Error("", std::string(name), "no such widget on screen to click");
+  click_at(r->cx(), r->cy(), shift);
+}
+
+void Harness::drag(float x0, float y0, float x1, float y1, int steps) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = {x0, y0};
+  frame();
+  io.MouseDown[0] = true;
+  frame();
+  for (int i = 1; i <= steps; ++i) {
+    const float f = static_cast<float>(i) / steps;
+    io.MousePos = {x0 + f * (x1 - x0), y0 + f * (y1 - y0)};
+    frame();
+  }
+  io.MouseDown[0] = false;
+  frame();
+}
+
+void Harness::key(std::string_view chord) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  bool ctrl = false, shift = false;
+  std::string_view rest = chord;
+  for (;;) {
+    if (rest.rfind("ctrl+", 0) == 0) ctrl = true, rest.remove_prefix(5);
+    else if (rest.rfind("shift+", 0) == 0) shift = true, rest.remove_prefix(6);
+    else break;
+  }
+  const int k = key_index(rest);
+  if (k < 0) throw Error("", std::string(chord), "unknown key (letters a-z, delete, escape, enter, tab, backspace, f5)");
+  io.KeyCtrl = ctrl, io.KeyShift = shift;
+  io.KeysDown[k] = true;
+  frame();
+  io.KeysDown[k] = false;
+  io.KeyCtrl = io.KeyShift = false;
+  frame();
+}
+
+void Harness::type(std::string_view text) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGui::GetIO().AddInputCharactersUTF8(std::string(text).c_str());
+  frame();
+}
+
+render::Image Harness::screenshot() { return impl_->context.read_back(); }
+
+void Harness::run_script(const fs::path& script) {
+  std::ifstream in(script);
+  if (!in) throw Error(script.string(), "", "cannot read the script");
+  const fs::path base = script.parent_path();
+  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? fs::path(p) : base / p; };
+  std::string line;
+  int n = 0;
+  frame();
+  while (std::getline(in, line)) {
+    ++n;
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    std::istringstream ls(line);
+    std::string cmd;
+    if (!(ls >> cmd)) continue;
+    std::string arg;
+    std::getline(ls >> std::ws, arg);
+    while (!arg.empty() && (arg.back() == ' ' || arg.back() == '\r')) arg.pop_back();
+    auto fail = [&](const std::string& why) { throw Error(script.string(), cmd, why, n); };
+    try {
+      if (cmd == "open") {
+        if (!studio().open(resolve(arg))) fail(studio().status());
+        frame();
+      } else if (cmd == "save") {
+        if (!studio().save(arg.empty() ? fs::path() : resolve(arg))) fail(studio().status());
+      } else if (cmd == "click") {
+        click(arg);
+      } else if (cmd == "click-stretch") {
+        std::istringstream as(arg);
+        std::string pat, seq;
+        as >> pat >> seq;
+        auto r = studio().stretch_on_screen(pat, seq);
+        if (!r) fail("stretch " + seq + " of " + pat + " is not on screen");
+        click_at(r->cx(), r->cy());
+      } else if (cmd == "key") {
+        key(arg);
+      } else if (cmd == "type") {
+        type(arg);
+      } else if (cmd == "frames") {
+        frames(std::stoi(arg));
+      } else if (cmd == "wait-drape") {
+        studio().wait_for_drape();
+        frames(3);
+      } else if (cmd == "screenshot") {
+        frame();
+        render::write_png(screenshot(), resolve(arg));
+      } else if (cmd == "expect-status") {
+        if (studio().status().find(arg) == std::string::npos)
+          fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
+      } else {
+        fail("unknown command (open, save, click, click-stretch, key, type, frames, wait-drape, screenshot, "
+             "expect-status)");
+      }
+    } catch (const Error& e) {
+      if (e.diagnostic().line == n) throw;
+      throw Error(script.string(), cmd, e.what(), n);
+    } catch (const std::exception& e) {
+      throw Error(script.string(), cmd, e.what(), n);
+    }
+  }
+}
+
+}  // namespace vgd::studio

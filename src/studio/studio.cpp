@@ -1,0 +1,888 @@
+#include "vgd/studio/studio.hpp"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+#include "drape_job.hpp"
+#include "gl.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/render/offscreen.hpp"
+#include "vgd/scene/quality.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/seams.hpp"
+#include "vgd/xvc/style.hpp"
+
+namespace vgd::studio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr float kPickRadius = 8.0f;  // px: how near the mouse a stretch must be to pick it
+constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview renders
+
+// One stretch of a piece's outline as the pattern view draws it.
+struct StretchView {
+  std::string id;
+  std::vector<pattern::Vec2> points;  // m, laid out
+  bool sewn = false;
+};
+
+struct PieceView {
+  std::string pattern_id, name;
+  std::vector<StretchView> stretches;
+  pattern::Vec2 centre = pattern::Vec2::Zero();
+};
+
+const char* kQualityNames[] = {"preview", "standard", "precise"};
+const char* kQualityHelp[] = {
+    "Implicit Euler, 10 ms steps, no self-collision unless ticked: a quick look at a garment that needs no "
+    "self-collision (a skirt). Measured error and cost: docs/accuracy-vs-time.md.",
+    "Implicit Euler, 10 ms steps, self-collision: the default of vgd drape.",
+    "Implicit Euler, 5 ms steps, self-collision: about twice the cost of standard."};
+
+ImU32 rgb(int r, int g, int b, int a = 255) { return IM_COL32(r, g, b, a); }
+
+float distance_to_segment(ImVec2 p, ImVec2 a, ImVec2 b) {
+  const float dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+  float t = l2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2 : 0.0f;
+  t = std::clamp(t, 0.0f, 1.0f);
+  const float ex = a.x + t * dx - p.x, ey = a.y + t * dy - p.y;
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+}  // namespace
+
+struct Studio::Impl {
+  // The document and its history.
+  xvc::Document doc;
+  std::unique_ptr<xvc::UndoStack> undo = std::make_unique<xvc::UndoStack>(doc);
+  fs::path file;
+  xvc::Document saved;  // as last opened or saved, for the modified mark
+  int revision = 0;     // bumped by every change of doc
+  int modified_rev = -1;
+  bool modified = false;
+
+  std::string status = "Open an XVC document (File > Open, Ctrl+O).";
+  bool status_error = false;
+  std::string error_text;
+  bool error_pending = false;
+
+  std::map<std::string, Rect, std::less<>> widgets;
+  std::string selected;
+  std::string editing, edit_buffer;  // the attribute field being edited ("<id>/<name>") and its text
+  std::string reported;              // the drape outcome last put in the status bar
+
+  // Pattern view.
+  std::vector<std::string> sizes;
+  int layout_rev = -1;
+  std::string layout_size;
+  std::vector<PieceView> pieces;
+  pattern::Vec2 lo{0, 0}, hi{1, 1};  // layout bounds, m
+  ImVec2 origin{0, 0};
+  float scale = 1;  // px per m
+  std::optional<std::pair<std::string, std::string>> hovered;
+  std::vector<std::pair<std::string, std::string>> picked;
+  std::string seam_name = "seam";
+  std::map<std::pair<std::string, std::string>, Rect> stretch_rects;
+
+  // Drape.
+  scene::DrapeOptions drape;
+  bool self_collision_told = false;
+  DrapeJob job;
+  std::optional<scene::Certificate> cert;
+  fs::path work_dir;
+
+  // Preview.
+  std::unique_ptr<render::OffscreenRenderer> renderer;
+  unsigned texture = 0;
+  int tex_w = 0, tex_h = 0;
+  bool preview_dirty = false;
+  double last_preview = -1e9;
+  double azimuth = 35, elevation = 8;
+  std::optional<mesh::SurfaceMesh> body;
+  LiveCloth cloth;
+  std::function<void()> restore;
+
+  // Dialogs.
+  bool want_open = false, want_save_as = false;
+  std::string path_text;
+
+  ~Impl() {
+    job.request_stop();
+    job.wait();
+    gl::delete_texture(texture);
+    if (!work_dir.empty()) {
+      std::error_code ec;
+      fs::remove_all(work_dir, ec);
+    }
+  }
+
+  void track(const std::string& name) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    widgets[name] = {a.x, a.y, b.x, b.y};
+  }
+
+  void say(std::string text, bool error = false) {
+    status = std::move(text);
+    status_error = error;
+    if (error) {
+      error_text = status;
+      error_pending = true;
+    }
+  }
+
+  void changed() { ++revision; }
+
+  // Runs an undoable command; errors go to the status bar, the document stays.
+  void run(std::unique_ptr<xvc::Command> cmd) {
+    const std::string label = cmd->label();
+    try {
+      const std::string id = undo->execute(std::move(cmd));
+      changed();
+      if (!id.empty() && doc.find(id)) selected = id;
+      say(label + ".");
+    } catch (const std::exception& e) {
+      say(label + " failed: " + e.what(), true);
+    }
+  }
+
+  void do_undo() {
+    if (!undo->can_undo()) return;
+    const std::string l = undo->undo_label();
+    undo->undo();
+    changed();
+    say("Undid " + l + ".");
+  }
+  void do_redo() {
+    if (!undo->can_redo()) return;
+    const std::string l = undo->redo_label();
+    undo->redo();
+    changed();
+    say("Redid " + l + ".");
+  }
+
+  bool is_modified() {
+    if (modified_rev != revision) {
+      modified = !(doc == saved);
+      modified_rev = revision;
+    }
+    return modified;
+  }
+
+  // ---- pattern layout ------------------------------------------------------
+
+  void refresh_sizes() {
+    sizes.clear();
+    for (const xvc::Node* p : doc.patterns()) {
+      const std::string s(p->attribute("size"));
+      if (std::find(sizes.begin(), sizes.end(), s) == sizes.end()) sizes.push_back(s);
+    }
+    if (std::find(sizes.begin(), sizes.end(), drape.size) == sizes.end()) {
+      drape.size = sizes.empty() ? "" : sizes.front();
+      try {
+        const std::string sample = xvc::to_style(doc).sample_size;
+        if (std::find(sizes.begin(), sizes.end(), sample) != sizes.end()) drape.size = sample;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+
+  void layout(float aspect) {
+    if (layout_rev == revision && layout_size == drape.size) return;
+    layout_rev = revision;
+    layout_size = drape.size;
+    refresh_sizes();
+    pieces.clear();
+    // Which stretches are sewn: every stretch from..to of every HEM.
+    std::set<std::pair<std::string, std::string>> sewn;
+    try {
+      for (const auto& seam : xvc::list_seams(doc))
+        for (const auto& h : seam.hems) {
+          const xvc::Node* pat = doc.find(h.pattern);
+          if (!pat) continue;
+          bool in = false;
+          for (const auto& st : xvc::boundary_stretches(*pat)) {
+            if (st.id == h.from) in = true;
+            if (in) sewn.insert({h.pattern, st.id});
+            if (st.id == h.to) break;
+          }
+        }
+    } catch (const std::exception&) {
+    }
+    struct Raw {
+      PieceView view;
+      pattern::Vec2 lo, hi;
+    };
+    std::vector<Raw> raw;
+    for (const xvc::Node* p : doc.patterns()) {
+      if (p->attribute("size") != drape.size) continue;
+      pattern::Piece piece;
+      try {
+        piece = xvc::to_piece(doc, p->id());
+      } catch (const std::exception&) {
+        continue;
+      }
+      if (piece.boundary.size() < 3) continue;
+      Raw r;
+      r.view.pattern_id = std::string(p->id());
+      r.view.name = piece.name;
+      const auto stretches = xvc::boundary_stretches(*p);
+      const std::size_t n = piece.boundary.size();
+      for (const auto& st : stretches) {
+        StretchView sv;
+        sv.id = st.id;
+        for (std::size_t k = 0; k <= st.count; ++k) sv.points.push_back(piece.boundary[(st.first + k) % n].p);
+        sv.sewn = sewn.count({r.view.pattern_id, st.id}) > 0;
+        r.view.stretches.push_back(std::move(sv));
+      }
+      r.lo = r.hi = piece.boundary.front().p;
+      for (const auto& c : piece.boundary) r.lo = r.lo.cwiseMin(c.p), r.hi = r.hi.cwiseMax(c.p);
+      raw.push_back(std::move(r));
+    }
+    if (raw.empty()) return;
+    // Rows in document order; the row count that lets the pieces be drawn largest.
+    const double gap = 0.03;
+    double best = -1;
+    std::size_t best_rows = 1;
+    for (std::size_t rows = 1; rows <= raw.size(); ++rows) {
+      const std::size_t per = (raw.size() + rows - 1) / rows;
+      double width = 0, height = 0;
+      for (std::size_t r0 = 0; r0 < raw.size(); r0 += per) {
+        double w = 0, h = 0;
+        for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i)
+          w += raw[i].hi.x() - raw[i].lo.x() + gap, h = std::max(h, raw[i].hi.y() - raw[i].lo.y());
+        width = std::max(width, w), height += h + gap;
+      }
+      const double s = std::min(aspect / width, 1.0 / height);
+      if (s > best) best = s, best_rows = rows;
+    }
+    const std::size_t per = (raw.size() + best_rows - 1) / best_rows;
+    double y = 0;
+    lo = {0, 0}, hi = {0, 0};
+    for (std::size_t r0 = 0; r0 < raw.size(); r0 += per) {
+      double x = 0, h = 0;
+      for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) h = std::max(h, raw[i].hi.y() - raw[i].lo.y());
+      for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) {
+        const pattern::Vec2 shift(x - raw[i].lo.x(), y - h - raw[i].lo.y());
+        for (auto& sv : raw[i].view.stretches)
+          for (auto& q : sv.points) q += shift;
+        raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
+        hi.x() = std::max(hi.x(), x + raw[i].hi.x() - raw[i].lo.x());
+        x += raw[i].hi.x() - raw[i].lo.x() + gap;
+        pieces.push_back(std::move(raw[i].view));
+      }
+      y -= h + gap;
+    }
+    lo.y() = y + gap;
+  }
+
+  ImVec2 to_screen(const pattern::Vec2& p) const {
+    return {origin.x + static_cast<float>((p.x() - lo.x()) * scale), origin.y + static_cast<float>((hi.y() - p.y()) * scale)};
+  }
+
+  // ---- panels ---------------------------------------------------------------
+
+  void menu_bar(Studio& self) {
+    if (!ImGui::BeginMenuBar()) return;
+    const bool file_open = ImGui::BeginMenu("File");
+    track("File");
+    if (file_open) {
+      if (ImGui::MenuItem("Open...", "Ctrl+O")) want_open = true;
+      track("Open...");
+      if (ImGui::MenuItem("Save", "Ctrl+S", false, !file.empty())) self.save();
+      track("Save");
+      if (ImGui::MenuItem("Save as...")) want_save_as = true;
+      track("Save as...");
+      ImGui::EndMenu();
+    }
+    const bool edit_open = ImGui::BeginMenu("Edit");
+    track("Edit");
+    if (edit_open) {
+      const std::string u = undo->can_undo() ? "Undo " + undo->undo_label() : "Undo";
+      const std::string r = undo->can_redo() ? "Redo " + undo->redo_label() : "Redo";
+      if (ImGui::MenuItem((u + "###undo").c_str(), "Ctrl+Z", false, undo->can_undo())) do_undo();
+      track("Undo");
+      if (ImGui::MenuItem((r + "###redo").c_str(), "Ctrl+Y", false, undo->can_redo())) do_redo();
+      track("Redo");
+      if (ImGui::MenuItem("Delete", "Del", false, !selected.empty())) delete_selected();
+      track("Delete selected");
+      ImGui::EndMenu();
+    }
+    const bool sim_open = ImGui::BeginMenu("Simulate");
+    track("Simulate");
+    if (sim_open) {
+      if (ImGui::MenuItem("Drape", "F5", false, !job.running())) start_drape();
+      track("Drape menu");
+      if (ImGui::MenuItem("Stop", nullptr, false, job.running())) job.request_stop();
+      track("Stop menu");
+      ImGui::EndMenu();
+    }
+    std::string title = file.empty() ? std::string("(no file)") : file.filename().string();
+    if (is_modified()) title += " *";
+    ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(title.c_str()).x - 16);
+    ImGui::TextUnformatted(title.c_str());
+    ImGui::EndMenuBar();
+  }
+
+  void tree_node(const xvc::Node& node, int depth) {
+    const std::string id(node.id());
+    std::string label = node.tag;
+    for (const char* key : {"name", "piece", "size"})
+      if (const std::string* v = node.find_attribute(key)) label += std::string(" ") + *v;
+    if (!id.empty()) label += "  [" + id + "]";
+    const bool geometry = node.tag == "C2DSEQ";  // its C2D points are not listed
+    if (geometry) label += "  (" + std::to_string(node.children.size()) + " points)";
+    ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth;
+    const bool leaf = node.children.empty() || geometry || node.tag == "C2D";
+    if (leaf) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
+    if (!id.empty() && id == selected) flags |= ImGuiTreeNodeFlags_Selected;
+    if (depth < 2) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    ImGui::PushID(&node);
+    const bool open = ImGui::TreeNodeEx("node", flags, "%s", label.c_str());
+    if (!id.empty()) {
+      track("tree:" + id);
+      if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) selected = id;
+    }
+    if (open && !leaf) {
+      for (const auto& c : node.children) tree_node(c, depth + 1);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+
+  void delete_selected() {
+    if (selected.empty() || !doc.find(selected)) return;
+    const std::string id = selected;
+    selected.clear();
+    run(std::make_unique<xvc::DeleteNode>(id));
+  }
+
+  void inspector() {
+    const xvc::Node* node = selected.empty() ? nullptr : doc.find(selected);
+    if (!node) {
+      ImGui::TextDisabled("Select an element in the tree.");
+      return;
+    }
+    ImGui::Text("%s  %s", node->tag.c_str(), selected.c_str());
+    if (ImGui::BeginTable("attributes", 2, ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg)) {
+      ImGui::TableSetupColumn("attribute", ImGuiTableColumnFlags_WidthFixed, 90);
+      ImGui::TableSetupColumn("value");
+      for (const auto& a : node->attributes) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(a.name.c_str());
+        ImGui::TableNextColumn();
+        if (a.name == "id") {
+          ImGui::TextUnformatted(a.value.c_str());
+          continue;
+        }
+        // Edited in a copy; committed as one SetAttribute when the field is left.
+        const std::string key = selected + "/" + a.name;
+        std::string value = editing == key ? edit_buffer : a.value;
+        ImGui::SetNextItemWidth(-1);
+        const bool entered = ImGui::InputText(("##" + a.name).c_str(), &value, ImGuiInputTextFlags_EnterReturnsTrue);
+        track("attr:" + a.name);
+        if (ImGui::IsItemActive()) editing = key, edit_buffer = value;
+        if (entered || ImGui::IsItemDeactivatedAfterEdit()) {
+          editing.clear();
+          if (value != a.value) {
+            run(std::make_unique<xvc::SetAttribute>(selected, a.name, value));
+            break;  // the node may have changed
+          }
+        }
+      }
+      ImGui::EndTable();
+    }
+    if (ImGui::Button("Delete")) delete_selected();
+    track("Delete");
+  }
+
+  void pattern_panel() {
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float controls = 3 * ImGui::GetFrameHeightWithSpacing();
+    const ImVec2 size(avail.x, std::max(60.0f, avail.y - controls));
+    layout(size.x / std::max(1.0f, size.y));
+    ImGui::InvisibleButton("pattern canvas", size);
+    const bool canvas_hovered = ImGui::IsItemHovered();
+    const ImVec2 p0 = ImGui::GetItemRectMin();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddRectFilled(p0, {p0.x + size.x, p0.y + size.y}, rgb(252, 251, 248));
+    stretch_rects.clear();
+    hovered.reset();
+    if (pieces.empty()) {
+      dl->AddText({p0.x + 10, p0.y + 10}, rgb(120, 120, 120),
+                  doc.patterns().empty() ? "No pattern pieces." : "No pieces in this size.");
+    } else {
+      const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
+      const float margin = 12;
+      scale = static_cast<float>(std::min((size.x - 2 * margin) / w, (size.y - 2 * margin) / h));
+      origin = {p0.x + margin + static_cast<float>((size.x - 2 * margin - w * scale) / 2), p0.y + margin};
+      const ImVec2 mouse = ImGui::GetIO().MousePos;
+      float best = kPickRadius;
+      for (const auto& pv : pieces)
+        for (const auto& sv : pv.stretches) {
+          const ImVec2 mid = to_screen(sv.points[sv.points.size() / 2]);
+          const ImVec2 a = to_screen(sv.points.front()), b = to_screen(sv.points.back());
+          // The click target: the middle vertex of the stretch (or the middle of its one edge).
+          const ImVec2 c = sv.points.size() == 2 ? ImVec2{(a.x + b.x) / 2, (a.y + b.y) / 2} : mid;
+          stretch_rects[{pv.pattern_id, sv.id}] = {c.x - 2, c.y - 2, c.x + 2, c.y + 2};
+          if (!canvas_hovered) continue;
+          for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
+            const float d = distance_to_segment(mouse, to_screen(sv.points[k]), to_screen(sv.points[k + 1]));
+            if (d < best) best = d, hovered = std::make_pair(pv.pattern_id, sv.id);
+          }
+        }
+      for (const auto& pv : pieces) {
+        for (const auto& sv : pv.stretches) {
+          std::vector<ImVec2> pts;
+          for (const auto& q : sv.points) pts.push_back(to_screen(q));
+          const auto key = std::make_pair(pv.pattern_id, sv.id);
+          const auto pick = std::find(picked.begin(), picked.end(), key);
+          ImU32 col = sv.sewn ? rgb(40, 120, 200) : rgb(60, 60, 60);
+          float thick = sv.sewn ? 2.5f : 1.5f;
+          if (pick != picked.end()) col = pick == picked.begin() ? rgb(230, 110, 20) : rgb(200, 40, 140), thick = 3.5f;
+          if (hovered && *hovered == key) col = rgb(240, 170, 0), thick = 4.0f;
+          dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, thick);
+          dl->AddCircleFilled(pts.front(), 2.5f, rgb(60, 60, 60));
+        }
+        const ImVec2 c = to_screen(pv.centre);
+        const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
+        dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
+      }
+      if (hovered && ImGui::IsItemClicked()) {
+        const auto it = std::find(picked.begin(), picked.end(), *hovered);
+        if (it != picked.end()) picked.erase(it);
+        else picked.push_back(*hovered);
+      }
+      if (hovered) ImGui::SetTooltip("%s %s: click to pick for a seam", hovered->first.c_str(), hovered->second.c_str());
+    }
+    // Seam picking: the first pick is sewn forward to the others, reversed.
+    std::string picks;
+    for (std::size_t i = 0; i < picked.size(); ++i) {
+      const xvc::Node* p = doc.find(picked[i].first);
+      picks += (i ? (i == 1 ? "  to  " : " + ") : "") + (p ? std::string(p->attribute("piece")) : picked[i].first) +
+               " " + picked[i].second;
+    }
+    ImGui::Text("Picked: %s", picks.empty() ? "(click stretches of the outlines)" : picks.c_str());
+    ImGui::SetNextItemWidth(160);
+    ImGui::InputText("##seam name", &seam_name);
+    track("seam name");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(picked.size() < 2);
+    if (ImGui::Button("Add seam")) add_seam();
+    track("Add seam");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Clear picks")) picked.clear();
+    track("Clear picks");
+    ImGui::SameLine();
+    if (ImGui::Button("Suggest seams")) suggest();
+    track("Suggest seams");
+  }
+
+  void add_seam() {
+    std::vector<xvc::HemRef> hems;
+    for (std::size_t i = 0; i < picked.size(); ++i) {
+      xvc::HemRef h;
+      h.pattern = picked[i].first;
+      h.from = h.to = picked[i].second;
+      h.reverse = i > 0;  // pieces face up: one side forward, the other reverse (seams.hpp)
+      hems.push_back(h);
+    }
+    std::vector<xvc::Node> nodes{xvc::seam_node(seam_name.empty() ? "seam" : seam_name, hems)};
+    run(std::make_unique<xvc::AddSeams>(std::move(nodes)));
+    picked.clear();
+  }
+
+  void suggest() {
+    xvc::SeamOptions o;
+    o.size = drape.size;
+    std::vector<xvc::Node> nodes;
+    try {
+      for (const auto& s : xvc::suggest_seams(doc, o)) nodes.push_back(xvc::seam_node(s));
+    } catch (const std::exception& e) {
+      say(std::string("Suggesting seams failed: ") + e.what(), true);
+      return;
+    }
+    if (nodes.empty()) {
+      say("No seams to suggest for size " + drape.size + ".");
+      return;
+    }
+    run(std::make_unique<xvc::AddSeams>(std::move(nodes)));
+  }
+
+  void simulate_panel() {
+    const bool running = job.running();
+    ImGui::BeginDisabled(running);
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::BeginCombo("size", drape.size.empty() ? "-" : drape.size.c_str())) {
+      for (const auto& s : sizes) {
+        if (ImGui::Selectable(s.c_str(), s == drape.size)) drape.size = s;
+        track("size:" + s);
+      }
+      ImGui::EndCombo();
+    }
+    track("size");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120);
+    const int q = static_cast<int>(drape.quality);
+    if (ImGui::BeginCombo("quality", kQualityNames[q])) {
+      for (int i = 0; i < 3; ++i) {
+        if (ImGui::Selectable(kQualityNames[i], i == q)) {
+          drape.quality = static_cast<scene::Quality>(i);
+          if (!self_collision_told) drape.self_collision = drape.quality != scene::Quality::preview;
+        }
+        track(std::string("quality:") + kQualityNames[i]);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kQualityHelp[i]);
+      }
+      ImGui::EndCombo();
+    }
+    track("quality");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kQualityHelp[q]);
+    if (ImGui::Checkbox("self-collision", &drape.self_collision)) self_collision_told = true;
+    track("self-collision");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90);
+    double spacing_cm = drape.spacing * 100;
+    if (ImGui::InputDouble("spacing cm", &spacing_cm, 0, 0, "%.2f")) drape.spacing = std::clamp(spacing_cm, 0.0, 10.0) / 100;
+    track("spacing");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Mesh spacing; 0 = the document's mesh.spacing, else 1.5 cm");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(70);
+    if (ImGui::InputDouble("limit s", &drape.time_limit, 0, 0, "%.1f"))
+      drape.time_limit = std::clamp(drape.time_limit, 0.04, 120.0);
+    track("time limit");
+    ImGui::EndDisabled();
+
+    ImGui::BeginDisabled(running || pieces.empty());
+    if (ImGui::Button("Drape")) start_drape();
+    track("Drape");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!running);
+    if (ImGui::Button("Stop")) job.request_stop();
+    track("Stop");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    const DrapeStatus s = job.status();
+    const float f = s.time_limit > 0 ? static_cast<float>(std::min(1.0, s.t / s.time_limit)) : 0.0f;
+    std::string overlay = s.stage;
+    if (s.running && s.stage != "placing")
+      overlay += "  " + format_fixed(s.t, 2) + " s  seams " + std::to_string(s.seams_closed) + "/" +
+                 std::to_string(s.seam_pairs);
+    if (s.running || !s.stage.empty()) overlay += "  wall " + format_fixed(s.wall_s, 1) + " s";
+    ImGui::ProgressBar(s.stage == "done" ? 1.0f : f, {-1, 0}, overlay.c_str());
+    track("progress");
+    if (cert) {
+      const auto& c = *cert;
+      int pairs = 0, closed = 0;
+      for (const auto& st : c.seams) pairs += st.pairs, closed += st.closed;
+      ImGui::Text("%s after %.2f s (%.1f s wall), %s; seams %d/%d; %d crossings; penetration %.2f mm",
+                  c.stop_reason.c_str(), c.simulated_s, c.wall_s, c.passed() ? "checks passed" : "a check failed",
+                  closed, pairs, c.triangle_intersections, c.max_penetration * 1000);
+    }
+  }
+
+  void start_drape() {
+    if (job.running()) return;
+    if (pieces.empty()) {
+      say("Nothing to drape: the document has no pieces in this size.", true);
+      return;
+    }
+    try {
+      if (work_dir.empty()) {
+        work_dir = fs::temp_directory_path() / ("vgd-studio-" + std::to_string(::getpid()) + "-" +
+                                                std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+        fs::create_directories(work_dir);
+      }
+      // The drape reads the document as it is now, unsaved edits included.
+      const fs::path copy = work_dir / (file.empty() ? fs::path("garment.xvc") : file.filename());
+      xvc::save_file(doc, copy);
+      scene::DrapeOptions d = drape;
+      d.garment = copy;
+      scene::SceneDef def = scene::drape_scene(d);
+      cert.reset();
+      cloth = {};
+      job.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
+      say("Draping size " + drape.size + " at quality " + kQualityNames[static_cast<int>(drape.quality)] + "...");
+    } catch (const std::exception& e) {
+      say(std::string("The drape cannot start: ") + e.what(), true);
+    }
+  }
+
+  void poll_job() {
+    mesh::SurfaceMesh b;
+    if (job.take_body(b)) body = std::move(b), preview_dirty = true;
+    if (job.take_cloth(cloth)) preview_dirty = true;
+    if (auto c = job.take_certificate()) cert = std::move(c);
+    const DrapeStatus s = job.status();
+    if (!s.running && !s.message.empty() && reported != s.message + std::to_string(revision)) {
+      reported = s.message + std::to_string(revision);
+      say("Drape " + s.message + ".", s.stage == "failed");
+    }
+  }
+
+  render::Scene preview_scene() const {
+    render::Scene sc;
+    if (body) {
+      render::Mesh m;
+      m.name = "body";
+      m.kind = render::MeshKind::body;
+      m.colour = render::kBody;
+      for (const auto& v : body->vertices)
+        m.positions.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
+      m.triangles = body->triangles;
+      sc.meshes.push_back(std::move(m));
+    }
+    if (!cloth.positions.empty()) {
+      for (std::size_t p = 0; p < std::max<std::size_t>(1, cloth.pieces.size()); ++p) {
+        render::Mesh m;
+        m.name = p < cloth.pieces.size() ? cloth.pieces[p] : "garment";
+        m.colour = render::piece_colour(static_cast<int>(p));
+        m.positions = cloth.positions;
+        for (std::size_t t = 0; t < cloth.triangles.size(); ++t)
+          if (cloth.triangle_piece.empty() || cloth.triangle_piece[t] == static_cast<int>(p))
+            m.triangles.push_back(cloth.triangles[t]);
+        if (!m.triangles.empty()) sc.meshes.push_back(std::move(m));
+      }
+    }
+    return sc;
+  }
+
+  void preview_panel() {
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));
+    const bool running = job.running();
+    const double now = ImGui::GetTime();
+    const bool resized = w != tex_w || h != tex_h;
+    if ((body || !cloth.positions.empty()) && gl::ready() &&
+        ((preview_dirty && (!running || now - last_preview >= kPreviewInterval)) || (resized && texture))) {
+      try {
+        if (!renderer) renderer = std::make_unique<render::OffscreenRenderer>();
+        renderer->set_scene(preview_scene());
+        render::OffscreenOptions o;
+        o.supersample = running ? 1 : 2;
+        const render::Image img = renderer->render(render::ViewPreset{"studio", azimuth, elevation, 30}, w, h, o);
+        if (restore) restore();
+        texture = gl::upload_texture(img, texture);
+        tex_w = w, tex_h = h;
+      } catch (const std::exception& e) {
+        if (restore) restore();
+        say(std::string("The preview cannot be drawn: ") + e.what(), true);
+        body.reset();
+        cloth = {};
+      }
+      preview_dirty = false;
+      last_preview = now;
+    }
+    if (texture && (body || !cloth.positions.empty())) {
+      // An invisible button under the picture: ImGui::Image takes no input.
+      const ImVec2 size{static_cast<float>(tex_w), static_cast<float>(tex_h)};
+      ImGui::InvisibleButton("preview", size);
+      track("preview");
+      const ImVec2 a = ImGui::GetItemRectMin();
+      ImGui::GetWindowDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture)), a,
+                                           {a.x + size.x, a.y + size.y});
+      if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+        const ImVec2 d = ImGui::GetIO().MouseDelta;
+        azimuth -= 0.4 * d.x;
+        elevation = std::clamp(elevation + 0.3 * d.y, -60.0, 80.0);
+        preview_dirty = true;
+      }
+    } else {
+      ImGui::TextDisabled("Drape the garment to see it on the body.");
+      ImGui::TextDisabled("Drag the picture to turn it.");
+    }
+  }
+
+  void dialogs(Studio& self) {
+    if (want_open) ImGui::OpenPopup("Open document"), want_open = false, path_text = file.string();
+    if (want_save_as) ImGui::OpenPopup("Save as"), want_save_as = false, path_text = file.string();
+    for (const bool opening : {true, false}) {
+      const char* title = opening ? "Open document" : "Save as";
+      if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) continue;
+      ImGui::TextUnformatted(opening ? "XVC document to open:" : "Save the document as:");
+      ImGui::SetNextItemWidth(480);
+      if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+      const bool enter = ImGui::InputText("##path", &path_text, ImGuiInputTextFlags_EnterReturnsTrue);
+      track("dialog:path");
+      const bool ok = ImGui::Button(opening ? "Open" : "Save") || enter;
+      track("dialog:ok");
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+      track("dialog:cancel");
+      if (ok) {
+        ImGui::CloseCurrentPopup();
+        if (opening) self.open(path_text);
+        else self.save(path_text);
+      }
+      ImGui::EndPopup();
+    }
+    if (error_pending) ImGui::OpenPopup("Error"), error_pending = false;
+    if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::PushTextWrapPos(560);
+      ImGui::TextUnformatted(error_text.c_str());
+      ImGui::PopTextWrapPos();
+      if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
+      track("error:ok");
+      ImGui::EndPopup();
+    }
+  }
+
+  void shortcuts(Studio& self) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    auto pressed = [](ImGuiKey k) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(k), false); };
+    if (io.KeyCtrl && pressed(ImGuiKey_Z)) io.KeyShift ? do_redo() : do_undo();
+    if (io.KeyCtrl && pressed(ImGuiKey_Y)) do_redo();
+    // S, O and F5 are not among ImGui 1.86's named keys: hosts put letters at
+    // their ASCII codes and F5 at kF5Key (GLFW's own key codes).
+    if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) file.empty() ? void(want_save_as = true) : void(self.save());
+    if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) want_open = true;
+    if (pressed(ImGuiKey_Delete)) delete_selected();
+    if (ImGui::IsKeyPressed(kF5Key, false)) start_drape();
+  }
+};
+
+Studio::Studio() : impl_(std::make_unique<Impl>()) {}
+Studio::~Studio() = default;
+
+bool Studio::open(const fs::path& path) {
+  Impl& I = *impl_;
+  if (I.job.running()) {
+    I.say("Stop the drape before opening another document.", true);
+    return false;
+  }
+  try {
+    xvc::Document d = xvc::load_file(path);
+    I.undo.reset();
+    I.doc = std::move(d);
+    I.undo = std::make_unique<xvc::UndoStack>(I.doc);
+    I.saved = I.doc;
+    I.file = fs::absolute(path);
+    I.selected.clear();
+    I.picked.clear();
+    I.drape.size.clear();
+    I.cert.reset();
+    I.body.reset();
+    I.cloth = {};
+    I.changed();
+    I.refresh_sizes();
+    I.say("Opened " + path.string() + ": " + std::to_string(I.doc.patterns().size()) + " patterns, " +
+          std::to_string(xvc::list_seams(I.doc).size()) + " seams.");
+    return true;
+  } catch (const std::exception& e) {
+    I.say("Cannot open " + path.string() + ": " + e.what(), true);
+    return false;
+  }
+}
+
+bool Studio::save(const fs::path& path) {
+  Impl& I = *impl_;
+  const fs::path target = path.empty() ? I.file : path;
+  if (target.empty()) {
+    I.want_save_as = true;
+    return false;
+  }
+  try {
+    xvc::save_file(I.doc, target);
+    I.file = fs::absolute(target);
+    I.saved = I.doc;
+    I.modified_rev = -1;
+    I.say("Saved " + target.string() + ".");
+    return true;
+  } catch (const std::exception& e) {
+    I.say("Cannot save " + target.string() + ": " + e.what(), true);
+    return false;
+  }
+}
+
+void Studio::draw() {
+  Impl& I = *impl_;
+  I.widgets.clear();
+  I.poll_job();
+  I.shortcuts(*this);
+
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(vp->WorkPos);
+  ImGui::SetNextWindowSize(vp->WorkSize);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_MenuBar |
+                                 ImGuiWindowFlags_NoSavedSettings;
+  ImGui::Begin("vgd studio", nullptr, flags);
+  I.menu_bar(*this);
+
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float status_h = ImGui::GetFrameHeightWithSpacing();
+  const float body_h = avail.y - status_h;
+  const float left_w = std::round(avail.x * 0.24f), right_w = std::round(avail.x * 0.36f);
+  const float centre_w = avail.x - left_w - right_w - 2 * ImGui::GetStyle().ItemSpacing.x;
+
+  ImGui::BeginChild("left", {left_w, body_h});
+  ImGui::BeginChild("tree", {0, std::round(body_h * 0.6f)}, true);
+  I.tree_node(I.doc.root(), 0);
+  ImGui::EndChild();
+  ImGui::BeginChild("inspector", {0, 0}, true);
+  I.inspector();
+  ImGui::EndChild();
+  ImGui::EndChild();
+
+  ImGui::SameLine();
+  ImGui::BeginChild("patterns", {centre_w, body_h}, true);
+  I.pattern_panel();
+  ImGui::EndChild();
+
+  ImGui::SameLine();
+  ImGui::BeginChild("right", {right_w, body_h});
+  ImGui::BeginChild("simulate", {0, 4.5f * ImGui::GetFrameHeightWithSpacing() + 8}, true);
+  I.simulate_panel();
+  ImGui::EndChild();
+  ImGui::BeginChild("preview", {0, 0}, true, ImGuiWindowFlags_NoScrollbar);
+  I.preview_panel();
+  ImGui::EndChild();
+  ImGui::EndChild();
+
+  if (I.status_error) ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(190, 30, 30, 255));
+  ImGui::TextUnformatted(I.status.c_str());
+  if (I.status_error) ImGui::PopStyleColor();
+  I.dialogs(*this);
+  ImGui::End();
+}
+
+const xvc::Document& Studio::document() const { return impl_->doc; }
+const fs::path& Studio::file() const { return impl_->file; }
+bool Studio::modified() const { return impl_->is_modified(); }
+const std::string& Studio::status() const { return impl_->status; }
+bool Studio::status_is_error() const { return impl_->status_error; }
+scene::DrapeOptions& Studio::drape_options() { return impl_->drape; }
+DrapeStatus Studio::drape_status() const { return impl_->job.status(); }
+const std::optional<scene::Certificate>& Studio::certificate() const { return impl_->cert; }
+void Studio::wait_for_drape() { impl_->job.wait(); }
+const std::string& Studio::selected() const { return impl_->selected; }
+const std::vector<std::pair<std::string, std::string>>& Studio::picked() const { return impl_->picked; }
+void Studio::set_restore_context(std::function<void()> restore) { impl_->restore = std::move(restore); }
+
+std::optional<Rect> Studio::widget(std::string_view name) const {
+  const auto it = impl_->widgets.find(name);
+  if (it == impl_->widgets.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<Rect> Studio::stretch_on_screen(std::string_view pattern_id, std::string_view stretch_id) const {
+  const auto it = impl_->stretch_rects.find({std::string(pattern_id), std::string(stretch_id)});
+  if (it == impl_->stretch_rects.end()) return std::nullopt;
+  return it->second;
+}
+
+}  // namespace vgd::studio

@@ -1,0 +1,324 @@
+// The studio driven as a user drives it: synthetic clicks and keys through
+// ImGui, frames drawn off-screen (OSMesa), the document and the pixels checked.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "vgd/qa/compare.hpp"
+#include "vgd/render/image.hpp"
+#include "vgd/scene/drape.hpp"
+#include "vgd/studio/harness.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/seams.hpp"
+#include "vgd/xvc/style.hpp"
+
+namespace fs = std::filesystem;
+using vgd::studio::Harness;
+
+namespace {
+
+const fs::path kSource = VGD_SOURCE_DIR;
+const fs::path kTShirt = kSource / "data/garments/t-shirt.xvc";
+const fs::path kSkirt = kSource / "data/garments/a-line-skirt.xvc";
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("vgd-test-studio-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// The PATTERN id of a piece in a size.
+std::string pattern_id(const vgd::xvc::Document& doc, const std::string& piece, const std::string& size) {
+  for (const auto* p : doc.patterns())
+    if (p->attribute("piece") == piece && p->attribute("size") == size) return std::string(p->id());
+  return {};
+}
+
+std::string stretch_id(const vgd::xvc::Document& doc, const std::string& pattern, std::size_t k) {
+  return vgd::xvc::boundary_stretches(*doc.find(pattern)).at(k).id;
+}
+
+// Pixels of a region that differ from the region's most common colour.
+double non_background_fraction(const vgd::render::Image& img, const vgd::studio::Rect& r) {
+  std::map<std::uint32_t, int> counts;
+  int total = 0, other = 0;
+  auto key = [](const std::uint8_t* p) { return (p[0] << 16) | (p[1] << 8) | p[2]; };
+  for (int y = static_cast<int>(r.y0); y < static_cast<int>(r.y1); ++y)
+    for (int x = static_cast<int>(r.x0); x < static_cast<int>(r.x1); ++x) ++counts[key(img.pixel(x, y))], ++total;
+  std::uint32_t bg = 0;
+  int most = 0;
+  for (const auto& [k, n] : counts)
+    if (n > most) most = n, bg = k;
+  for (const auto& [k, n] : counts)
+    if (k != bg) other += n;
+  return total ? static_cast<double>(other) / total : 0.0;
+}
+
+vgd::render::Image crop(const vgd::render::Image& img, const vgd::studio::Rect& r) {
+  const int x0 = static_cast<int>(r.x0), y0 = static_cast<int>(r.y0);
+  vgd::render::Image out(static_cast<int>(r.x1) - x0, static_cast<int>(r.y1) - y0);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) std::copy_n(img.pixel(x0 + x, y0 + y), 4, out.pixel(x, y));
+  return out;
+}
+
+}  // namespace
+
+TEST(Studio, OpensADocumentAndShowsItsTreeAndTheSampleSizesPieces) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
+  h.frame();
+  const auto& doc = h.studio().document();
+  EXPECT_NE(h.studio().status().find(std::to_string(doc.patterns().size()) + " patterns"), std::string::npos);
+  EXPECT_TRUE(h.studio().widget("tree:garment"));
+  // Every stretch of every size-38 piece is on screen to pick, and no other size's.
+  int shown = 0;
+  for (const auto* p : doc.patterns())
+    for (const auto& st : vgd::xvc::boundary_stretches(*p)) {
+      const bool on = h.studio().stretch_on_screen(p->id(), st.id).has_value();
+      EXPECT_EQ(on, p->attribute("size") == "38") << p->id() << " " << st.id;
+      shown += on;
+    }
+  EXPECT_GT(shown, 8);
+  EXPECT_EQ(h.studio().drape_options().size, "38");
+}
+
+TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  EXPECT_EQ(o.quality, vgd::scene::Quality::standard);
+  for (const auto& [name, q] : std::vector<std::pair<std::string, vgd::scene::Quality>>{
+           {"precise", vgd::scene::Quality::precise},
+           {"preview", vgd::scene::Quality::preview},
+           {"standard", vgd::scene::Quality::standard}}) {
+    h.click("quality");
+    h.click("quality:" + name);
+    EXPECT_EQ(o.quality, q) << name;
+    // Preview drapes without self-collision unless ticked, as vgd drape does.
+    EXPECT_EQ(o.self_collision, q != vgd::scene::Quality::preview) << name;
+    vgd::scene::DrapeOptions d = o;
+    d.garment = kSkirt;
+    const auto def = vgd::scene::drape_scene(d);
+    ASSERT_TRUE(def.integrator.preset);
+    EXPECT_EQ(*def.integrator.preset, q) << name;
+  }
+  // Ticking self-collision by hand outlasts a preset change.
+  h.click("quality");
+  h.click("quality:preview");
+  h.click("self-collision");
+  EXPECT_TRUE(o.self_collision);
+  h.click("quality");
+  h.click("quality:precise");
+  h.click("quality");
+  h.click("quality:preview");
+  EXPECT_TRUE(o.self_collision);
+}
+
+TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  const auto& doc = h.studio().document();
+  const std::string front = pattern_id(doc, "FRONT", "38"), back = pattern_id(doc, "BACK", "38");
+  ASSERT_FALSE(front.empty());
+  ASSERT_FALSE(back.empty());
+  const std::string a = stretch_id(doc, front, 0), b = stretch_id(doc, back, 0);
+  const std::size_t seams_before = vgd::xvc::list_seams(doc).size();
+
+  for (const auto& [pat, seq] : {std::pair{front, a}, std::pair{back, b}}) {
+    const auto r = h.studio().stretch_on_screen(pat, seq);
+    ASSERT_TRUE(r) << pat << " " << seq;
+    h.click_at(r->cx(), r->cy());
+  }
+  ASSERT_EQ(h.studio().picked().size(), 2u);
+  EXPECT_EQ(h.studio().picked()[0], (std::pair{front, a}));
+  EXPECT_EQ(h.studio().picked()[1], (std::pair{back, b}));
+  h.click("Add seam");
+  auto seams = vgd::xvc::list_seams(h.studio().document());
+  ASSERT_EQ(seams.size(), seams_before + 1) << h.studio().status();
+  const auto& added = seams.back();
+  ASSERT_EQ(added.hems.size(), 2u);
+  EXPECT_EQ(added.hems[0].pattern, front);
+  EXPECT_EQ(added.hems[0].from, a);
+  EXPECT_FALSE(added.hems[0].reverse);
+  EXPECT_EQ(added.hems[1].pattern, back);
+  EXPECT_EQ(added.hems[1].to, b);
+  EXPECT_TRUE(added.hems[1].reverse);
+  EXPECT_TRUE(h.studio().picked().empty());
+  EXPECT_TRUE(h.studio().modified());
+
+  h.key("ctrl+z");
+  EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), seams_before);
+  EXPECT_FALSE(h.studio().modified());
+  h.key("ctrl+y");
+  EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), seams_before + 1);
+}
+
+TEST(Studio, AnAttributeEditedInTheInspectorIsOneUndoableCommand) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  const std::string seam = vgd::xvc::list_seams(h.studio().document()).front().id;
+  const std::string old_name(h.studio().document().find(seam)->attribute("name"));
+  h.click("tree:" + seam);
+  EXPECT_EQ(h.studio().selected(), seam);
+  h.click("attr:name");
+  h.key("ctrl+a");
+  h.type("front hem to back hem");
+  h.key("enter");
+  EXPECT_EQ(h.studio().document().find(seam)->attribute("name"), "front hem to back hem") << h.studio().status();
+  h.key("ctrl+z");
+  EXPECT_EQ(h.studio().document().find(seam)->attribute("name"), old_name);
+  // Delete (key) removes the selected element; undo brings it back.
+  h.click("tree:" + seam);
+  h.key("delete");
+  EXPECT_EQ(h.studio().document().find(seam), nullptr);
+  h.key("ctrl+z");
+  EXPECT_NE(h.studio().document().find(seam), nullptr);
+}
+
+TEST(Studio, TheOpenDialogTakesATypedPathAndABadFileKeepsTheOpenDocument) {
+  const fs::path dir = temp_dir("open");
+  Harness h;
+  h.frame();
+  h.click("File");
+  h.click("Open...");
+  h.key("ctrl+a");
+  h.type(kSkirt.string());
+  h.key("enter");
+  EXPECT_EQ(h.studio().file(), kSkirt) << h.studio().status();
+  const std::size_t patterns = h.studio().document().patterns().size();
+  ASSERT_GT(patterns, 0u);
+
+  const fs::path bad = dir / "broken.xvc";
+  std::ofstream(bad) << "<GARMENT version=\"1.0\"><PATTERNS><PATTERN id=\"p1\"";
+  EXPECT_FALSE(h.studio().open(bad));
+  EXPECT_TRUE(h.studio().status_is_error());
+  EXPECT_NE(h.studio().status().find("broken.xvc"), std::string::npos) << h.studio().status();
+  EXPECT_EQ(h.studio().file(), kSkirt);
+  EXPECT_EQ(h.studio().document().patterns().size(), patterns);
+  h.frames(2);
+  ASSERT_TRUE(h.studio().widget("error:ok")) << "the error is shown in a dialog";
+  h.click("error:ok");
+  h.frame();
+  EXPECT_FALSE(h.studio().widget("error:ok"));
+}
+
+TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
+  const fs::path dir = temp_dir("save");
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  h.click("Suggest seams");
+  // The skirt has its seams already: suggestions add them a second time, one undo step.
+  const std::size_t seams = vgd::xvc::list_seams(h.studio().document()).size();
+  ASSERT_TRUE(h.studio().modified()) << h.studio().status();
+  const fs::path out = dir / "skirt-edited.xvc";
+  ASSERT_TRUE(h.studio().save(out)) << h.studio().status();
+  EXPECT_FALSE(h.studio().modified());
+  EXPECT_EQ(h.studio().file(), out);
+  const auto reread = vgd::xvc::load_file(out);
+  EXPECT_EQ(vgd::xvc::list_seams(reread).size(), seams);
+  EXPECT_TRUE(reread == h.studio().document());
+  // A save that cannot happen says so and keeps the file name.
+  std::ofstream(dir / "a-file") << "not a folder";
+  EXPECT_FALSE(h.studio().save(dir / "a-file" / "x.xvc"));
+  EXPECT_TRUE(h.studio().status_is_error());
+  EXPECT_EQ(h.studio().file(), out);
+}
+
+TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
+  Harness h(1024, 700);
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 3.0;
+  o.spacing = 0.03;  // a coarse mesh: the test is about the studio, not the drape
+  h.click("quality");
+  h.click("quality:preview");
+  const auto preview = h.studio().widget("preview");
+  EXPECT_FALSE(preview) << "no picture before the first drape";
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(4);
+  const auto s = h.studio().drape_status();
+  EXPECT_EQ(s.stage, "done") << s.message;
+  ASSERT_TRUE(h.studio().certificate());
+  const auto& c = *h.studio().certificate();
+  int pairs = 0, closed = 0;
+  for (const auto& st : c.seams) pairs += st.pairs, closed += st.closed;
+  EXPECT_GT(pairs, 0);
+  EXPECT_EQ(closed, pairs);
+  EXPECT_LT(c.max_penetration, 0.001);
+  // The preview shows the body and the skirt: a picture, not a blank panel.
+  const auto r = h.studio().widget("preview");
+  ASSERT_TRUE(r);
+  const auto img = h.screenshot();
+  EXPECT_GT(non_background_fraction(img, *r), 0.1);
+  // The skirt's blue (render::kFabric family) is in the picture.
+  int blue = 0;
+  for (int y = static_cast<int>(r->y0); y < static_cast<int>(r->y1); ++y)
+    for (int x = static_cast<int>(r->x0); x < static_cast<int>(r->x1); ++x) {
+      const auto* p = img.pixel(x, y);
+      blue += p[2] > p[0] + 40 && p[2] > p[1] + 20;
+    }
+  EXPECT_GT(blue, 500);
+  EXPECT_NE(h.studio().status().find("rest"), std::string::npos) << h.studio().status();
+  // Dragging the picture turns the view.
+  h.drag(r->cx(), r->cy(), r->cx() + 120, r->cy());
+  h.frames(2);
+  EXPECT_LT(vgd::qa::ssim(crop(img, *r), crop(h.screenshot(), *r)), 0.9);
+}
+
+TEST(Studio, StopEndsARunningDrape) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  h.studio().drape_options().time_limit = 60;
+  h.click("Drape");
+  ASSERT_TRUE(h.studio().drape_status().running);
+  h.click("Stop");
+  h.studio().wait_for_drape();
+  h.frame();
+  EXPECT_EQ(h.studio().drape_status().stage, "stopped");
+  EXPECT_NE(h.studio().status().find("stopped"), std::string::npos) << h.studio().status();
+}
+
+TEST(Studio, ScriptsNameTheLineThatFailed) {
+  const fs::path dir = temp_dir("script");
+  std::ofstream(dir / "s.txt") << "# a comment\nopen " << kTShirt.string() << "\nclick No such button\n";
+  Harness h;
+  try {
+    h.run_script(dir / "s.txt");
+    FAIL() << "the script should fail";
+  } catch (const vgd::Error& e) {
+    EXPECT_EQ(e.diagnostic().line, 3);
+    EXPECT_NE(std::string(e.what()).find("No such button"), std::string::npos) << e.what();
+  }
+}
+
+// QA's snapshot of the studio: the first frame with the T-shirt open.
+// VGD_UPDATE_GOLDENS=1 rewrites it (tests/golden/regenerate.sh).
+TEST(Studio, TheFirstFrameWithTheTShirtMatchesItsGolden) {
+  const fs::path golden = kSource / "tests/golden/studio/t-shirt.png";
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frames(3);
+  const auto img = h.screenshot();
+  if (std::getenv("VGD_UPDATE_GOLDENS")) {
+    fs::create_directories(golden.parent_path());
+    vgd::render::write_png(img, golden);
+  }
+  const auto ref = vgd::render::read_png(golden);
+  ASSERT_EQ(ref.width, img.width);
+  ASSERT_EQ(ref.height, img.height);
+  // The file name in the menu bar is the only text that could differ between
+  // checkouts (none does: it is the file's name, not its folder).
+  EXPECT_GT(vgd::qa::colour_ssim(ref, img), 0.99);
+  EXPECT_LT(vgd::qa::pixel_stats(ref, img).differing_percent, 1.0);
+}
