@@ -21,7 +21,7 @@ namespace {
 struct Options {
   std::string file, script, screenshot;
   bool headless = false;
-  int width = 1280, height = 800, threads = 0;
+  int width = 1280, height = 800, threads = 0, quit_after = 0;
 };
 
 int run_window(const Options& o) {
@@ -51,8 +51,8 @@ int run_window(const Options& o) {
     {
       vgd::studio::Studio studio;
       studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
-      if (!o.file.empty()) studio.open(o.file);
-      while (!glfwWindowShouldClose(window)) {
+      if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
+      for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
         glfwPollEvents();
         vgd::studio::new_frame_gl();
         ImGui_ImplGlfw_NewFrame();
@@ -60,6 +60,15 @@ int run_window(const Options& o) {
         studio.draw();
         ImGui::Render();
         vgd::studio::render_gl(ImGui::GetDrawData());
+        if (o.quit_after > 0 && frame >= o.quit_after) {
+          if (!o.screenshot.empty()) {
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window, &w, &h);
+            vgd::render::write_png(vgd::studio::read_framebuffer(w, h), o.screenshot);
+          }
+          std::printf("%s\n", studio.status().c_str());
+          break;
+        }
         glfwSwapBuffers(window);
       }
     }
@@ -99,7 +108,9 @@ int main(int argc, char** argv) {
                  "With --headless: run these studio commands (open, click, click-stretch, key, type, frames, "
                  "wait-drape, screenshot, save, expect-status; docs/studio.md)")
       ->check(CLI::ExistingFile);
-  app.add_option("--screenshot", o.screenshot, "With --headless: write the last frame to this PNG");
+  app.add_option("--screenshot", o.screenshot, "Write the last frame to this PNG (a window: with --quit-after)");
+  app.add_option("--quit-after", o.quit_after, "A window: close after this many frames (smoke tests)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--width", o.width, "Window or off-screen width, pixels (default 1280)")->check(CLI::Range(640, 4096));
   app.add_option("--height", o.height, "Window or off-screen height, pixels (default 800)")->check(CLI::Range(480, 4096));
   app.add_option("--threads", o.threads, "Threads for the drape's force kernels (default 0 = all cores)")
@@ -107,8 +118,8 @@ int main(int argc, char** argv) {
   app.footer("Exit codes: 0 done, 1 bad input or a failed script line (the message names it), 3 the studio ended "
              "with an error in its status bar.");
   CLI11_PARSE(app, argc, argv);
-  if (!o.headless && (!o.script.empty() || !o.screenshot.empty())) {
-    std::fprintf(stderr, "vgd-studio: error: --script and --screenshot need --headless\n");
+  if (!o.headless && (!o.script.empty() || (!o.screenshot.empty() && o.quit_after == 0))) {
+    std::fprintf(stderr, "vgd-studio: error: --script needs --headless, --screenshot needs --headless or --quit-after\n");
     return 2;
   }
   omp_set_num_threads(o.threads > 0 ? o.threads : omp_get_num_procs());

@@ -25,10 +25,18 @@ class LiveSink : public sim::FrameSink {
     cloth_.triangles = model.triangles;
     cloth_.triangle_piece = model.triangle_piece;
     cloth_.pieces = model.pieces;
+    cloth_.uv.clear();
+    for (const auto& q : model.uv) cloth_.uv.push_back({q.x(), q.y()});
+    cloth_.representative.clear();
     cloth_.positions.clear();
   }
-  void frame(int, double, const sim::VecX& x) override {
+  void merged(int, const std::vector<int>& representative) override {
     std::lock_guard lock(m_);
+    cloth_.representative = representative;
+  }
+  void frame(int, double t, const sim::VecX& x) override {
+    std::lock_guard lock(m_);
+    cloth_.t = t;
     cloth_.positions.resize(static_cast<std::size_t>(x.size() / 3));
     for (std::size_t i = 0; i < cloth_.positions.size(); ++i)
       cloth_.positions[i] = {static_cast<float>(x[3 * i]), static_cast<float>(x[3 * i + 1]),

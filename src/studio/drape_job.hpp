@@ -20,7 +20,10 @@ struct LiveCloth {
   std::vector<std::array<int, 3>> triangles;
   std::vector<int> triangle_piece;
   std::vector<std::string> pieces;
+  std::vector<std::array<double, 2>> uv;        // material coordinates, m (texture coordinates on export)
+  std::vector<int> representative;              // seam merges so far (FrameSink::merged); empty = none
   std::vector<std::array<float, 3>> positions;  // m
+  double t = 0;                                 // s simulated
 };
 
 class DrapeJob {

@@ -183,6 +183,8 @@ void Harness::run_script(const fs::path& script) {
         frame();
       } else if (cmd == "save") {
         if (!studio().save(arg.empty() ? fs::path() : resolve(arg))) fail(studio().status());
+      } else if (cmd == "export-vrml") {
+        if (!studio().export_vrml(resolve(arg))) fail(studio().status());
       } else if (cmd == "click") {
         click(arg);
       } else if (cmd == "click-stretch") {
@@ -208,7 +210,7 @@ void Harness::run_script(const fs::path& script) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, click, click-stretch, key, type, frames, wait-drape, screenshot, "
+        fail("unknown command (open, save, export-vrml, click, click-stretch, key, type, frames, wait-drape, screenshot, "
              "expect-status)");
       }
     } catch (const Error& e) {

@@ -37,6 +37,23 @@ void new_frame_gl() { ImGui_ImplOpenGL3_NewFrame(); }
 
 void render_gl(ImDrawData* data) { ImGui_ImplOpenGL3_RenderDrawData(data); }
 
+render::Image read_framebuffer(int width, int height) {
+  render::Image img(width, height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  // OpenGL's rows go up from the bottom.
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  std::vector<std::uint8_t> tmp(row);
+  for (int y = 0; y < height / 2; ++y) {
+    auto* a = img.rgba.data() + y * row;
+    auto* b = img.rgba.data() + (height - 1 - y) * row;
+    std::copy_n(a, row, tmp.data());
+    std::copy_n(b, row, a);
+    std::copy_n(tmp.data(), row, b);
+  }
+  return img;
+}
+
 namespace gl {
 
 bool ready() { return g_ready; }

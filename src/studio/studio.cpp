@@ -14,7 +14,10 @@
 #include "drape_job.hpp"
 #include "gl.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/io/vrml/looks.hpp"
+#include "vgd/io/vrml/vrml.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -115,7 +118,7 @@ struct Studio::Impl {
   std::function<void()> restore;
 
   // Dialogs.
-  bool want_open = false, want_save_as = false;
+  bool want_open = false, want_save_as = false, want_export = false;
   std::string path_text;
 
   ~Impl() {
@@ -304,6 +307,10 @@ struct Studio::Impl {
       track("Save");
       if (ImGui::MenuItem("Save as...")) want_save_as = true;
       track("Save as...");
+      ImGui::Separator();
+      if (ImGui::MenuItem("Export VRML...", nullptr, false, !cloth.positions.empty() && !job.running()))
+        want_export = true;
+      track("Export VRML...");
       ImGui::EndMenu();
     }
     const bool edit_open = ImGui::BeginMenu("Edit");
@@ -707,25 +714,38 @@ struct Studio::Impl {
   }
 
   void dialogs(Studio& self) {
-    if (want_open) ImGui::OpenPopup("Open document"), want_open = false, path_text = file.string();
-    if (want_save_as) ImGui::OpenPopup("Save as"), want_save_as = false, path_text = file.string();
-    for (const bool opening : {true, false}) {
-      const char* title = opening ? "Open document" : "Save as";
-      if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) continue;
-      ImGui::TextUnformatted(opening ? "XVC document to open:" : "Save the document as:");
+    struct Dialog {
+      const char* title;
+      const char* prompt;
+      const char* ok;
+      bool* want;
+    };
+    const Dialog all[] = {{"Open document", "XVC document to open:", "Open", &want_open},
+                          {"Save as", "Save the document as:", "Save", &want_save_as},
+                          {"Export VRML", "Write the draped garment and the body as VRML97 (.wrl):", "Export", &want_export}};
+    for (const Dialog& d : all) {
+      if (*d.want) {
+        ImGui::OpenPopup(d.title);
+        *d.want = false;
+        path_text = d.want == &want_export ? (file.empty() ? fs::path("garment.wrl") : fs::path(file).replace_extension(".wrl")).string()
+                                           : file.string();
+      }
+      if (!ImGui::BeginPopupModal(d.title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) continue;
+      ImGui::TextUnformatted(d.prompt);
       ImGui::SetNextItemWidth(480);
       if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
       const bool enter = ImGui::InputText("##path", &path_text, ImGuiInputTextFlags_EnterReturnsTrue);
       track("dialog:path");
-      const bool ok = ImGui::Button(opening ? "Open" : "Save") || enter;
+      const bool ok = ImGui::Button(d.ok) || enter;
       track("dialog:ok");
       ImGui::SameLine();
       if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
       track("dialog:cancel");
       if (ok) {
         ImGui::CloseCurrentPopup();
-        if (opening) self.open(path_text);
-        else self.save(path_text);
+        if (d.want == &want_open) self.open(path_text);
+        else if (d.want == &want_save_as) self.save(path_text);
+        else self.export_vrml(path_text);
       }
       ImGui::EndPopup();
     }
@@ -804,6 +824,43 @@ bool Studio::save(const fs::path& path) {
     return true;
   } catch (const std::exception& e) {
     I.say("Cannot save " + target.string() + ": " + e.what(), true);
+    return false;
+  }
+}
+
+bool Studio::export_vrml(const fs::path& path) {
+  Impl& I = *impl_;
+  if (I.cloth.positions.empty() || I.job.running()) {
+    I.say("Nothing to export: drape the garment first, and let the drape finish.", true);
+    return false;
+  }
+  try {
+    io::vrml::Garment g;
+    g.name = I.file.empty() ? "garment" : I.file.stem().string();
+    g.cloth.triangles = I.cloth.triangles;
+    g.cloth.triangle_piece = I.cloth.triangle_piece;
+    g.cloth.pieces = I.cloth.pieces;
+    g.cloth.uv = I.cloth.uv;
+    g.cloth.representative = I.cloth.representative;
+    g.frames.times = {I.cloth.t};
+    std::vector<float> x;
+    for (const auto& p : I.cloth.positions) x.insert(x.end(), p.begin(), p.end());
+    g.frames.positions = {std::move(x)};
+    g.looks = io::vrml::looks_from_xvc(I.doc, I.cloth.pieces);
+    if (I.body) {
+      io::vrml::Body b;
+      b.name = "body";
+      for (const auto& v : I.body->vertices) b.vertices.push_back({v.x(), v.y(), v.z()});
+      b.triangles = I.body->triangles;
+      g.body = std::move(b);
+    }
+    g.validate();
+    write_file_atomic(path, io::vrml::static_vrml(g));
+    I.say("Exported " + path.string() + " (VRML97: " + std::to_string(I.cloth.pieces.size()) + " pieces" +
+          (I.body ? " and the body" : "") + ").");
+    return true;
+  } catch (const std::exception& e) {
+    I.say("Cannot export " + path.string() + ": " + e.what(), true);
     return false;
   }
 }

@@ -1,6 +1,7 @@
 // The studio driven as a user drives it: synthetic clicks and keys through
 // ImGui, frames drawn off-screen (OSMesa), the document and the pixels checked.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -233,6 +234,7 @@ TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
 }
 
 TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
+  omp_set_num_threads(1);  // the studio drapes with the UI thread's count; ctest runs tests side by side
   Harness h(1024, 700);
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
@@ -269,6 +271,19 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
     }
   EXPECT_GT(blue, 500);
   EXPECT_NE(h.studio().status().find("rest"), std::string::npos) << h.studio().status();
+  // File > Export VRML... writes the drape for a web catalogue.
+  const fs::path wrl = temp_dir("export") / "skirt.wrl";
+  h.click("File");
+  h.click("Export VRML...");
+  h.key("ctrl+a");
+  h.type(wrl.string());
+  h.key("enter");
+  ASSERT_TRUE(fs::exists(wrl)) << h.studio().status();
+  std::ifstream in(wrl);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("#VRML V2.0 utf8", 0), 0u);
+  for (const char* piece : {"FRONT", "BACK", "WAISTBAND"}) EXPECT_NE(text.find(piece), std::string::npos) << piece;
+  EXPECT_GE(std::count(text.begin(), text.end(), '\n'), 1000);
   // Dragging the picture turns the view.
   h.drag(r->cx(), r->cy(), r->cx() + 120, r->cy());
   h.frames(2);

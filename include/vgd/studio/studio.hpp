@@ -32,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vgd/render/image.hpp"
 #include "vgd/scene/certificate.hpp"
 #include "vgd/scene/drape.hpp"
 #include "vgd/xvc/document.hpp"
@@ -59,6 +60,9 @@ void shutdown_gl();
 void new_frame_gl();
 // Draws ImGui's frame into the current framebuffer.
 void render_gl(ImDrawData* data);
+// The current framebuffer's pixels (width × height from the origin), row 0
+// at the top: a window's back buffer before it is swapped.
+render::Image read_framebuffer(int width, int height);
 
 // The io.KeysDown index hosts give F5 (GLFW_KEY_F5); letters are at their
 // upper-case ASCII codes (as GLFW's are).
@@ -87,6 +91,10 @@ class Studio {
   // Saves to `file` (or where it came from) through a temporary file renamed
   // into place. Shows and returns false on failure.
   bool save(const std::filesystem::path& file = {});
+
+  // Writes the last drape (garment and body) as static VRML97, through a
+  // temporary file renamed into place. Shows and returns false on failure.
+  bool export_vrml(const std::filesystem::path& file);
 
   // Builds the frame's widgets; between ImGui::NewFrame() and ImGui::Render().
   void draw();
