@@ -38,7 +38,7 @@ constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview 
 struct StretchView {
   std::string id;
   std::vector<pattern::Vec2> points;  // m, laid out
-  bool sewn = false;
+  std::vector<std::string> seams;     // ids of the SEAMs that sew it
 };
 
 struct PieceView {
@@ -208,7 +208,7 @@ struct Studio::Impl {
     refresh_sizes();
     pieces.clear();
     // Which stretches are sewn: every stretch from..to of every HEM.
-    std::set<std::pair<std::string, std::string>> sewn;
+    std::map<std::pair<std::string, std::string>, std::vector<std::string>> sewn;
     try {
       for (const auto& seam : xvc::list_seams(doc))
         for (const auto& h : seam.hems) {
@@ -217,7 +217,7 @@ struct Studio::Impl {
           bool in = false;
           for (const auto& st : xvc::boundary_stretches(*pat)) {
             if (st.id == h.from) in = true;
-            if (in) sewn.insert({h.pattern, st.id});
+            if (in) sewn[{h.pattern, st.id}].push_back(seam.id);
             if (st.id == h.to) break;
           }
         }
@@ -246,7 +246,7 @@ struct Studio::Impl {
         StretchView sv;
         sv.id = st.id;
         for (std::size_t k = 0; k <= st.count; ++k) sv.points.push_back(piece.boundary[(st.first + k) % n].p);
-        sv.sewn = sewn.count({r.view.pattern_id, st.id}) > 0;
+        if (auto it = sewn.find({r.view.pattern_id, st.id}); it != sewn.end()) sv.seams = it->second;
         r.view.stretches.push_back(std::move(sv));
       }
       r.lo = r.hi = piece.boundary.front().p;
@@ -456,8 +456,12 @@ struct Studio::Impl {
           for (const auto& q : sv.points) pts.push_back(to_screen(q));
           const auto key = std::make_pair(pv.pattern_id, sv.id);
           const auto pick = std::find(picked.begin(), picked.end(), key);
-          ImU32 col = sv.sewn ? rgb(40, 120, 200) : rgb(60, 60, 60);
-          float thick = sv.sewn ? 2.5f : 1.5f;
+          const bool sewn = !sv.seams.empty();
+          const bool in_selected =
+              std::find(sv.seams.begin(), sv.seams.end(), selected) != sv.seams.end() || pv.pattern_id == selected;
+          ImU32 col = sewn ? rgb(40, 120, 200) : rgb(60, 60, 60);
+          float thick = sewn ? 2.5f : 1.5f;
+          if (in_selected) col = rgb(20, 160, 90), thick = 4.0f;  // the seam or piece selected in the tree
           if (pick != picked.end()) col = pick == picked.begin() ? rgb(230, 110, 20) : rgb(200, 40, 140), thick = 3.5f;
           if (hovered && *hovered == key) col = rgb(240, 170, 0), thick = 4.0f;
           dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, thick);
@@ -472,7 +476,17 @@ struct Studio::Impl {
         if (it != picked.end()) picked.erase(it);
         else picked.push_back(*hovered);
       }
-      if (hovered) ImGui::SetTooltip("%s %s: click to pick for a seam", hovered->first.c_str(), hovered->second.c_str());
+      if (hovered) {
+        std::string tip;
+        for (const auto& pv : pieces)
+          for (const auto& sv : pv.stretches)
+            if (pv.pattern_id == hovered->first && sv.id == hovered->second) {
+              tip = pv.name + ", stretch " + sv.id;
+              for (const auto& id : sv.seams)
+                if (const xvc::Node* n = doc.find(id)) tip += "\nsewn by " + std::string(n->attribute("name")) + " [" + id + "]";
+            }
+        ImGui::SetTooltip("%s\nclick to pick it for a new seam", tip.c_str());
+      }
     }
     // Seam picking: the first pick is sewn forward to the others, reversed.
     std::string picks;
