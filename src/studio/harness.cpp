@@ -130,6 +130,17 @@ void Harness::drag(float x0, float y0, float x1, float y1, int steps) {
   frame();
 }
 
+void Harness::scroll(float x, float y, float notches) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = {x, y};
+  frame();
+  io.MouseWheel = notches;
+  frame();
+  io.MouseWheel = 0;
+  frame();
+}
+
 void Harness::key(std::string_view chord) {
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();

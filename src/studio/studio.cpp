@@ -94,6 +94,8 @@ struct Studio::Impl {
   pattern::Vec2 lo{0, 0}, hi{1, 1};  // layout bounds, m
   ImVec2 origin{0, 0};
   float scale = 1;  // px per m
+  float zoom = 1;   // × the scale that fits every piece
+  ImVec2 pan{0, 0};  // px
   std::optional<std::pair<std::string, std::string>> hovered;
   std::vector<std::pair<std::string, std::string>> picked;
   std::string seam_name = "seam";
@@ -203,6 +205,7 @@ struct Studio::Impl {
 
   void layout(float aspect) {
     if (layout_rev == revision && layout_size == drape.size) return;
+    if (layout_size != drape.size) zoom = 1, pan = {0, 0};
     layout_rev = revision;
     layout_size = drape.size;
     refresh_sizes();
@@ -433,9 +436,26 @@ struct Studio::Impl {
     } else {
       const double w = hi.x() - lo.x(), h = hi.y() - lo.y();
       const float margin = 12;
-      scale = static_cast<float>(std::min((size.x - 2 * margin) / w, (size.y - 2 * margin) / h));
-      origin = {p0.x + margin + static_cast<float>((size.x - 2 * margin - w * scale) / 2), p0.y + margin};
+      const float fit = static_cast<float>(std::min((size.x - 2 * margin) / w, (size.y - 2 * margin) / h));
+      const ImVec2 fit_origin{p0.x + margin + static_cast<float>((size.x - 2 * margin - w * fit) / 2), p0.y + margin};
       const ImVec2 mouse = ImGui::GetIO().MousePos;
+      // Zoom about the mouse with the wheel, pan with the right or middle
+      // button; a double click with the right button fits the pieces again.
+      if (canvas_hovered) {
+        const float wheel = ImGui::GetIO().MouseWheel;
+        if (wheel != 0) {
+          const float z = std::clamp(zoom * std::pow(1.2f, wheel), 0.5f, 40.0f), k = z / zoom;
+          // The point under the mouse stays put: pan' = (mouse - fit_origin) (1 - k) + k pan.
+          pan = {(mouse.x - fit_origin.x) * (1 - k) + k * pan.x, (mouse.y - fit_origin.y) * (1 - k) + k * pan.y};
+          zoom = z;
+        }
+        for (const ImGuiMouseButton b : {ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
+          if (ImGui::IsMouseDragging(b, 0)) pan.x += ImGui::GetIO().MouseDelta.x, pan.y += ImGui::GetIO().MouseDelta.y;
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) zoom = 1, pan = {0, 0};
+      }
+      scale = fit * zoom;
+      origin = {fit_origin.x + pan.x, fit_origin.y + pan.y};
+      dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
       float best = kPickRadius;
       for (const auto& pv : pieces)
         for (const auto& sv : pv.stretches) {
@@ -471,6 +491,7 @@ struct Studio::Impl {
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
       }
+      dl->PopClipRect();
       if (hovered && ImGui::IsItemClicked()) {
         const auto it = std::find(picked.begin(), picked.end(), *hovered);
         if (it != picked.end()) picked.erase(it);

@@ -160,6 +160,28 @@ TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {
   EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), seams_before + 1);
 }
 
+TEST(Studio, ThePatternViewZoomsAboutTheMouseAndPans) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  const auto& doc = h.studio().document();
+  const std::string front = pattern_id(doc, "FRONT", "38"), back = pattern_id(doc, "BACK", "38");
+  const auto a0 = *h.studio().stretch_on_screen(front, stretch_id(doc, front, 0));
+  const auto b0 = *h.studio().stretch_on_screen(back, stretch_id(doc, back, 0));
+  // Two notches of the wheel at A: A stays put, B moves 1.2² times as far from it.
+  h.scroll(a0.cx(), a0.cy(), 2);
+  const auto a1 = *h.studio().stretch_on_screen(front, stretch_id(doc, front, 0));
+  const auto b1 = *h.studio().stretch_on_screen(back, stretch_id(doc, back, 0));
+  EXPECT_NEAR(a1.cx(), a0.cx(), 0.5);
+  EXPECT_NEAR(a1.cy(), a0.cy(), 0.5);
+  EXPECT_NEAR(b1.cx() - a1.cx(), 1.44 * (b0.cx() - a0.cx()), 1.0);
+  EXPECT_NEAR(b1.cy() - a1.cy(), 1.44 * (b0.cy() - a0.cy()), 1.0);
+  // The zoomed view still picks what is under the mouse.
+  h.click_at(a1.cx(), a1.cy());
+  ASSERT_EQ(h.studio().picked().size(), 1u);
+  EXPECT_EQ(h.studio().picked()[0].first, front);
+}
+
 TEST(Studio, AnAttributeEditedInTheInspectorIsOneUndoableCommand) {
   Harness h;
   ASSERT_TRUE(h.studio().open(kTShirt));

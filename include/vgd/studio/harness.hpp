@@ -47,6 +47,8 @@ class Harness {
   void click(std::string_view widget, bool shift = false);
   // Drags with the left button from (x0, y0) to (x1, y1) in `steps` moves.
   void drag(float x0, float y0, float x1, float y1, int steps = 8);
+  // Turns the mouse wheel by `notches` (positive: away from the user) at (x, y).
+  void scroll(float x, float y, float notches);
   // Presses a key with modifiers: "ctrl+z", "ctrl+shift+z", "ctrl+s", "delete",
   // "f5", "escape", "enter".
   void key(std::string_view chord);
