@@ -20,7 +20,15 @@ bool g_ready = false;
 }
 
 void init_gl(GlLoader loader) {
-  if (imgl3wInit2(reinterpret_cast<GL3WGetProcAddressProc>(loader)) != 0)
+  // Not imgl3wInit2(): in ImGui 1.86 its table's ptr[] holds 53 entries for
+  // 54 names (the union's struct has all 54, so the write stays inside the
+  // table, but UBSan rightly reports the index). Fill the same table through
+  // a pointer to its storage, each name to its struct member in order.
+  constexpr std::size_t n = sizeof(proc_names) / sizeof(proc_names[0]);
+  static_assert(sizeof(imgl3wProcs) >= n * sizeof(GL3WglProc), "gl3w's table holds every name");
+  auto* table = reinterpret_cast<GL3WglProc*>(&imgl3wProcs);
+  for (std::size_t i = 0; i < n; ++i) table[i] = reinterpret_cast<GL3WglProc>(loader(proc_names[i]));
+  if (parse_version() != GL3W_OK)
     throw Error("", "OpenGL", "cannot load the OpenGL 3.3 functions the studio draws with");
   if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
     throw Error("", "OpenGL", "ImGui's OpenGL 3 renderer did not start");
