@@ -362,13 +362,33 @@ struct Studio::Impl {
     const bool open = ImGui::TreeNodeEx("node", flags, "%s", label.c_str());
     if (!id.empty()) {
       track("tree:" + id);
-      if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) selected = id;
+      if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) select(id);
     }
     if (open && !leaf) {
       for (const auto& c : node.children) tree_node(c, depth + 1);
       ImGui::TreePop();
     }
     ImGui::PopID();
+  }
+
+  // Selects an element; a PATTERN, or a SEAM by its first hem's pattern, also
+  // brings its size into the pattern view.
+  void select(const std::string& id) {
+    selected = id;
+    const xvc::Node* n = doc.find(id);
+    if (!n) return;
+    const xvc::Node* pattern = n->tag == "PATTERN" ? n : nullptr;
+    if (n->tag == "SEAM") {
+      try {
+        for (const auto& seam : xvc::list_seams(doc))
+          if (seam.id == id && !seam.hems.empty()) pattern = doc.find(seam.hems.front().pattern);
+      } catch (const std::exception&) {
+      }
+    }
+    if (pattern && !job.running()) {
+      const std::string size(pattern->attribute("size"));
+      if (std::find(sizes.begin(), sizes.end(), size) != sizes.end()) drape.size = size;
+    }
   }
 
   void delete_selected() {

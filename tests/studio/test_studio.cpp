@@ -190,6 +190,10 @@ TEST(Studio, AnAttributeEditedInTheInspectorIsOneUndoableCommand) {
   const std::string old_name(h.studio().document().find(seam)->attribute("name"));
   h.click("tree:" + seam);
   EXPECT_EQ(h.studio().selected(), seam);
+  // Its size (the first seam sews size 34's pieces) comes into the pattern view.
+  const auto hem = vgd::xvc::list_seams(h.studio().document()).front().hems.front();
+  EXPECT_EQ(h.studio().drape_options().size, h.studio().document().find(hem.pattern)->attribute("size"));
+  EXPECT_NE(h.studio().drape_options().size, "38");
   h.click("attr:name");
   h.key("ctrl+a");
   h.type("front hem to back hem");
@@ -261,8 +265,8 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   auto& o = h.studio().drape_options();
-  o.time_limit = 3.0;
-  o.spacing = 0.03;  // a coarse mesh: the test is about the studio, not the drape
+  o.time_limit = 4.0;
+  o.spacing = 0.02;  // a coarse mesh (rests in about 2 s): the test is about the studio, not the drape
   h.click("quality");
   h.click("quality:preview");
   const auto preview = h.studio().widget("preview");
