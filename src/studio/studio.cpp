@@ -84,7 +84,7 @@ struct Studio::Impl {
   std::map<std::string, Rect, std::less<>> widgets;
   std::string selected;
   std::string editing, edit_buffer;  // the attribute field being edited ("<id>/<name>") and its text
-  std::string reported;              // the drape outcome last put in the status bar
+  bool was_running = false;          // the drape was running at the last frame
 
   // Pattern view.
   std::vector<std::string> sizes;
@@ -677,6 +677,7 @@ struct Studio::Impl {
       cert.reset();
       cloth = {};
       job.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
+      was_running = true;
       say("Draping size " + drape.size + " at quality " + kQualityNames[static_cast<int>(drape.quality)] + "...");
     } catch (const std::exception& e) {
       say(std::string("The drape cannot start: ") + e.what(), true);
@@ -688,11 +689,10 @@ struct Studio::Impl {
     if (job.take_body(b)) body = std::move(b), preview_dirty = true;
     if (job.take_cloth(cloth)) preview_dirty = true;
     if (auto c = job.take_certificate()) cert = std::move(c);
+    // The outcome goes to the status bar once, when the run ends.
     const DrapeStatus s = job.status();
-    if (!s.running && !s.message.empty() && reported != s.message + std::to_string(revision)) {
-      reported = s.message + std::to_string(revision);
-      say("Drape " + s.message + ".", s.stage == "failed");
-    }
+    if (was_running && !s.running) say("Drape " + s.message + ".", s.stage == "failed");
+    was_running = s.running;
   }
 
   render::Scene preview_scene() const {
