@@ -551,6 +551,7 @@ IntegratorDef read_integrator(Object o, const EffectsDef& effects) {
   o.integer("newton_iterations", s.newton_iterations);
   o.number("cg_tolerance", s.cg_tolerance, dim::none);
   o.integer("cg_max_iterations", s.cg_max_iterations);
+  o.flag("hold_contacts", s.hold_contacts);
   std::string solver;
   o.string("linear_solver", solver);
   if (solver == "cholesky") s.linear_solver = sim::IntegratorSettings::LinearSolver::cholesky;

@@ -71,6 +71,15 @@ TEST(SceneFile, TheSeamsLastStitchReads) {
                      "effects.seams.last_stitch_distance", ">= 0");
 }
 
+TEST(SceneFile, HeldContactsAreAnIntegratorFlagOffByDefault) {
+  json j = tiny_scene();
+  EXPECT_FALSE(parse(j).integrator.settings.hold_contacts);
+  j["integrator"]["hold_contacts"] = true;
+  EXPECT_TRUE(parse(j).integrator.settings.hold_contacts);
+  expect_scene_error([](json& k) { k["integrator"]["hold_contacts"] = "yes"; }, "integrator.hold_contacts",
+                     "expected true or false");
+}
+
 TEST(SceneFile, IterationsPerFrameSetTheStepAsInTheSeed) {
   json j = tiny_scene();
   j["integrator"].erase("step");

@@ -10,6 +10,11 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
   exit 77
 fi
 mkdir -p "$out"
+# Under AddressSanitizer: Mesa's GLX driver, which GLFW loads with dlopen and
+# unloads at exit, leaves 240 bytes LeakSanitizer can only report as
+# "<unknown module>". The same studio code runs leak-checked off-screen in
+# vgd_test_studio; here the leak check is off.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 xvfb-run -a -s "-screen 0 1280x800x24" \
   "$studio" "$src/data/garments/t-shirt.xvc" --quit-after 5 --screenshot "$out/window.png" > "$out/window.txt"
 grep -q "Opened .*t-shirt.xvc: 20 patterns" "$out/window.txt"

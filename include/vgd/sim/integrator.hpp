@@ -54,6 +54,17 @@ struct IntegratorSettings {
   // collision projection has since removed — can pass the test uncorrected.
   // It flung the shipped skirt off the mannequin within 0.2 s.
   bool warm_start = false;
+  // Hold the particles touching a body inside the step (Baraff & Witkin
+  // §5.3 contact constraints) instead of leaving them to the body
+  // collision's corrections after it. Without it, the solve lets touching
+  // particles sink into the body and relaxes their neighbours towards them,
+  // the corrections push only the touching ones back out, and friction then
+  // holds the re-stretched cloth: at 5–10 ms a square on the shoulder gained
+  // 5x its energy and stayed stretched 59 % (docs/accuracy-vs-time.md, Hard
+  // cases). With it, energy stays near its start, but sewing takes longer
+  // (bench dress: rest at 3.1 s instead of 2.0 s simulated, twice the wall
+  // time), so drapes keep it off. Off: bit-identical to the code without it.
+  bool hold_contacts = false;
   // BDF (CVODE)
   double rtol = 1e-4;          // relative tolerance
   double atol = 1e-6;          // absolute tolerance (m for positions, m/s for velocities)

@@ -50,6 +50,10 @@ class BodyCollision final : public Effect {
     mark(d.fixed, kFixed, "fixed");
     contact_.assign(n_, 0);
     normal_.assign(n_, Vec3::Zero());
+    solve_dvn_.assign(n_, 0.0);
+    static_.assign(n_, 0);
+    contacts_.body_velocity = d.velocity;
+    contacts_.friction = d.response == ContactResponse::provot ? d.friction : 0.0;
     anchor_.assign(n_, Vec3::Zero());
     constrains_ = d.response == ContactResponse::slide || !d.sticky_particles.empty() ||
                   (!d.seam_particles.empty() && d.seam_contact != SeamContact::glide);
@@ -112,26 +116,34 @@ class BodyCollision final : public Effect {
       }
       Vec3 nrm;
       const double d = query(xi - offset, nrm);
+      // Normal velocity change the step's contact constraint took (implicit
+      // Euler; 0 for the other methods): friction counts it below.
+      const double held = solve_dvn_[i];
+      solve_dvn_[i] = 0.0;
+      static_[i] = 0;
       contact_[i] = 0;
       if (d >= near) continue;
       contact_[i] = 1;
       normal_[i] = nrm;
       ++in_contact;
-      if (d >= c) continue;
-      ++contacts;
-      max_pen = std::max(max_pen, -d);
-      max_viol = std::max(max_viol, c - d);
-      xi += (c - d) * nrm;  // out to the clearance along the normal
-      if (role_[i] & kSticky) {
-        anchor_[i] = xi - offset;
-        vi = vb;
-        contact_[i] = kStuckContact;
-        ++stuck;
-        continue;
+      if (d >= c && held <= 0.0) continue;
+      if (d < c) {
+        ++contacts;
+        max_pen = std::max(max_pen, -d);
+        max_viol = std::max(max_viol, c - d);
+        xi += (c - d) * nrm;  // out to the clearance along the normal
+        if (role_[i] & kSticky) {
+          anchor_[i] = xi - offset;
+          vi = vb;
+          contact_[i] = kStuckContact;
+          ++stuck;
+          continue;
+        }
       }
       const Vec3 vr = vi - vb;  // relative to the body
       const double vn = vr.dot(nrm);
-      if (vn >= 0.0) continue;  // already leaving
+      if (vn >= 0.0 && (held <= 0.0 || def_.response == ContactResponse::slide || (role_[i] & kSeam)))
+        continue;  // already leaving (friction only where the step held the particle)
       if (role_[i] & kSeam) {
         vi = vb + (def_.seam_contact == SeamContact::seed ? keep_magnitude_tangential(vr, nrm, vn) : Vec3(vr - vn * nrm));
         continue;
@@ -142,17 +154,31 @@ class BodyCollision final : public Effect {
         continue;
       }
       // Provot: bounce fast impacts, stop slow ones; Coulomb friction takes at
-      // most μ times the normal velocity change off the tangential velocity.
-      const double e = -vn > def_.min_bounce_speed ? def_.restitution : 0.0;
-      const double dvn = -(1.0 + e) * vn;
+      // most μ times the normal velocity change off the tangential velocity:
+      // the one made here and the one the step's contact constraint made.
+      const double vin = std::min(vn, 0.0);
+      const double e = -vin > def_.min_bounce_speed ? def_.restitution : 0.0;
+      const double dvn = -(1.0 + e) * vin + held;
       const double vt_len = vt.norm();
       const double keep = vt_len > 0.0 ? std::max(0.0, 1.0 - def_.friction * dvn / vt_len) : 0.0;
-      vi = vb + keep * vt - e * vn * nrm;
+      vi = vb + keep * vt - e * vin * nrm;
+      static_[i] = keep == 0.0;
+      if (vn > 0.0) vi += vn * nrm;  // held by the step and leaving: the normal velocity stays
       // The step moved the particle with its velocity before friction: take
       // back the tangential part friction removed (x = x0 + h v_after), or a
       // particle held by static friction would creep h² g sin θ per step.
-      xi -= h * (1.0 - keep) * vt;
+      if (held <= 0.0) xi -= h * (1.0 - keep) * vt;
     }
+    // The contacts the next implicit step holds.
+    contacts_.particle.clear();
+    contacts_.normal.clear();
+    contacts_.stuck.clear();
+    for (int i = 0; i < n_; ++i)
+      if (contact_[i] == 1 && !(role_[i] & kFixed)) {
+        contacts_.particle.push_back(i);
+        contacts_.normal.push_back(normal_[i]);
+        contacts_.stuck.push_back(static_[i]);
+      }
     stats_.in_contact = in_contact;
     stats_.stuck = stuck;
     stats_.contacts += contacts;
@@ -172,6 +198,10 @@ class BodyCollision final : public Effect {
   }
 
   const BodyCollisionStats& stats() const { return stats_; }
+  const BodyContacts& contacts() const { return contacts_; }
+  void add_normal_impulse(int i, double dv) {
+    if (i >= 0 && i < n_ && dv > 0.0) solve_dvn_[i] += dv;
+  }
   const SignedDistanceGrid* grid() const { return grid_ ? &*grid_ : nullptr; }
 
  private:
@@ -219,6 +249,9 @@ class BodyCollision final : public Effect {
   std::vector<unsigned char> contact_;  // per particle: 0 free, 1 touching, kStuckContact stuck
   std::vector<Vec3> normal_;            // per particle: the body normal at the last contact
   std::vector<Vec3> anchor_;            // per stuck particle: where it stays (m)
+  std::vector<double> solve_dvn_;       // per particle: normal velocity change the step's constraint took (m/s)
+  std::vector<unsigned char> static_;   // per particle: friction stopped it at the last after-step
+  BodyContacts contacts_;               // touching after the last after-step, for the implicit step
   BodyCollisionStats stats_;
   double last_t_ = -std::numeric_limits<double>::infinity();  // s: time of the last after_step
 };
@@ -238,6 +271,17 @@ const BodyCollisionStats& body_collision_stats(const Effect& effect) {
 const SignedDistanceGrid* body_collision_grid(const Effect& effect) {
   const auto* b = dynamic_cast<const BodyCollision*>(&effect);
   return b ? b->grid() : nullptr;
+}
+
+const BodyContacts* body_collision_contacts(const Effect& effect) {
+  const auto* b = dynamic_cast<const BodyCollision*>(&effect);
+  return b ? &b->contacts() : nullptr;
+}
+
+void body_collision_add_normal_impulse(Effect& effect, int particle, double dv) {
+  auto* b = dynamic_cast<BodyCollision*>(&effect);
+  VGD_ASSERT(b != nullptr, "body_collision_add_normal_impulse: the effect is not a body collision");
+  b->add_normal_impulse(particle, dv);
 }
 
 }  // namespace vgd::sim

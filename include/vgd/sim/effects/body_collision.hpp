@@ -95,4 +95,26 @@ const BodyCollisionStats& body_collision_stats(const Effect& effect);
 // effect or for the exact query.
 const SignedDistanceGrid* body_collision_grid(const Effect& effect);
 
+// The contacts an implicit step holds inside its solve (Baraff & Witkin 1998
+// §5.3; src/sim/integrators/implicit_euler.cpp): the particles (Model
+// indexing) found touching the body (within 1.5 × the clearance, neither
+// stuck nor fixed) by the last after-step, with the body's outward normal at
+// each, whether friction stopped it there (static friction: the step may
+// hold it still while the reaction stays inside the friction cone), the
+// body's velocity and the Coulomb coefficient (0 for the slide response).
+struct BodyContacts {
+  std::vector<int> particle;
+  std::vector<Vec3> normal;
+  std::vector<unsigned char> stuck;
+  Vec3 body_velocity = Vec3::Zero();
+  double friction = 0.0;
+};
+// nullptr when `effect` is not a body collision.
+const BodyContacts* body_collision_contacts(const Effect& effect);
+// The step held `particle` (Model indexing) against the body, taking `dv`
+// (m/s, > 0) of normal velocity change off it: the next after-step's Coulomb
+// friction counts it in the normal velocity change it may take μ times off
+// the tangential velocity (with the impulse the after-step itself applies).
+void body_collision_add_normal_impulse(Effect& effect, int particle, double dv);
+
 }  // namespace vgd::sim
