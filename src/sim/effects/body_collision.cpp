@@ -169,16 +169,6 @@ class BodyCollision final : public Effect {
       // particle held by static friction would creep h² g sin θ per step.
       if (held <= 0.0) xi -= h * (1.0 - keep) * vt;
     }
-    // The contacts the next implicit step holds.
-    contacts_.particle.clear();
-    contacts_.normal.clear();
-    contacts_.stuck.clear();
-    for (int i = 0; i < n_; ++i)
-      if (contact_[i] == 1 && !(role_[i] & kFixed)) {
-        contacts_.particle.push_back(i);
-        contacts_.normal.push_back(normal_[i]);
-        contacts_.stuck.push_back(static_[i]);
-      }
     stats_.in_contact = in_contact;
     stats_.stuck = stuck;
     stats_.contacts += contacts;
@@ -198,7 +188,21 @@ class BodyCollision final : public Effect {
   }
 
   const BodyCollisionStats& stats() const { return stats_; }
-  const BodyContacts& contacts() const { return contacts_; }
+  // The particles touching after the last after-step, for an implicit step
+  // that holds them (IntegratorSettings::hold_contacts). Gathered when asked,
+  // so that scenes that do not hold contacts pay nothing for it.
+  const BodyContacts& contacts() const {
+    contacts_.particle.clear();
+    contacts_.normal.clear();
+    contacts_.stuck.clear();
+    for (int i = 0; i < n_; ++i)
+      if (contact_[i] == 1 && !(role_[i] & kFixed)) {
+        contacts_.particle.push_back(i);
+        contacts_.normal.push_back(normal_[i]);
+        contacts_.stuck.push_back(static_[i]);
+      }
+    return contacts_;
+  }
   void add_normal_impulse(int i, double dv) {
     if (i >= 0 && i < n_ && dv > 0.0) solve_dvn_[i] += dv;
   }
@@ -251,7 +255,7 @@ class BodyCollision final : public Effect {
   std::vector<Vec3> anchor_;            // per stuck particle: where it stays (m)
   std::vector<double> solve_dvn_;       // per particle: normal velocity change the step's constraint took (m/s)
   std::vector<unsigned char> static_;   // per particle: friction stopped it at the last after-step
-  BodyContacts contacts_;               // touching after the last after-step, for the implicit step
+  mutable BodyContacts contacts_;       // contacts()'s answer (its storage reused)
   BodyCollisionStats stats_;
   double last_t_ = -std::numeric_limits<double>::infinity();  // s: time of the last after_step
 };
