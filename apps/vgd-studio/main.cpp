@@ -21,7 +21,7 @@ namespace {
 struct Options {
   std::string file, script, screenshot;
   bool headless = false;
-  int width = 1280, height = 800, threads = 0, quit_after = 0;
+  int width = 1280, height = 800, threads = 1, quit_after = 0;
 };
 
 int run_window(const Options& o) {
@@ -113,7 +113,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--width", o.width, "Window or off-screen width, pixels (default 1280)")->check(CLI::Range(640, 4096));
   app.add_option("--height", o.height, "Window or off-screen height, pixels (default 800)")->check(CLI::Range(480, 4096));
-  app.add_option("--threads", o.threads, "Threads for the drape's force kernels (default 0 = all cores)")
+  // One by default, as vgd: the studio's own drawing (llvmpipe's threads)
+  // shares the cores with the drape, and OpenMP's spinning barriers make two
+  // threads on shared cores 10-500x slower (docs/performance.md, "Threads").
+  app.add_option("--threads", o.threads, "Threads for the drape's force kernels (default 1; 0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   app.footer("Exit codes: 0 done, 1 bad input or a failed script line (the message names it), 3 the studio ended "
              "with an error in its status bar.");
