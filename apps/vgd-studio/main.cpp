@@ -52,7 +52,12 @@ int run_window(const Options& o) {
       vgd::studio::Studio studio;
       studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
-      for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
+      for (int frame = 1; !studio.quit_confirmed(); ++frame) {
+        // The close button asks about unsaved changes first (Studio::request_close).
+        if (glfwWindowShouldClose(window)) {
+          if (studio.request_close()) break;
+          glfwSetWindowShouldClose(window, GLFW_FALSE);
+        }
         glfwPollEvents();
         vgd::studio::new_frame_gl();
         ImGui_ImplGlfw_NewFrame();

@@ -121,6 +121,17 @@ struct Studio::Impl {
 
   // Dialogs.
   bool want_open = false, want_save_as = false, want_export = false;
+  // What waits on the unsaved-changes dialog: opening `pending_file`, or quitting.
+  enum class Pending { none, open, quit } pending = Pending::none;
+  fs::path pending_file;
+  bool want_unsaved = false, quit_ok = false;
+
+  void ask_unsaved(Pending what, fs::path f) {
+    pending = what, pending_file = std::move(f), want_unsaved = true;
+    status = (file.empty() ? std::string("The document") : file.filename().string()) +
+             " has unsaved changes: save them, discard them or cancel.";
+    status_error = false;
+  }
   std::string path_text;
 
   ~Impl() {
@@ -804,6 +815,30 @@ struct Studio::Impl {
       }
       ImGui::EndPopup();
     }
+    if (want_unsaved) ImGui::OpenPopup("Unsaved changes"), want_unsaved = false;
+    if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("%s has unsaved changes.", file.empty() ? "The document" : file.filename().string().c_str());
+      const bool save = ImGui::Button("Save");
+      track("unsaved:save");
+      ImGui::SameLine();
+      const bool discard = ImGui::Button("Discard");
+      track("unsaved:discard");
+      ImGui::SameLine();
+      const bool cancel = ImGui::Button("Cancel");
+      track("unsaved:cancel");
+      if (save || discard || cancel) {
+        ImGui::CloseCurrentPopup();
+        // Saving needs a file name: without one, Save as comes first and the
+        // pending action is dropped (nothing is lost; the user repeats it).
+        const bool go = discard || (save && !file.empty() && self.save());
+        if (save && file.empty()) want_save_as = true;
+        if (go && pending == Pending::open) self.open(pending_file, true);
+        if (go && pending == Pending::quit) quit_ok = true;
+        if (cancel) say("Kept the document open, with its changes.");
+        pending = Pending::none;
+      }
+      ImGui::EndPopup();
+    }
     if (error_pending) ImGui::OpenPopup("Error"), error_pending = false;
     if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::PushTextWrapPos(560);
@@ -833,10 +868,14 @@ struct Studio::Impl {
 Studio::Studio() : impl_(std::make_unique<Impl>()) {}
 Studio::~Studio() = default;
 
-bool Studio::open(const fs::path& path) {
+bool Studio::open(const fs::path& path, bool discard_changes) {
   Impl& I = *impl_;
   if (I.job.running()) {
     I.say("Stop the drape before opening another document.", true);
+    return false;
+  }
+  if (!discard_changes && I.is_modified()) {
+    I.ask_unsaved(Impl::Pending::open, path);
     return false;
   }
   try {
@@ -862,6 +901,15 @@ bool Studio::open(const fs::path& path) {
     return false;
   }
 }
+
+bool Studio::request_close() {
+  Impl& I = *impl_;
+  if (I.quit_ok || !I.is_modified()) return true;
+  I.ask_unsaved(Impl::Pending::quit, {});
+  return false;
+}
+
+bool Studio::quit_confirmed() const { return impl_->quit_ok; }
 
 bool Studio::save(const fs::path& path) {
   Impl& I = *impl_;

@@ -236,6 +236,36 @@ TEST(Studio, TheOpenDialogTakesATypedPathAndABadFileKeepsTheOpenDocument) {
   EXPECT_FALSE(h.studio().widget("error:ok"));
 }
 
+TEST(Studio, UnsavedChangesAreNotLostToOpenOrClose) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  const std::string seam = vgd::xvc::list_seams(h.studio().document()).front().id;
+  h.click("tree:" + seam);
+  h.key("delete");
+  ASSERT_TRUE(h.studio().modified());
+  // Opening another document asks first and keeps the edited one until answered.
+  EXPECT_FALSE(h.studio().open(kSkirt));
+  h.frames(2);
+  EXPECT_EQ(h.studio().file(), kTShirt);
+  EXPECT_EQ(h.studio().document().find(seam), nullptr) << "the edit is still there";
+  h.click("unsaved:cancel");
+  EXPECT_EQ(h.studio().file(), kTShirt);
+  EXPECT_TRUE(h.studio().modified());
+  // Closing asks too; Discard lets it close.
+  EXPECT_FALSE(h.studio().request_close());
+  h.frames(2);
+  EXPECT_FALSE(h.studio().quit_confirmed());
+  h.click("unsaved:discard");
+  EXPECT_TRUE(h.studio().quit_confirmed());
+  // Open, answered with Discard, opens.
+  EXPECT_FALSE(h.studio().open(kSkirt));
+  h.frames(2);
+  h.click("unsaved:discard");
+  EXPECT_EQ(h.studio().file(), kSkirt);
+  EXPECT_FALSE(h.studio().modified());
+}
+
 TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
   const fs::path dir = temp_dir("save");
   Harness h;

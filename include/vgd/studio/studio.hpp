@@ -86,8 +86,16 @@ class Studio {
   Studio& operator=(const Studio&) = delete;
 
   // Opens an XVC document; on failure keeps the current one, shows the error
-  // (naming the file and the problem) and returns false.
-  bool open(const std::filesystem::path& file);
+  // (naming the file and the problem) and returns false. When the open
+  // document has unsaved changes it is not replaced: a dialog asks to save
+  // them, discard them or cancel, and open() returns false (the dialog opens
+  // the file once answered), unless `discard_changes`.
+  bool open(const std::filesystem::path& file, bool discard_changes = false);
+  // The host wants to close (a window's close button): true when it may,
+  // false while unsaved changes wait on the same dialog. quit_confirmed()
+  // turns true once the dialog said to save or discard them.
+  bool request_close();
+  bool quit_confirmed() const;
   // Saves to `file` (or where it came from) through a temporary file renamed
   // into place. Shows and returns false on failure.
   bool save(const std::filesystem::path& file = {});

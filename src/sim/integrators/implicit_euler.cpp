@@ -304,7 +304,7 @@ class ImplicitEuler final : public FixedStepIntegrator {
         const double scale = kVelocityFraction * (s.v.lpNorm<Eigen::Infinity>() + dv_.lpNorm<Eigen::Infinity>());
         if (r > std::max({r0, scale, kResidualFloor})) return Outcome::diverged;
         if (k == iterations || r <= settings_.cg_tolerance * r0) break;
-        rhs_ = (h * f_ - mass_dof_.cwiseProduct(dv_)).cwiseProduct(filter);
+        if (!held_.empty()) rhs_ = (h * f_ - mass_dof_.cwiseProduct(dv_)).cwiseProduct(filter);  // unreduced again
       }
       sys.jacobian(it_.t, it_.x, it_.v, jac_);
       ++stats_.jacobian_evaluations;
@@ -322,9 +322,13 @@ class ImplicitEuler final : public FixedStepIntegrator {
         rhs_ = h * f_ + (h * h) * tmp_;
         if (mask_) rhs_.array() *= filter.array();
         choose_held(s, filter);
-        rhs0_ = rhs_;
-        apply_held(rhs0_);
-        r0 = velocity_max(rhs0_);
+        if (held_.empty()) {
+          r0 = velocity_max(rhs_);
+        } else {
+          rhs0_ = rhs_;
+          apply_held(rhs0_);
+          r0 = velocity_max(rhs0_);
+        }
       }
       step_matrix(h);
       ++stats_.newton_iterations;
