@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli.hpp"
-#include "vgd/scene/avatar_io.hpp"
+#include "vgd/body/avatar_io.hpp"
 
 namespace {
 
@@ -12,8 +12,8 @@ struct Options {
   bool json = false;
 };
 
-vgd::scene::AvatarImportOptions import_options(const Options& o) {
-  vgd::scene::AvatarImportOptions io;
+vgd::body::AvatarImportOptions import_options(const Options& o) {
+  vgd::body::AvatarImportOptions io;
   io.unit = o.unit, io.up = o.up, io.facing = o.facing;
   return io;
 }
@@ -38,11 +38,11 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
   add_import_options(convert, o);
   sub->footer("Exit codes: 0 ok, 1 unreadable or bad file (the message says why), 2 usage.");
   return vgd::cli::Command{sub, [o, report, &common]() -> int {
-    vgd::scene::AvatarReport r;
-    const auto avatar = vgd::scene::import_avatar(o->input, import_options(*o), &r);
+    vgd::body::AvatarReport r;
+    const auto avatar = vgd::body::import_avatar(o->input, import_options(*o), &r);
     if (report->parsed()) {
       if (o->json) {
-        vgd::cli::print_json(nlohmann::json::parse(vgd::scene::to_json(r)));
+        vgd::cli::print_json(nlohmann::json::parse(vgd::body::to_json(r)));
       } else {
         std::printf("%s: %d meshes, %d vertices, %d triangles%s\n", r.file.c_str(), r.meshes, r.vertices, r.triangles,
                     r.welded_vertices ? (" (" + std::to_string(r.welded_vertices) + " vertices welded)").c_str() : "");
@@ -60,7 +60,7 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
       }
       return vgd::cli::kOk;
     }
-    vgd::scene::export_avatar(avatar, o->output);
+    vgd::body::export_avatar(avatar, o->output);
     vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(r.triangles) + " triangles, height " +
                               std::to_string(r.height) + " m (unit " + r.unit + ", up " + r.up + ")");
     return vgd::cli::kOk;

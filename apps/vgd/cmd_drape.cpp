@@ -18,8 +18,8 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
-#include "vgd/scene/avatar_io.hpp"
-#include "vgd/scene/drape.hpp"
+#include "vgd/body/avatar_io.hpp"
+#include "vgd/dress/drape.hpp"
 #include "vgd/scene/quality.hpp"
 
 namespace {
@@ -38,7 +38,7 @@ std::string fixed(double v, int d) { return vgd::format_fixed(v, d); }
 class StageBar {
  public:
   explicit StageBar(bool enabled) : enabled_(enabled), tty_(isatty(2) == 1) {}
-  void operator()(const vgd::scene::DrapeStageProgress& p) {
+  void operator()(const vgd::dress::DrapeStageProgress& p) {
     if (!enabled_) return;
     const bool new_stage = p.stage != stage_;
     if (new_stage && drawn_) std::fprintf(stderr, "\n");
@@ -121,8 +121,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
               "3 the drape ended but a check failed (see certificate.json).");
   return vgd::cli::Command{sub, [o, sub, &common]() -> int {
     namespace scene = vgd::scene;
+    namespace body = vgd::body;
+    namespace dress = vgd::dress;
     namespace fs = std::filesystem;
-    scene::DrapeOptions d;
+    dress::DrapeOptions d;
     d.garment = o->garments.front();
     d.over.assign(o->garments.begin() + 1, o->garments.end());
     const std::string garment_names = [&] {
@@ -148,7 +150,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       a.file = fs::absolute(o->avatar);
       d.avatar = a;
     }
-    const scene::SceneDef def = scene::drape_scene(d);
+    const scene::SceneDef def = dress::drape_scene(d);
 
     const fs::path out = o->output;
     std::vector<std::unique_ptr<vgd::sim::FrameSink>> owned;
@@ -164,7 +166,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       sinks.push_back(owned.back().get());
     }
     StageBar bar(!common.quiet && !o->json);
-    scene::DrapeResult r = scene::run_drape(def, sinks, std::ref(bar));
+    dress::DrapeResult r = dress::run_drape(def, sinks, std::ref(bar));
     bar.finish();
     vgd::cli::print_diagnostics(r.scene.diagnostics, common);
 
@@ -172,8 +174,8 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     fs::create_directories(out, ec);
     const auto& model = r.scene.system->model();
     vgd::write_file_atomic(out / "garment.obj", vgd::io::obj::frame_text(model, r.state.t, r.positions));
-    if (r.scene.avatar) scene::export_avatar(*r.scene.avatar, out / "avatar.obj");
-    const std::string cert = scene::to_json(r.certificate);
+    if (r.scene.avatar) body::export_avatar(*r.scene.avatar, out / "avatar.obj");
+    const std::string cert = dress::to_json(r.certificate);
     vgd::write_file_atomic(out / "certificate.json", cert);
 
     const auto& c = r.certificate;

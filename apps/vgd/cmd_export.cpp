@@ -26,7 +26,7 @@
 #include "vgd/io/vrml/sources.hpp"
 #include "vgd/io/vrml/vrml.hpp"
 #include "vgd/io/vrml/web.hpp"
-#include "vgd/scene/avatar_io.hpp"
+#include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
 
 namespace {
@@ -76,9 +76,9 @@ vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs:
 
 // The body: an avatar file in vgd's frame (metres, +Y up), as vgd drape writes it.
 vrml::Body load_body(const fs::path& file) {
-  vgd::scene::AvatarImportOptions o;
+  vgd::body::AvatarImportOptions o;
   o.unit = "m", o.up = "y", o.recentre = false, o.segments = false;
-  const auto avatar = vgd::scene::import_avatar(file, o);
+  const auto avatar = vgd::body::import_avatar(file, o);
   vrml::Body b;
   b.name = "avatar";
   for (const auto& v : avatar.surface.vertices) b.vertices.push_back({v.x(), v.y(), v.z()});

@@ -1,4 +1,4 @@
-// vgd lab: one virtual textile test on a fabric (issue 6, docs/fabric-lab.md):
+// vgd lab: one virtual textile test on a fabric (docs/fabric-lab.md):
 // builds the specimen, runs it to static equilibrium with the chosen cloth
 // model, prints measured against the analytic reference, writes a CSV.
 // `vgd lab all` runs every test and writes a Markdown report; `vgd lab fit`
@@ -15,8 +15,8 @@
 #include "cli.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/render/image.hpp"
-#include "vgd/scene/lab.hpp"
-#include "vgd/scene/lab_fit.hpp"
+#include "vgd/lab/lab.hpp"
+#include "vgd/lab/fit.hpp"
 
 namespace {
 
@@ -29,7 +29,7 @@ struct Options {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-nlohmann::json to_json(const vgd::scene::lab::LabResult& r, const vgd::scene::lab::LabSpec& spec) {
+nlohmann::json to_json(const vgd::lab::LabResult& r, const vgd::lab::LabSpec& spec) {
   auto points = nlohmann::json::array();
   for (const auto& p : r.points)
     points.push_back({{"quantity", p.quantity},
@@ -54,7 +54,7 @@ nlohmann::json to_json(const vgd::scene::lab::LabResult& r, const vgd::scene::la
 // A plain plot, one panel per quantity: the reference as a grey polyline
 // through the expected values, the measurements as coloured squares. No text:
 // the CSV beside it holds the numbers.
-vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
+vgd::render::Image plot(const vgd::lab::LabResult& r) {
   std::vector<std::string> quantities;
   for (const auto& p : r.points)
     if (std::find(quantities.begin(), quantities.end(), p.quantity) == quantities.end())
@@ -72,7 +72,7 @@ vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
   };
   const std::array<std::array<std::uint8_t, 3>, 4> colours{{{200, 40, 40}, {40, 90, 200}, {30, 150, 60}, {170, 90, 20}}};
   for (std::size_t q = 0; q < quantities.size(); ++q) {
-    std::vector<const vgd::scene::lab::LabPoint*> pts;
+    std::vector<const vgd::lab::LabPoint*> pts;
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     for (const auto& p : r.points) {
       if (p.quantity != quantities[q]) continue;
@@ -101,7 +101,7 @@ vgd::render::Image plot(const vgd::scene::lab::LabResult& r) {
 }
 
 // The drape's view from above (LabResult::top_view), grey.
-vgd::render::Image top_view(const vgd::scene::lab::LabResult& r) {
+vgd::render::Image top_view(const vgd::lab::LabResult& r) {
   vgd::render::Image img(r.top_view_size, r.top_view_size, {255, 255, 255, 255});
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -112,9 +112,9 @@ vgd::render::Image top_view(const vgd::scene::lab::LabResult& r) {
 }
 
 // Writes DIR/TEST.csv and DIR/TEST.png (a plot; drape: the view from above).
-void write_outputs(const vgd::scene::lab::LabResult& r, const std::filesystem::path& dir) {
+void write_outputs(const vgd::lab::LabResult& r, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
-  vgd::scene::lab::write_csv(r, dir / (r.test + ".csv"));
+  vgd::lab::write_csv(r, dir / (r.test + ".csv"));
   vgd::render::write_png(r.top_view.empty() ? plot(r) : top_view(r), dir / (r.test + ".png"));
 }
 
@@ -131,7 +131,7 @@ std::string fixed(double v, int decimals) {
 
 // vgd lab all: every test, each test's CSV and PNG and DIR/report.md.
 int run_all(const Options& o, const vgd::cli::Common& common) {
-  namespace lab = vgd::scene::lab;
+  namespace lab = vgd::lab;
   if (o.out_dir.empty()) return usage("'all' needs -o DIR for its report");
   const auto model = o.model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
                                               : vgd::scene::ClothModel::strain_rosette;
@@ -176,7 +176,7 @@ int run_all(const Options& o, const vgd::cli::Common& common) {
 
 // vgd lab fit: measurements -> fitted MATERIAL, with the residuals.
 int run_fit(const Options& o, const vgd::cli::Common& common) {
-  namespace lab = vgd::scene::lab;
+  namespace lab = vgd::lab;
   if (o.measurements.empty()) return usage("'fit' needs the measurements CSV");
   if (o.out_dir.empty()) return usage("'fit' needs -o FILE.xvc for the fitted MATERIAL");
   const auto model = o.model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
@@ -246,7 +246,7 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
   sub->footer("Exit codes: 0 the test ran (its errors are in the output), 1 bad material, measurements or failed run, "
               "2 usage.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
-    namespace lab = vgd::scene::lab;
+    namespace lab = vgd::lab;
     if (o->test == "fit") return run_fit(*o, common);
     if (o->material.empty()) return usage("--material is required for '" + o->test + "'");
     if (!o->measurements.empty()) return usage("unexpected argument '" + o->measurements + "'");

@@ -7,9 +7,9 @@
 
 #include "cli.hpp"
 #include "vgd/core/strings.hpp"
-#include "vgd/scene/avatar_io.hpp"
-#include "vgd/scene/body_sizes.hpp"
-#include "vgd/scene/mannequin.hpp"
+#include "vgd/body/avatar_io.hpp"
+#include "vgd/body/sizes.hpp"
+#include "vgd/body/mannequin.hpp"
 #include "vgd/scene/units.hpp"
 
 namespace {
@@ -70,12 +70,12 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
               "Exit codes: 0 ok, 1 bad measurements or write failure, 2 usage.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     if (o->list) {
-      const auto names = o->table.empty() ? vgd::scene::size_table_names() : std::vector<std::string>{o->table};
+      const auto names = o->table.empty() ? vgd::body::size_table_names() : std::vector<std::string>{o->table};
       nlohmann::json j = nlohmann::json::object();
       for (const auto& n : names) {
         const auto path = n.find('/') != std::string::npos || n.ends_with(".csv") ? std::filesystem::path(n)
-                                                                                    : vgd::scene::size_table_file(n);
-        const auto rows = vgd::scene::load_size_table(path);
+                                                                                    : vgd::body::size_table_file(n);
+        const auto rows = vgd::body::load_size_table(path);
         if (!o->json) std::printf("%s:\n  %-6s %-6s %7s %7s %7s %7s\n", n.c_str(), "size", "sex", "height", "bust", "waist", "hip");
         for (const auto& r : rows) {
           if (o->json)
@@ -89,8 +89,8 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
       return vgd::cli::kOk;
     }
     if (o->output.empty()) throw CLI::ValidationError("--output", "required unless --list-sizes is given");
-    vgd::scene::BodyMeasurements m;
-    if (!o->size.empty()) m = vgd::scene::find_size(o->size, o->table);
+    vgd::body::BodyMeasurements m;
+    if (!o->size.empty()) m = vgd::body::find_size(o->size, o->table);
     const bool custom = !o->height.empty() || !o->bust.empty() || !o->under_bust.empty() || !o->waist.empty() ||
                         !o->hip.empty() || !o->shoulder.empty() || !o->neck.empty() || !o->arm.empty() ||
                         !o->inseam.empty() || !o->sex.empty();
@@ -111,20 +111,20 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
       };
       set(o->under_bust, m.under_bust), set(o->waist, m.waist), set(o->hip, m.hip), set(o->shoulder, m.shoulder_width);
       set(o->neck, m.neck), set(o->arm, m.arm_length), set(o->inseam, m.inseam);
-      vgd::scene::complete_measurements(m);
+      vgd::body::complete_measurements(m);
     }
-    vgd::scene::MannequinOptions mo;
+    vgd::body::MannequinOptions mo;
     mo.target_triangles = o->triangles;
     mo.arm_angle_deg = o->arm_angle;
     const auto t0 = std::chrono::steady_clock::now();
-    const auto avatar = vgd::scene::make_mannequin(m, mo);
+    const auto avatar = vgd::body::make_mannequin(m, mo);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    vgd::scene::export_avatar(avatar, o->output);
-    auto report = vgd::scene::report_avatar(avatar);
+    vgd::body::export_avatar(avatar, o->output);
+    auto report = vgd::body::report_avatar(avatar);
     report.file = o->output;
     report.format = std::filesystem::path(o->output).extension().string().substr(1);
     if (o->json) {
-      auto j = nlohmann::json::parse(vgd::scene::to_json(report));
+      auto j = nlohmann::json::parse(vgd::body::to_json(report));
       j["measurements"] = {{"label", m.label},           {"sex", m.sex},           {"height_m", m.height},
                            {"bust_m", m.bust},           {"under_bust_m", m.under_bust}, {"waist_m", m.waist},
                            {"hip_m", m.hip},             {"shoulder_width_m", m.shoulder_width}, {"neck_m", m.neck},

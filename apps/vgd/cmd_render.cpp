@@ -26,7 +26,7 @@
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/offscreen.hpp"
-#include "vgd/scene/avatar_io.hpp"
+#include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
 
 namespace {
@@ -140,7 +140,7 @@ std::vector<render::Mesh> meshes_of_trj(const fs::path& file, int frame, const v
 // An avatar file through the same import as `vgd drape --avatar` (normalised to
 // vgd's frame), so a garment draped on it lands where it was draped.
 render::Mesh body_mesh(const fs::path& file) {
-  const auto avatar = vgd::scene::import_avatar(file);
+  const auto avatar = vgd::body::import_avatar(file);
   render::Mesh m;
   m.name = "body";
   m.kind = render::MeshKind::body;

@@ -15,6 +15,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
+#include "vgd/dress/dress.hpp"
 #include "vgd/scene/build.hpp"
 #include "vgd/scene/json.hpp"
 #include "vgd/scene/quality.hpp"
@@ -100,6 +101,8 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
   sub->footer("Exit codes: 0 the run finished, 1 the scene is bad or the run stopped early (frames so far are kept).");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     namespace scene = vgd::scene;
+    namespace body = vgd::body;
+    namespace dress = vgd::dress;
     scene::SceneDef def = scene::load_scene(o->scene);
 
     // Command-line overrides, then the checks again.
@@ -115,7 +118,7 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
       std::erase_if(def.outputs, [](const auto& out) { return out.kind == scene::OutputDef::Kind::obj; });
       def.outputs.push_back({scene::OutputDef::Kind::obj, o->output});
     }
-    scene::Scene s = scene::build(def);
+    scene::Scene s = dress::build(def);  // garments dressed on the body, then the scene
     vgd::cli::print_diagnostics(s.diagnostics, common);
 
     std::unique_ptr<vgd::sim::Integrator> integrator;

@@ -4,12 +4,20 @@
 // 22 gives 4.5 core on llvmpipe; ../shared/docs/verified-here.md). The context
 // needs a colour buffer to be made current; the renderer draws into its own
 // framebuffer objects, so a small one is enough.
+//
+// libOSMesa is opened (dlopen) when the first context is made, not linked:
+// it brings LLVM (llvmpipe) with some 400 000 relocations, which every
+// command that draws nothing would pay at start-up (docs/performance.md,
+// "Start-up"). The header gives the functions' types; the library's four
+// entry points are looked up once.
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <mutex>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "vgd/core/diagnostics.hpp"
@@ -27,6 +35,42 @@ void pin_llvmpipe_threads() {
 }
 
 constexpr int kBufferSize = 16;  // pixels per side of the context's own (unused) colour buffer
+
+// OSMesa's entry points, from the library opened on first use.
+struct OsMesa {
+  decltype(&OSMesaCreateContextAttribs) create = nullptr;
+  decltype(&OSMesaDestroyContext) destroy = nullptr;
+  decltype(&OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&OSMesaGetProcAddress) get_proc = nullptr;
+};
+
+// Opens libOSMesa once per process (kept open: contexts and the functions
+// they hand out live in it). Throws vgd::Error saying what is missing.
+const OsMesa& osmesa() {
+  static const OsMesa api = [] {
+    void* lib = nullptr;
+    std::string why;
+    for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"}) {
+      lib = ::dlopen(name, RTLD_NOW | RTLD_LOCAL);
+      if (lib) break;
+      if (const char* e = ::dlerror()) why = e;
+    }
+    if (!lib)
+      throw Error("", "OSMesa", "cannot load the off-screen OpenGL library libOSMesa.so.8 (" + why +
+                                    "; install libosmesa6)");
+    OsMesa a;
+    auto find = [&](auto& fn, const char* symbol) {
+      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(::dlsym(lib, symbol));
+      if (!fn) throw Error("", "OSMesa", std::string("libOSMesa.so.8 lacks ") + symbol);
+    };
+    find(a.create, "OSMesaCreateContextAttribs");
+    find(a.destroy, "OSMesaDestroyContext");
+    find(a.make_current, "OSMesaMakeCurrent");
+    find(a.get_proc, "OSMesaGetProcAddress");
+    return a;
+  }();
+  return api;
+}
 
 }  // namespace
 
@@ -64,25 +108,25 @@ OffscreenContext::OffscreenContext(int width, int height) : impl_(std::make_uniq
                             OSMESA_ACCUM_BITS,   0,                   OSMESA_PROFILE,
                             OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                             OSMESA_CONTEXT_MINOR_VERSION, 3,          0};
-  impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
+  impl_->context = osmesa().create(attributes, nullptr);
   if (!impl_->context)
     throw Error("", "OSMesa", "cannot create an OpenGL 3.3 core off-screen context (is libosmesa6 installed?)");
   make_current();
 }
 
 OffscreenContext::~OffscreenContext() {
-  if (impl_->context) OSMesaDestroyContext(impl_->context);
+  if (impl_->context) osmesa().destroy(impl_->context);
 }
 
 void OffscreenContext::make_current() {
-  if (!OSMesaMakeCurrent(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, impl_->width, impl_->height))
+  if (!osmesa().make_current(impl_->context, impl_->buffer.data(), GL_UNSIGNED_BYTE, impl_->width, impl_->height))
     throw Error("", "OSMesa", "cannot make the off-screen context current");
 }
 
 Image OffscreenContext::read_back() {
   make_current();
   using Finish = void (*)();
-  reinterpret_cast<Finish>(OSMesaGetProcAddress("glFinish"))();
+  reinterpret_cast<Finish>(osmesa().get_proc("glFinish"))();
   // OSMesa's buffer holds the bottom row first (OSMESA_Y_UP).
   Image img(impl_->width, impl_->height);
   const std::size_t row = static_cast<std::size_t>(impl_->width) * 4;
@@ -92,7 +136,8 @@ Image OffscreenContext::read_back() {
 }
 
 Renderer::ProcLoader OffscreenContext::loader() {
-  return [](const char* name) -> Renderer::GlProc { return OSMesaGetProcAddress(name); };
+  osmesa();  // loaded (or a clear error) before the renderer asks for a function
+  return [](const char* name) -> Renderer::GlProc { return osmesa().get_proc(name); };
 }
 
 }  // namespace vgd::render

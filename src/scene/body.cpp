@@ -2,13 +2,15 @@
 // a benchmark solid.
 #include <filesystem>
 
+#include "vgd/body/avatar_io.hpp"
+#include "vgd/body/mannequin.hpp"
+#include "vgd/body/sizes.hpp"
 #include "vgd/mesh/primitives.hpp"
-#include "vgd/scene/avatar_io.hpp"
-#include "vgd/scene/body_sizes.hpp"
 #include "vgd/scene/build.hpp"
-#include "vgd/scene/mannequin.hpp"
 
 namespace vgd::scene {
+
+using body::Avatar;
 
 Avatar build_avatar(const SceneDef& def) {
   const AvatarDef& a = *def.avatar;
@@ -16,18 +18,18 @@ Avatar build_avatar(const SceneDef& def) {
   try {
     switch (a.kind) {
       case AvatarDef::Kind::mannequin: {
-        BodyMeasurements m = a.size.empty() ? a.measurements : find_size(a.size, a.table);
-        MannequinOptions mo;
+        body::BodyMeasurements m = a.size.empty() ? a.measurements : body::find_size(a.size, a.table);
+        body::MannequinOptions mo;
         if (a.triangles > 0) mo.target_triangles = a.triangles;
-        return make_mannequin(m, mo);
+        return body::make_mannequin(m, mo);
       }
       case AvatarDef::Kind::file: {
         std::filesystem::path p = a.file;
         if (p.is_relative() && !def.source.empty()) p = def.source.parent_path() / p;
-        AvatarImportOptions io;
+        body::AvatarImportOptions io;
         io.unit = a.unit;
         io.up = a.up;
-        return import_avatar(p, io);
+        return body::import_avatar(p, io);
       }
       case AvatarDef::Kind::sphere: {
         Avatar out;

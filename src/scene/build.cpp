@@ -8,8 +8,6 @@
 
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/mesh.hpp"
-#include "vgd/scene/garment.hpp"
-#include "vgd/scene/dress.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/bending.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
@@ -42,11 +40,7 @@ std::string material_path(const std::string& key) {
   return key.find('.') == std::string::npos ? "materials." + key : key;
 }
 
-// A path from the scene file: relative ones are relative to its folder.
-fs::path resolve(const SceneDef& def, const fs::path& p) {
-  if (p.is_absolute() || def.source.empty()) return p;
-  return def.source.parent_path() / p;
-}
+fs::path resolve(const SceneDef& def, const fs::path& p) { return resolve_path(def, p); }
 
 // Everything read from other files, read once.
 class Inputs {
@@ -226,48 +220,6 @@ std::vector<std::pair<std::string, sim::Model>> xvc_pieces(const SceneDef& def, 
   return out;
 }
 
-// A garment's pieces, assembled (hems of a seam with equal vertex counts) and
-// dressed round the avatar; its seams as (piece, node) pairs.
-struct DressedPiece {
-  std::string name;
-  sim::Model model;
-  std::string segment;  // the body segment it was placed on
-};
-// `under`: the cloth of the garments worn under this one.
-std::vector<DressedPiece> garment_pieces(const SceneDef& def, int ci, Inputs& in, const MaterialDef& m,
-                                         Diagnostics& diag, const Avatar& avatar, std::vector<GarmentSeam>& seams,
-                                         const std::vector<Underlayer>& under) {
-  const ClothDef& c = def.cloth[ci];
-  const GarmentDef& gd = *c.garment;
-  const std::string p = cloth_path(ci) + ".garment";
-  const auto& doc = in.document(gd.file, p + ".file");
-  const auto arrangements = garment_arrangements(doc, avatar, diag);
-  AssemblyOptions ao;
-  ao.size = gd.size;
-  ao.spacing = gd.spacing;
-  ao.pieces = gd.pieces;
-  for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
-  const Garment g = assemble_garment(doc, ao, diag);
-  const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under);
-  std::vector<DressedPiece> out;
-  for (std::size_t k = 0; k < g.pieces.size(); ++k) {
-    const GarmentPiece& gp = g.pieces[k];
-    sim::Model mp;
-    const int n = static_cast<int>(gp.mesh.nodes.size());
-    mp.x0.resize(3 * n);
-    mp.v0 = sim::VecX::Zero(3 * n);
-    for (int i = 0; i < n; ++i) sim::at(mp.x0, i) = placed[k].positions[i];
-    mp.uv = mesh::material_coordinates(gp.mesh);
-    mp.triangles = gp.mesh.triangles;
-    if (placed[k].flipped)  // keep triangles counter-clockwise seen from outside the body
-      for (auto& t : mp.triangles) std::swap(t[1], t[2]);
-    set_masses(mp, m, c.model);
-    out.push_back({gp.piece.block.empty() ? gp.name : gp.piece.block, std::move(mp), placed[k].segment});
-  }
-  seams = g.seams;
-  return out;
-}
-
 // A grid's named particle set (indices within the piece), or nullopt when
 // the name is not one.
 std::optional<std::vector<int>> grid_set(const PieceInfo& p, const std::string& name) {
@@ -309,7 +261,12 @@ std::optional<std::vector<int>> grid_set(const PieceInfo& p, const std::string& 
 
 }  // namespace
 
-sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag, const Avatar* avatar,
+fs::path resolve_path(const SceneDef& def, const fs::path& p) {
+  if (p.is_absolute() || def.source.empty()) return p;
+  return def.source.parent_path() / p;
+}
+
+sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag, const MadeCloths& made,
                        std::vector<sim::SeamPairs>* seams) {
   Inputs in(def);
   sim::Model model;
@@ -317,33 +274,27 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
   model.v0.resize(0);
   model.mass.resize(0);
   pieces.clear();
-  std::vector<std::pair<int, std::vector<Underlayer>>> layers;  // each garment's placed cloth, by layer
   for (int ci = 0; ci < static_cast<int>(def.cloth.size()); ++ci) {
     const ClothDef& c = def.cloth[ci];
     const MaterialDef& m = in.material(c.material, c.model);
     std::vector<std::pair<std::string, sim::Model>> parts;
-    std::vector<GarmentSeam> garment_seams;
+    const MadeCloth* mine = nullptr;
     if (c.grid) {
       parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
     } else if (c.xvc) {
       parts = xvc_pieces(def, ci, in, m, diag);
     } else {
-      if (!avatar) throw Error(def.source.string(), cloth_path(ci) + ".garment", "a garment needs the scene's avatar");
-      // Two garments may both have a FRONT_38: with more than one garment the
-      // pieces carry their garment's name.
-      const int garments = static_cast<int>(
-          std::count_if(def.cloth.begin(), def.cloth.end(), [](const ClothDef& x) { return x.garment.has_value(); }));
-      std::vector<Underlayer> under;  // the garments of lower layers placed so far
-      for (const auto& [layer, cloth] : layers)
-        if (layer < c.garment->layer) under.insert(under.end(), cloth.begin(), cloth.end());
-      auto dressed = garment_pieces(def, ci, in, m, diag, *avatar, garment_seams, under);
-      auto& mine = layers.emplace_back(c.garment->layer, std::vector<Underlayer>{}).second;
-      for (const auto& d : dressed) {
-        Underlayer& u = mine.emplace_back(Underlayer{d.segment, {}});
-        for (int i = 0; i < d.model.num_particles(); ++i) u.points.push_back(sim::at(d.model.x0, i));
+      const auto it = made.find(ci);
+      if (it == made.end())
+        throw Error(def.source.string(), cloth_path(ci) + ".garment",
+                    "a garment is dressed on the body before the scene is built (dress::build, not scene::build)");
+      mine = &it->second;
+      diag.append(mine->diagnostics);
+      for (const auto& piece : mine->pieces) {
+        sim::Model mp = piece.model;
+        set_masses(mp, m, c.model);
+        parts.emplace_back(piece.name, std::move(mp));
       }
-      for (auto& d : dressed)
-        parts.emplace_back(garments > 1 && !c.name.empty() ? c.name + "/" + d.name : std::move(d.name), std::move(d.model));
     }
     const int first_piece = static_cast<int>(pieces.size());
     for (auto& [name, part] : parts) {
@@ -361,14 +312,15 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       model.pieces.push_back(name);
       pieces.push_back(std::move(info));
     }
-    if (seams)
-      for (const auto& gs : garment_seams) {
+    if (seams && mine && !mine->pieces.empty()) {
+      const int first = pieces[first_piece].first;
+      for (const auto& ms : mine->seams) {
         sim::SeamPairs sp;
-        sp.name = gs.name.empty() ? gs.id : gs.name;
-        for (const auto& [a, b] : gs.pairs)
-          sp.pairs.push_back({pieces[first_piece + a.piece].first + a.node, pieces[first_piece + b.piece].first + b.node});
+        sp.name = ms.name;
+        for (const auto& [a, b] : ms.pairs) sp.pairs.push_back({first + a, first + b});
         seams->push_back(std::move(sp));
       }
+    }
   }
   return model;
 }
@@ -495,10 +447,15 @@ std::vector<std::string> effect_names(const SceneDef& def) {
 
 Scene build(const SceneDef& def) {
   validate(def);
+  return build(def, def.avatar ? std::optional<body::Avatar>(build_avatar(def)) : std::nullopt, {});
+}
+
+Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeCloths& made) {
+  validate(def);
   Scene s;
   s.name = def.name;
-  if (def.avatar) s.avatar = build_avatar(def);
-  sim::Model model = build_model(def, s.pieces, s.diagnostics, s.avatar ? &*s.avatar : nullptr, &s.seams);
+  s.avatar = std::move(avatar);
+  sim::Model model = build_model(def, s.pieces, s.diagnostics, made, &s.seams);
   if (def.effects.seams)
     for (std::size_t i = 0; i < def.effects.seams->grid.size(); ++i)
       s.seams.push_back(grid_seam(def, model, s.pieces, def.effects.seams->grid[i],

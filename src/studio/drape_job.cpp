@@ -101,7 +101,7 @@ bool DrapeJob::take_body(mesh::SurfaceMesh& out) {
   return true;
 }
 
-std::optional<scene::Certificate> DrapeJob::take_certificate() {
+std::optional<dress::Certificate> DrapeJob::take_certificate() {
   std::lock_guard lock(m_);
   auto c = std::move(cert_);
   cert_.reset();
@@ -119,13 +119,13 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
   try {
     if (def.avatar) {
       // The body first, so the preview shows it while the garment is placed.
-      scene::Avatar avatar = scene::build_avatar(def);
+      body::Avatar avatar = scene::build_avatar(def);
       std::lock_guard lock(m_);
       body_ = std::move(avatar.surface);
       body_new_ = true;
     }
     LiveSink sink(m_, cloth_, cloth_new_);
-    auto progress = [&](const scene::DrapeStageProgress& p) {
+    auto progress = [&](const dress::DrapeStageProgress& p) {
       {
         std::lock_guard lock(m_);
         status_.stage = p.stage;
@@ -137,7 +137,7 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
       }
       if (stop_) throw StopRequested{};
     };
-    scene::DrapeResult r = scene::run_drape(def, {&sink}, progress);
+    dress::DrapeResult r = dress::run_drape(def, {&sink}, progress);
     const auto& c = r.certificate;
     std::string msg = c.stop_reason == "error"
                           ? "the drape failed: " + c.stop_message

@@ -1,5 +1,5 @@
 #pragma once
-// The studio's drape on a worker thread: scene::run_drape with a sink that
+// The studio's drape on a worker thread: dress::run_drape with a sink that
 // keeps the latest frame for the live preview, progress for the bar, and a
 // stop request honoured at the next frame. Private to src/studio.
 #include <atomic>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "vgd/mesh/surface.hpp"
-#include "vgd/scene/drape.hpp"
+#include "vgd/dress/drape.hpp"
 #include "vgd/studio/studio.hpp"
 
 namespace vgd::studio {
@@ -41,7 +41,7 @@ class DrapeJob {
   bool take_cloth(LiveCloth& out);
   bool take_body(mesh::SurfaceMesh& out);
   // The certificate once, when a run finished with one.
-  std::optional<scene::Certificate> take_certificate();
+  std::optional<dress::Certificate> take_certificate();
 
  private:
   void run(scene::SceneDef def, int threads);
@@ -54,7 +54,7 @@ class DrapeJob {
   bool cloth_new_ = false;
   std::optional<mesh::SurfaceMesh> body_;
   bool body_new_ = false;
-  std::optional<scene::Certificate> cert_;
+  std::optional<dress::Certificate> cert_;
 };
 
 }  // namespace vgd::studio

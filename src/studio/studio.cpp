@@ -102,10 +102,10 @@ struct Studio::Impl {
   std::map<std::pair<std::string, std::string>, Rect> stretch_rects;
 
   // Drape.
-  scene::DrapeOptions drape;
+  dress::DrapeOptions drape;
   bool self_collision_told = false;
   DrapeJob job;
-  std::optional<scene::Certificate> cert;
+  std::optional<dress::Certificate> cert;
   fs::path work_dir;
 
   // Preview.
@@ -682,9 +682,9 @@ struct Studio::Impl {
       // The drape reads the document as it is now, unsaved edits included.
       const fs::path copy = work_dir / (file.empty() ? fs::path("garment.xvc") : file.filename());
       xvc::save_file(doc, copy);
-      scene::DrapeOptions d = drape;
+      dress::DrapeOptions d = drape;
       d.garment = copy;
-      scene::SceneDef def = scene::drape_scene(d);
+      scene::SceneDef def = dress::drape_scene(d);
       cert.reset();
       cloth = {};
       job.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
@@ -1025,9 +1025,9 @@ const fs::path& Studio::file() const { return impl_->file; }
 bool Studio::modified() const { return impl_->is_modified(); }
 const std::string& Studio::status() const { return impl_->status; }
 bool Studio::status_is_error() const { return impl_->status_error; }
-scene::DrapeOptions& Studio::drape_options() { return impl_->drape; }
+dress::DrapeOptions& Studio::drape_options() { return impl_->drape; }
 DrapeStatus Studio::drape_status() const { return impl_->job.status(); }
-const std::optional<scene::Certificate>& Studio::certificate() const { return impl_->cert; }
+const std::optional<dress::Certificate>& Studio::certificate() const { return impl_->cert; }
 void Studio::wait_for_drape() { impl_->job.wait(); }
 const std::string& Studio::selected() const { return impl_->selected; }
 const std::vector<std::pair<std::string, std::string>>& Studio::picked() const { return impl_->picked; }

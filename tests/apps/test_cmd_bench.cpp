@@ -1,4 +1,4 @@
-// vgd bench drape-sphere: the benchmark scene runs and its checks
+// vgd bench drape-sphere: the benchmark scene runs and its checks
 // hold (speed is measured by the benchmark itself, docs/performance.md, not
 // asserted here).
 #include <gtest/gtest.h>

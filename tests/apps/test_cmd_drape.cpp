@@ -1,7 +1,7 @@
 // vgd drape end to end: the project's skirt on its default mannequin, and a
 // real imported garment (MEN_CLASSIC_TEE) sewn with the seam file written for
 // it in tests/data. Each test reads the certificate the drape writes and
-// checks the figures the issue asks for against their limits.
+// checks the drape's figures against their limits.
 #include <gtest/gtest.h>
 
 #include <fstream>

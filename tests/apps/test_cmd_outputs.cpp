@@ -1,4 +1,4 @@
-// The output commands end to end (issue 5): a simulated trajectory compressed
+// The output commands end to end: a simulated trajectory compressed
 // under a bound and decoded back within it (measured here, not taken from the
 // encoder's report), the same trajectory exported as VRML (three flavours),
 // glTF and OBJ, and bad inputs named with exit 1.

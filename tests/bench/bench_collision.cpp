@@ -2,7 +2,7 @@
 // exact BVH on a sphere of 5 000 and 20 000 triangles and a body-sized
 // ellipsoid: build time, cost per query, error. And the effects' cost per
 // step on the benchmark's cloth (71 × 71 = 5 041 particles).
-// Target (the issue's): well under 1 µs per particle per step.
+// Target: well under 1 µs per particle per step.
 // Run: build/tests/bench/vgd_bench --benchmark_filter=Collision
 #include <benchmark/benchmark.h>
 

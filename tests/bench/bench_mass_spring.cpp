@@ -1,7 +1,7 @@
 // Mass-spring cloth speed on the seed's 30 × 30 flag (seed 000 §4.1: the
 // Garment PROTO's constants, 0.1 kg particles, gravity, viscosity 0.2 N·s/m,
 // two corners pinned to the staff), per integrator and thread count.
-// Target (the issue's): ≥ 20 million particle-steps/s with symplectic Euler on one core.
+// Target: ≥ 20 million particle-steps/s with symplectic Euler on one core.
 // Run: build/tests/bench/vgd_bench --benchmark_filter=MassSpring
 #include <benchmark/benchmark.h>
 #include <omp.h>

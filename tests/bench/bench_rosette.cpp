@@ -1,7 +1,7 @@
 // Speed of the strain-rosette membrane and the bending model on the seed's
 // 30 × 30 flag (make_grid: 900 particles, 1682 triangles, 2 523 hinges):
 // particle-steps per second for symplectic Euler, midpoint and RK4 on 1 and 2
-// threads (issue target: ≥ 5e6 particle-steps/s for symplectic Euler on one
+// threads (target: ≥ 5e6 particle-steps/s for symplectic Euler on one
 // core), and the cost of one force evaluation of each effect.
 // Run: build/tests/bench/vgd_bench --benchmark_filter='Rosette|Bending|Flag'
 #include <benchmark/benchmark.h>

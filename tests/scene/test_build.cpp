@@ -11,7 +11,6 @@
 #include "mesh/synthetic.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
-#include "vgd/scene/drape.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
 #include "vgd/sim/run.hpp"
@@ -259,25 +258,17 @@ TEST(SceneBuild, XvcPiecesCanBeChosenByName) {
 namespace vgd::scene {
 namespace {
 
-// Garments in layers read their order from the body's distance grid at rest:
-// a moving body (effects.collision.body_velocity) is refused, naming the
-// field; the same scene with the body at rest builds.
-TEST(SceneBuild, LayeredGarmentsOnAMovingBodyAreRefused) {
-  DrapeOptions d;
-  d.garment = vgd::test::source_dir() / "data/garments/a-line-skirt.xvc";
-  d.over = {vgd::test::source_dir() / "data/garments/t-shirt.xvc"};
-  d.spacing = 0.03;  // coarse: only the build is tested
-  SceneDef def = drape_scene(d);
-  ASSERT_TRUE(def.effects.collision);
-  EXPECT_NO_THROW(build(def));
-  def.effects.collision->velocity = sim::Vec3(0, 0.1, 0);
-  try {
-    build(def);
-    ADD_FAILURE() << "a layered scene on a moving body was built";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("body_velocity"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("at rest"), std::string::npos) << e.what();
-  }
+// A garment entry is dressed on the body by the dress stage: scene::build
+// alone refuses it, naming the scene file, the field and what builds it.
+TEST(SceneBuild, AGarmentEntryNeedsTheDressStage) {
+  json j = test::tiny_scene();
+  j["avatar"] = json::parse(R"({"sphere": {"centre": [0, 0.5, 0], "radius": 0.2}})");
+  j["cloth"][0] = json{{"name", "skirt"},
+                       {"garment", {{"file", (vgd::test::source_dir() / "data/garments/a-line-skirt.xvc").string()}}},
+                       {"material", "cloth"}};
+  j["effects"].erase("pins");
+  const SceneDef def = test::parse(j, "garment-scene.json");
+  test::expect_error([&] { build(def); }, "garment-scene.json", "cloth[0].garment", "dress::build");
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "fixtures.hpp"
-#include "vgd/scene/data.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/sim/integrator.hpp"

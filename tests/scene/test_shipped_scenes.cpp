@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "vgd/scene/build.hpp"
-#include "vgd/scene/data.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/scene/json.hpp"
 #include "vgd/sim/run.hpp"
 

@@ -77,7 +77,7 @@ void check_drape(const Drape& res, const std::string& tag, bool rests = true) {
   ::testing::Test::RecordProperty(tag + "_max_depth_m", sci(res.max_depth));
   ::testing::Test::RecordProperty(tag + "_max_speed_end_m_per_s", sci(res.speed));
   ::testing::Test::RecordProperty(tag + "_max_penetration_seen_m", sci(res.max_pen_seen));
-  EXPECT_LE(res.max_depth, 0.001);  // the bound, exact (CGAL) at every frame
+  EXPECT_LE(res.max_depth, 0.001);  // the drape's 1 mm bound, exact (CGAL) at every frame
   if (!rests) return;
   EXPECT_GT(res.in_contact, 50);
   // Resting on top: the centre particle at the clearance over the pole.

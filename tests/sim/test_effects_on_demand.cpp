@@ -1,4 +1,4 @@
-// Effects on demand (issue 7): the System holds exactly the effects it was
+// Effects on demand: the System holds exactly the effects it was
 // given, evaluates only those, and an effect that has finished its work (a
 // seam after its last merge) leaves the step — its call counts stop growing
 // while the others' keep growing.

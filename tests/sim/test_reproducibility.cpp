@@ -1,4 +1,4 @@
-// Reproducibility (issue 7): the same system, the same build → the same
+// Reproducibility: the same system, the same build → the same
 // trajectory bit for bit, for every integrator, with one thread or two
 // (docs/accuracy-vs-time.md, "Reproducibility").
 // The shipped scenes (flag, drape-sphere) are checked in tests/stability.

@@ -1,4 +1,4 @@
-// Reproducibility of the shipped scenes (issue 7): the flag and drape-sphere,
+// Reproducibility of the shipped scenes: the flag and drape-sphere,
 // 0.5 s each, as shipped (their own integrators). One thread twice: the same
 // trajectory bit for bit. Two threads: the same again (docs/accuracy-vs-time.md,
 // "Reproducibility").
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "vgd/scene/build.hpp"
-#include "vgd/scene/data.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/scene/json.hpp"
 #include "vgd/sim/run.hpp"
 
@@ -19,7 +19,7 @@ namespace {
 
 sim::MemorySink trajectory(const std::string& name, int threads) {
   omp_set_num_threads(threads);
-  scene::SceneDef def = scene::load_scene(scene::shipped_scene(name));
+  scene::SceneDef def = scene::load_scene(vgd::shipped_scene(name));
   def.outputs.clear();
   def.run.duration = 0.5;
   scene::Scene s = scene::build(def);

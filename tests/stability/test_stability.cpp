@@ -1,4 +1,4 @@
-// Hard cases that stay numerically stable (issue 7). Every case runs with
+// Hard cases that stay numerically stable. Every case runs with
 // every integrator and must either complete — every frame finite, energy
 // bounded — or be refused before its first step with a message saying why and
 // what would work. A run the engine stops in the middle (a blow-up caught by
@@ -20,7 +20,7 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/scene/build.hpp"
-#include "vgd/scene/data.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/scene/json.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
@@ -156,7 +156,7 @@ Outcome run_system(System& sys, const IntegratorSettings& settings, double durat
 Outcome run_case(const CaseDef& c, Method method) {
   scene::SceneDef def;
   try {
-    def = scene::parse_scene(json(c, method), scene::shipped_scene("hanging-cloth"));
+    def = scene::parse_scene(json(c, method), vgd::shipped_scene("hanging-cloth"));
     scene::Scene s = scene::build(def);
     return run_system(*s.system, s.integrator, c.duration);
   } catch (const Error& e) {  // the scene itself refused (a material outside its limits)
@@ -195,7 +195,7 @@ void expect_stable(const std::string& what, Method method, const Outcome& o, dou
   }
   EXPECT_TRUE(o.finite);
   EXPECT_LT(o.max_speed, speed_cap);
-  // Inside the body by no more than issue 4's 1 mm at any frame's end (the
+  // Inside the body by no more than the drape's 1 mm at any frame's end (the
   // body collision keeps particles 3 mm outside).
   EXPECT_LE(o.max_inside, 0.001);
   if (!energy_may_grow) {
@@ -514,7 +514,7 @@ TEST(StabilityBdf, BdfOfOrderTwoOnAFinerMesh) {
   omp_set_num_threads(1);
   CaseDef c;
   c.model = "strain-rosette", c.particles = 21, c.size = 0.1, c.duration = 0.2;
-  scene::Scene s = scene::build(scene::parse_scene(json(c, Method::bdf), scene::shipped_scene("hanging-cloth")));
+  scene::Scene s = scene::build(scene::parse_scene(json(c, Method::bdf), vgd::shipped_scene("hanging-cloth")));
   s.integrator.max_order = 2;
   const Outcome o = run_system(*s.system, s.integrator, c.duration);
   expect_stable("5 mm mesh 21 x 21, strain-rosette, BDF order 2", Method::bdf, o, 20.0, false);

@@ -9,7 +9,7 @@
 
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
-#include "vgd/scene/drape.hpp"
+#include "vgd/dress/drape.hpp"
 #include "vgd/studio/harness.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -102,9 +102,9 @@ TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
     EXPECT_EQ(o.quality, q) << name;
     // Preview drapes without self-collision unless ticked, as vgd drape does.
     EXPECT_EQ(o.self_collision, q != vgd::scene::Quality::preview) << name;
-    vgd::scene::DrapeOptions d = o;
+    vgd::dress::DrapeOptions d = o;
     d.garment = kSkirt;
-    const auto def = vgd::scene::drape_scene(d);
+    const auto def = vgd::dress::drape_scene(d);
     ASSERT_TRUE(def.integrator.preset);
     EXPECT_EQ(*def.integrator.preset, q) << name;
   }

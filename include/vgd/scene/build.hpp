@@ -4,18 +4,21 @@
 //
 //   model    every piece's particles and triangles: grids as make_grid lays
 //            them, XVC pieces meshed (mesh::mesh_piece) in their pattern
-//            coordinates and laid flat (Placement); rest shape = material
-//            (warp, weft) coordinates; masses = particle_mass (mass-spring)
-//            or lumped triangle area x density;
+//            coordinates and laid flat (Placement), garments as the dress
+//            stage made them (MadeCloth: assembled and placed round the
+//            body); rest shape = material (warp, weft) coordinates; masses =
+//            particle_mass (mass-spring) or lumped triangle area x density;
 //   effects  the cloth models of the pieces (mass-spring, strain-rosette,
 //            bending), then gravity, viscosity, damping, wind and one pins
 //            effect per pin group, in that order, each only when listed.
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "vgd/core/diagnostics.hpp"
-#include "vgd/scene/avatar.hpp"
+#include "vgd/body/avatar.hpp"
 #include "vgd/scene/scene.hpp"
 #include "vgd/sim/system.hpp"
 
@@ -42,21 +45,40 @@ struct Scene {
   std::vector<PieceInfo> pieces;
   std::vector<int> pinned;              // every pinned particle, sorted
   Diagnostics diagnostics;              // meshing warnings
-  std::optional<Avatar> avatar;         // the scene's body, when it has one
+  std::optional<body::Avatar> avatar;   // the scene's body, when it has one
   std::vector<sim::SeamPairs> seams;    // every seam's particle pairs (global indices)
 };
 
 // The scene's body as AvatarDef says: the mannequin generated, the file
 // imported, or the solid built. Throws vgd::Error naming the scene file and
 // the field for anything wrong.
-Avatar build_avatar(const SceneDef& def);
+body::Avatar build_avatar(const SceneDef& def);
+
+// The pieces of one cloth entry made outside this stage: a garment (GarmentDef)
+// assembled and placed round the body by the dress stage (dress::build). Each
+// piece's model holds x0 (world frame, m), v0, uv and triangles; build() sets
+// the masses from the cloth's material. Seams pair particles of the entry,
+// numbered from its first piece's first particle (pieces in order).
+struct MadePiece {
+  std::string name;
+  sim::Model model;
+};
+struct MadeCloth {
+  std::vector<MadePiece> pieces;
+  std::vector<sim::SeamPairs> seams;
+  Diagnostics diagnostics;  // warnings made while making the pieces
+};
+using MadeCloths = std::map<int, MadeCloth>;  // by index in SceneDef::cloth
+
+// `p` from the scene file: a relative path is relative to the scene file's folder.
+std::filesystem::path resolve_path(const SceneDef& def, const std::filesystem::path& p);
 
 // The particles of a model the scene has not built effects for yet: pieces
-// and the model, as build() makes them. Throws vgd::Error like build().
-// Garments are dressed on `avatar` (required when the scene has one) and their
-// seams' particle pairs appended to `seams` (when given).
+// and the model, as build() makes them. Throws vgd::Error like build(), and
+// for a garment entry that `made` lacks. Made cloths' seams are appended to
+// `seams` (when given) as global particle pairs.
 sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diagnostics& diag,
-                       const Avatar* avatar = nullptr, std::vector<sim::SeamPairs>* seams = nullptr);
+                       const MadeCloths& made = {}, std::vector<sim::SeamPairs>* seams = nullptr);
 
 // The particles a pin group names (global indices, sorted, unique). `path` is
 // the group's JSON path for messages (e.g. "effects.pins[0]"). Throws
@@ -67,8 +89,12 @@ std::vector<int> pin_particles(const SceneDef& def, const sim::Model& model, con
 
 // validate()s, reads the XVC files and materials, meshes, and builds the
 // system. Throws vgd::Error naming the scene file and the field's JSON path
-// (or the XVC file and element) for anything wrong.
+// (or the XVC file and element) for anything wrong. A scene with garments is
+// built by dress::build, which dresses them on the body and calls the second
+// form; the first refuses a garment entry.
 Scene build(const SceneDef& def);
+// The same with the body already built (def.avatar's) and the made cloths.
+Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeCloths& made);
 
 // Names of the effects build() constructs for `def`, in order (what
 // System::profile will list).

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "vgd/scene/avatar.hpp"
+#include "vgd/body/avatar.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
@@ -129,7 +129,7 @@ struct AvatarDef {
   // mannequin: a size from the tables (data/bodies), or measurements
   std::string size;                 // "" = use `measurements`
   std::string table;                // size table; "" = the default search order
-  BodyMeasurements measurements;    // when size is ""
+  body::BodyMeasurements measurements;  // when size is ""
   int triangles = 0;                // target triangle count, 0 = the generator's default
   // file
   std::filesystem::path file;       // relative to the scene file's folder

@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "vgd/render/image.hpp"
-#include "vgd/scene/certificate.hpp"
-#include "vgd/scene/drape.hpp"
+#include "vgd/dress/certificate.hpp"
+#include "vgd/dress/drape.hpp"
 #include "vgd/xvc/document.hpp"
 
 struct ImDrawData;
@@ -114,10 +114,10 @@ class Studio {
   const std::string& status() const;       // the last message of the status bar
   bool status_is_error() const;
   // Drape settings (quality, size, ...), as the simulate panel shows them.
-  scene::DrapeOptions& drape_options();
+  dress::DrapeOptions& drape_options();
   DrapeStatus drape_status() const;
   // The certificate of the last finished drape.
-  const std::optional<scene::Certificate>& certificate() const;
+  const std::optional<dress::Certificate>& certificate() const;
   // Blocks until the drape worker has finished (for scripts and tests).
   void wait_for_drape();
   // The id of the element selected in the tree ("" when none).

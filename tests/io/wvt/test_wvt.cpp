@@ -17,7 +17,7 @@
 #include "vgd/core/file.hpp"
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/io/wvt/wvt.hpp"
-#include "vgd/scene/drape.hpp"
+#include "vgd/dress/drape.hpp"
 
 using namespace vgd;
 using io::trj::Trajectory;
@@ -180,14 +180,14 @@ TEST(WvtCodec, BadInputIsNamed) {
 // compressed at three bounds.
 TEST(WvtDrape, TheSkirtDrapeCompressesByNinetyPercentAtOneMillimetre) {
   const auto dir = test::scratch_dir("wvt_drape");
-  scene::DrapeOptions d;
+  dress::DrapeOptions d;
   d.garment = test::source_dir() / "data/garments/a-line-skirt.xvc";
   io::trj::TrjWriter writer(dir / "skirt.trj");
   // One thread, as vgd runs it by default: OpenMP's spinning barriers make a
   // scene this small many times slower on cores shared with other work.
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  const scene::DrapeResult r = scene::run_drape(scene::drape_scene(d), {&writer});
+  const dress::DrapeResult r = dress::run_drape(dress::drape_scene(d), {&writer});
   omp_set_num_threads(threads);
   ASSERT_NE(r.certificate.stop_reason, "error") << r.certificate.stop_message;
 

@@ -14,7 +14,7 @@
 //   r.warnings();                              // e.g. "the last frame is truncated"
 //
 // Writing: TrjWriter is a sim::FrameSink (pass it to sim::run or
-// scene::run_drape), or feed it frames yourself (begin(Topology), add_frame).
+// dress::run_drape), or feed it frames yourself (begin(Topology), add_frame).
 // It writes `file.partial` and renames it to `file` at end(): a crashed run
 // leaves the .partial file, which TrjReader reads up to its last whole frame.
 //

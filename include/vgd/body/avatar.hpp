@@ -1,0 +1,70 @@
+#pragma once
+// The body a garment is draped on: an imported avatar mesh (assimp) or vgd's
+// parametric mannequin generated from body measurements.
+//
+// Every Avatar is in vgd's world frame: metres, +Y up, facing +Z (the body's
+// left is +X), feet on y = 0, centred on the Y axis. Segments (neck, torso,
+// hips, arms, legs) are axes with elliptic cross-sections along them; the
+// placement stage wraps pattern pieces around them.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vgd/mesh/surface.hpp"
+
+namespace vgd::body {
+
+using Vec3 = Eigen::Vector3d;
+
+// Body measurements, m (ISO 8559-1 definitions; girths horizontal).
+struct BodyMeasurements {
+  std::string label = "custom";  // size label ("38", "M", "10") or "custom"
+  std::string sex = "female";    // "female" or "male": which body template
+  double height = 1.68;          // top of head to floor
+  double bust = 0.88;            // bust girth (women), chest girth (men)
+  double under_bust = 0.75;      // just below the breasts (women); = bust for men
+  double waist = 0.72;           // natural waist girth
+  double hip = 0.97;             // hip girth at the fullest part
+  double shoulder_width = 0.38;  // shoulder point to shoulder point across the back
+  double neck = 0.34;            // neck base girth
+  double arm_length = 0.59;      // shoulder point to wrist, arm hanging
+  double inseam = 0.78;          // crotch to floor
+};
+
+// One elliptic cross-section of a segment, in the plane normal to its axis.
+struct SegmentRing {
+  double s = 0.0;                 // m along the axis from BodySegment::start
+  Vec3 centre = Vec3::Zero();     // m
+  double half_width = 0.0;        // m, semi-axis along side() (the body's left)
+  double half_depth = 0.0;        // m, semi-axis along front
+};
+
+// A part of the body: neck, torso, hips, left-arm, right-arm, left-leg, right-leg.
+struct BodySegment {
+  std::string name;
+  Vec3 start = Vec3::Zero();      // m: torso/hips/neck: bottom; arms: shoulder; legs: hip joint
+  Vec3 axis = Vec3::UnitY();      // unit: torso/hips/neck up, arms towards the wrist, legs down
+  Vec3 front = Vec3::UnitZ();     // unit, normal to axis: where the body faces
+  double length = 0.0;            // m
+  std::vector<SegmentRing> rings;  // by increasing s, first at 0, last at length
+  // The body's left as seen along this segment: front × axis for upward axes.
+  Vec3 side() const { return axis.cross(front).normalized(); }
+};
+
+// The cross-section at s (m), linearly interpolated, clamped to [0, length].
+SegmentRing ring_at(const BodySegment& segment, double s);
+
+struct Avatar {
+  std::string source;              // the file, or "mannequin <label>"
+  mesh::SurfaceMesh surface;       // world frame, m
+  std::vector<BodySegment> segments;
+  std::vector<int> triangle_segment;  // per triangle: index in segments, -1 when unknown
+  std::optional<BodyMeasurements> measurements;  // mannequins: what they were made from
+
+  // The segment with this name, or nullptr.
+  const BodySegment* segment(std::string_view name) const;
+};
+
+}  // namespace vgd::body

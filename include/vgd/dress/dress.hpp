@@ -1,0 +1,61 @@
+#pragma once
+// Dressing: where each assembled garment piece starts in 3-D. Every piece is
+// wrapped round the avatar where its arrangement says (POSITION
+// type="arrangement" in its PATTERN, docs/xvc.md), or, when it has none, where
+// vgd suggests from its name (xvc/arrangement.hpp). dress/placement.hpp does
+// the geometry.
+//
+// A scene with garments (scene::GarmentDef entries) is built here: the body
+// first, then every garment assembled and placed round it in layer order
+// (dress_garments), then scene::build with the made pieces.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "vgd/body/avatar.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/dress/garment.hpp"
+#include "vgd/dress/placement.hpp"
+#include "vgd/scene/build.hpp"
+#include "vgd/scene/scene.hpp"
+#include "vgd/xvc/arrangement.hpp"
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::dress {
+
+struct PlacedPiece {
+  std::vector<body::Vec3> positions;  // per mesh node, m, world frame
+  bool flipped = false;         // the placement mirrored the piece: its triangles must be reversed
+  std::string arrangement;      // how it was placed, for reports ("torso front 1.25 m, 30 mm clear, suggested")
+  std::string segment;          // the body segment it was placed on (for garments worn over it)
+};
+
+// Every PATTERN's arrangements: those stored in the document, else vgd's
+// suggestions from the piece's name, with heights taken from the avatar (its
+// landmarks for a mannequin; its torso for another body). Patterns for which
+// no rule fits are missing from the map.
+std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
+                                                                         const body::Avatar& avatar, Diagnostics& diag);
+
+// One PlacedPiece per garment piece, in order: piece k of a pattern takes the
+// pattern's k-th arrangement. Throws vgd::Error naming the document and the
+// PATTERN when a piece has no arrangement, or names a segment the avatar lacks.
+// `under`: the cloth of garments already placed that this one is worn over.
+std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
+                                       const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
+                                       const body::Avatar& avatar, const std::vector<Underlayer>& under = {});
+
+// Every garment entry of `def` assembled (dress/garment.hpp) and placed round
+// `avatar`, keyed by its index in def.cloth. Garments are taken in cloth
+// order; each is placed outside the cloth of those before it with a lower
+// layer (Underlayer). With more than one
+// garment a piece's name is "<cloth name>/<block>". Throws vgd::Error naming
+// the scene file and the field (a missing document) or the document and the
+// element (a piece that cannot be assembled or placed).
+scene::MadeCloths dress_garments(const scene::SceneDef& def, const body::Avatar& avatar);
+
+// scene::build for any scene: the body built once, the garments dressed on
+// it, then the scene built with them.
+scene::Scene build(const scene::SceneDef& def);
+
+}  // namespace vgd::dress

@@ -1,0 +1,80 @@
+#pragma once
+// Garment assembly: an XVC document with seams -> meshed pieces whose seam
+// hems carry the same number of vertices, and the seams as particle pairs
+// (seed 002 §2–3: E-Fabric picked "the same number of vertexes from two of the
+// patterns"; vgd makes the mesher do it).
+//
+// Each PATTERN of the chosen size gives one piece per arrangement it holds
+// (POSITION type="arrangement": a sleeve cut twice is placed on both arms),
+// at least one. A HEM sewn again (the same stretches in a later SEAM) goes to
+// the pattern's next copy, so the right and left armhole seams each get their
+// own sleeve. Its outline is
+// cut into sides at every corner (turn points and turns sharper than the
+// resampling angle), every notch vertex and every hem end. A side that is no
+// hem gets ceil(length / spacing) equal segments. The hems of one seam share
+// n = ceil(max(length_a, length_b) / spacing) segments, spread over each hem
+// by arc length, so the k-th vertex of one hem is sewn to the k-th vertex of
+// the other: positions along the two hems are proportional (their ease is
+// spread evenly). Corners inside a hem are not kept (the hem is resampled as
+// one curve). The boundary is then meshed without Steiner points on it
+// (mesh::MeshOptions::split_boundary = false) so the pairing survives.
+//
+// A SEAM with more than two HEMs sews its first HEM to the others taken in
+// document order one after the other (a sleeve cap to the front and back
+// armholes). Units: metres.
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/mesh/mesh.hpp"
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::dress {
+
+struct AssemblyOptions {
+  std::string size;           // "" = the document's sample size, else its first size
+  double spacing = 0.0;       // m between boundary vertices; 0 = the document's mesh.spacing, else 0.015
+  double min_angle = 0.0;     // deg; 0 = the document's mesh.min_angle, else 25
+  std::vector<std::string> pieces;  // piece or block names to keep; empty = every pattern of the size
+  // PATTERN id -> pieces to make of it; a pattern not listed gets one per
+  // arrangement it stores, at least one.
+  std::map<std::string, int> copies;
+};
+
+struct GarmentPiece {
+  std::string pattern_id;  // the PATTERN's id in the document
+  int copy = 0;            // which of the pattern's arrangements (0-based)
+  std::string name;        // piece name (block name when the piece has none)
+  pattern::Piece piece;    // the piece as meshed (resampled outline)
+  mesh::PieceMesh mesh;    // nodes in pattern coordinates
+};
+
+// A vertex of one piece's mesh.
+struct PieceNode {
+  int piece = -1;  // index in Garment::pieces
+  int node = -1;   // node of that piece's mesh
+  bool operator==(const PieceNode&) const = default;
+};
+
+struct GarmentSeam {
+  std::string id, name;                      // the SEAM's id and name
+  std::vector<std::array<PieceNode, 2>> pairs;  // sewn together, in sewing order
+  double length_a = 0.0, length_b = 0.0;     // m: first hem, and the others together
+};
+
+struct Garment {
+  std::string name;
+  std::string size;
+  std::vector<GarmentPiece> pieces;
+  std::vector<GarmentSeam> seams;  // seams whose hems all lie on kept pieces
+};
+
+// Assembles the garment. Throws vgd::Error naming the document and the element
+// (SEAM, HEM or PATTERN id) for hems that overlap, a HEM on a pattern of
+// another size, or a piece that cannot be meshed. Seams touching a piece left
+// out by options.pieces are skipped with a warning in `diag`.
+Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& options, Diagnostics& diag);
+
+}  // namespace vgd::dress

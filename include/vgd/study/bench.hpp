@@ -1,0 +1,106 @@
+#pragma once
+// The benchmarks `vgd bench` prints (docs/performance.md): the engine on the
+// shipped flag for every cloth model × integrator × thread count; the
+// benchmark scenes (drape-sphere, sew-cylinder) against a peer's Blender
+// figures with their checks; the cost of each effect a scene calls for; the
+// dressing benchmark (two garments, flat pieces to rest).
+//
+// Explicit methods run with automatic sub-stepping, so each takes its own
+// stable step; implicit Euler takes the scene's step, BDF its own adaptive
+// ones. A model or integrator this build lacks is reported as unavailable, a
+// run the engine stops as failed (with its message), and a run that exceeds
+// its wall-time budget as partial (rates are per simulated second reached).
+// Each run sets the OpenMP thread count it is asked for; the functions that
+// run several restore the count they found.
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vgd/dress/certificate.hpp"
+#include "vgd/scene/scene.hpp"
+#include "vgd/sim/integrator.hpp"
+
+namespace vgd::study {
+
+// 1 and, on a machine with more, every core.
+std::vector<int> thread_counts();
+
+// ---- the engine ---------------------------------------------------------------------
+
+struct EngineRecord {
+  std::string scene, variant, model, integrator, status = "ok", message;
+  std::vector<std::string> effects;
+  std::vector<std::pair<std::string, double>> profile;  // seconds per effect (System::profile)
+  int threads = 1, particles = 0;
+  long steps = 0, rhs = 0, jacobians = 0;
+  double step_s = 0, simulated_s = 0, wall_s = 0;
+  double particle_steps_per_s() const { return wall_s > 0 ? particles * static_cast<double>(steps) / wall_s : 0.0; }
+  bool implicit() const { return integrator == "implicit-euler" || integrator == "bdf"; }
+};
+
+// Runs `def` with `method` on `threads` frame by frame until its duration or
+// the wall budget (s).
+EngineRecord run_engine(const scene::SceneDef& def, sim::Method method, int threads, double budget_s);
+
+// Every cloth model × integrator × thread count on `base`, then `base` (its
+// own method, 1 thread) with each listed effect switched off in turn
+// (variants "all effects", "no wind", ...). `on_record` sees each record.
+std::vector<EngineRecord> engine_study(const scene::SceneDef& base, double budget_s,
+                                       const std::function<void(const EngineRecord&)>& on_record = {});
+
+// ---- the benchmark scenes -------------------------------------------------------------
+
+struct SceneRecord {
+  std::string scene, status = "ok", message;
+  int threads = 1, particles = 0, body_triangles = 0;
+  long steps = 0;
+  double simulated_s = 0, wall_s = 0;
+  double blender_s = 0;        // a peer's Blender 3.4 wall s per simulated s on this kind of machine; 0 = none
+  double max_penetration = 0;  // m, exact, over every frame
+  int seam_pairs = 0, seams_closed = 0;
+  bool self_collision = false;
+  int crossings = -1;  // cloth triangle pairs passing through each other at the last frame (sewn topology)
+  double per_simulated_s() const { return simulated_s > 0 ? wall_s / simulated_s : 0.0; }
+};
+
+// Runs the shipped scene `name` (drape-sphere, sew-cylinder) on `threads`;
+// frames are kept in memory and measured after the clock stops (exact
+// penetration against the body's triangles). `duration` > 0 replaces the
+// scene's; `self_collision` adds the effect.
+SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision);
+
+// ---- effects on demand ----------------------------------------------------------------
+
+struct EffectsRecord {
+  std::string scene, variant, status = "ok", message;
+  std::vector<std::string> effects;                     // the effects the variant lists (System::profile)
+  std::vector<std::pair<std::string, double>> profile;  // seconds per effect
+  int particles = 0;
+  long steps = 0, rhs = 0;
+  double simulated_s = 0, wall_s = 0;
+  double ms_per_step() const { return steps > 0 ? 1000 * wall_s / steps : 0.0; }
+  double per_simulated_s() const { return simulated_s > 0 ? wall_s / simulated_s : 0.0; }
+};
+
+// The step cost of scenes against the effects they call for, 1 thread: the
+// flag with and without wind, drape-sphere without and with self-collision
+// and with a moving sphere, sew-cylinder while its seams work and after their
+// last merge, and without seams. `quick`: 0.4 s of the flag and the drape.
+std::vector<EffectsRecord> effects_study(bool quick, const std::function<void(const EffectsRecord&)>& on_record = {});
+
+// ---- dressing -------------------------------------------------------------------------
+
+struct DressRecord {
+  int threads = 1;
+  dress::Certificate certificate;
+  int body_triangles = 0;
+};
+
+// The project's A-line skirt with the T-shirt over it, from flat pieces to
+// rest on the mannequin of `size`, at `spacing` (m; 0.019 gives about 5 000
+// particles), on 1 thread and every core. `on_record` sees each record.
+std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
+                                     const std::function<void(const DressRecord&)>& on_record = {});
+
+}  // namespace vgd::study

@@ -1,0 +1,255 @@
+#include "vgd/dress/certificate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
+
+#include "vgd/mesh/surface_checks.hpp"
+#include "vgd/sim/effects/body_collision.hpp"
+#include "vgd/sim/sdf.hpp"
+
+namespace vgd::dress {
+namespace {
+
+using sim::Vec3;
+
+Percentiles percentiles(std::vector<double> v) {
+  Percentiles p;
+  if (v.empty()) return p;
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double q) { return v[static_cast<std::size_t>(std::lround(q * (v.size() - 1)))]; };
+  p.min = v.front();
+  p.p5 = at(0.05);
+  p.p50 = at(0.5);
+  p.p95 = at(0.95);
+  p.max = v.back();
+  return p;
+}
+
+// Strain of every triangle of one piece: deformation gradient F = [dx1 dx2]
+// [du1 du2]⁻¹ (3 × 2) against the flat rest shape in (warp, weft) coordinates.
+PieceStrain piece_strain(const sim::Model& m, const scene::PieceInfo& p, const sim::VecX& x) {
+  std::vector<double> warp, weft, shear;
+  for (int t = p.first_triangle; t < p.first_triangle + p.triangles; ++t) {
+    const auto& tri = m.triangles[t];
+    Eigen::Matrix2d D;
+    D.col(0) = m.uv[tri[1]] - m.uv[tri[0]];
+    D.col(1) = m.uv[tri[2]] - m.uv[tri[0]];
+    if (std::abs(D.determinant()) < 1e-14) continue;
+    Eigen::Matrix<double, 3, 2> X;
+    X.col(0) = sim::at(x, tri[1]) - sim::at(x, tri[0]);
+    X.col(1) = sim::at(x, tri[2]) - sim::at(x, tri[0]);
+    const Eigen::Matrix<double, 3, 2> F = X * D.inverse();
+    const double lu = F.col(0).norm(), lv = F.col(1).norm();
+    warp.push_back(lu - 1.0);
+    weft.push_back(lv - 1.0);
+    const double c = std::clamp(F.col(0).dot(F.col(1)) / std::max(lu * lv, 1e-300), -1.0, 1.0);
+    shear.push_back(90.0 - std::acos(c) * 180.0 / std::numbers::pi);
+  }
+  PieceStrain s;
+  s.piece = p.name;
+  s.warp = percentiles(warp);
+  s.weft = percentiles(weft);
+  s.shear_deg = percentiles(shear);
+  return s;
+}
+
+// Per original particle, the lowest original particle merged with it (itself
+// when unmerged): one index per sewn vertex.
+std::vector<int> first_copies(const std::vector<int>& rep, int n) {
+  std::vector<int> first(n);
+  if (rep.empty()) {
+    for (int k = 0; k < n; ++k) first[k] = k;
+    return first;
+  }
+  std::vector<int> of_group(n, -1);
+  for (int k = 0; k < n; ++k)
+    if (of_group[rep[k]] < 0) of_group[rep[k]] = k;
+  for (int k = 0; k < n; ++k) first[k] = of_group[rep[k]];
+  return first;
+}
+
+nlohmann::json to_json(const Percentiles& p) {
+  return {{"min", p.min}, {"p5", p.p5}, {"p50", p.p50}, {"p95", p.p95}, {"max", p.max}};
+}
+
+}  // namespace
+
+bool Certificate::passed() const {
+  bool seams_closed = true;
+  for (const auto& s : seams) seams_closed = seams_closed && s.closed == s.pairs;
+  return stop_reason == "rest" && max_penetration <= penetration_limit && seams_closed &&
+         triangle_intersections <= 0;
+}
+
+void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_distance, double contact_distance,
+                   bool intersections, Certificate& out) {
+  const sim::Model& m = scene.system->model();
+  out.particles = m.num_particles();
+  out.triangles = static_cast<int>(m.triangles.size());
+  std::vector<Vec3> points(m.num_particles());
+  for (int i = 0; i < m.num_particles(); ++i) points[i] = sim::at(x, i);
+
+  // Penetration: exact, against the body's triangles.
+  out.max_penetration = 0;
+  out.particles_inside = 0;
+  if (scene.avatar) {
+    const std::vector<double> depth = mesh::penetration_depths(scene.avatar->surface, points);
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+      const double d = depth[i];
+      if (d > out.max_penetration) out.deepest_at = points[i];
+      out.max_penetration = std::max(out.max_penetration, d);
+      out.particles_inside += d > 0;
+    }
+  }
+  // Crossings in the sewn topology: a merged particle's copies are one vertex,
+  // so triangles meeting across a closed seam share it and do not count.
+  if (intersections) {
+    const std::vector<int> first = first_copies(scene.system->representative(), m.num_particles());
+    std::vector<std::array<int, 3>> sewn;
+    std::vector<int> original;  // the model triangle of each sewn one
+    sewn.reserve(m.triangles.size());
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      std::array<int, 3> q = m.triangles[t];
+      for (int& k : q) k = first[k];
+      if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) {
+        sewn.push_back(q);
+        original.push_back(static_cast<int>(t));
+      }
+    }
+    const auto crossing = mesh::find_triangle_intersections(points, sewn);
+    out.triangle_intersections = static_cast<int>(crossing.size());
+    // Where: per pair of pieces (a piece with itself: a fold through itself).
+    auto piece_of = [&](int t) -> std::string {
+      for (const auto& p : scene.pieces)
+        if (t >= p.first_triangle && t < p.first_triangle + p.triangles) return p.name;
+      return "?";
+    };
+    out.crossings_by_pieces.clear();
+    for (const auto& [a, b] : crossing) {
+      std::string pa = piece_of(original[a]), pb = piece_of(original[b]);
+      if (pb < pa) std::swap(pa, pb);
+      ++out.crossings_by_pieces[pa + " / " + pb];
+    }
+  } else {
+    out.triangle_intersections = -1;
+  }
+
+  // Seams: a pair is closed when its two particles are one (merged) or as close.
+  out.seams.clear();
+  const auto& rep = scene.system->representative();
+  for (const auto& sp : scene.seams) {
+    SeamState st;
+    st.name = sp.name;
+    st.pairs = static_cast<int>(sp.pairs.size());
+    double sum = 0;
+    for (const auto& [a, b] : sp.pairs) {
+      const bool merged = !rep.empty() && rep[a] == rep[b];
+      const double gap = merged ? 0.0 : (points[a] - points[b]).norm();
+      st.closed += merged || gap <= merge_distance;
+      if (gap > st.max_gap) st.widest_at = 0.5 * (points[a] + points[b]);
+      st.max_gap = std::max(st.max_gap, gap);
+      sum += gap;
+    }
+    st.mean_gap = st.pairs ? sum / st.pairs : 0.0;
+    out.seams.push_back(st);
+  }
+
+  // Strain per piece.
+  out.strain.clear();
+  for (const auto& p : scene.pieces) out.strain.push_back(piece_strain(m, p, x));
+
+  // Contact pressure: at rest the body carries what pushes each touching
+  // particle into it, the inward normal part of every force but the contact's.
+  out.contact = ContactState{};
+  if (scene.avatar) {
+    const sim::VecX v = sim::VecX::Zero(x.size());
+    sim::VecX f = sim::VecX::Zero(x.size());
+    const sim::Eval e{m, 0.0, x, v};
+    for (const auto& eff : scene.system->effects()) {
+      const std::string name = eff->name();
+      if (name != "body-collision" && name != "self-collision") eff->add_forces(e, f);
+    }
+    // Each particle's cloth area: a third of each of its triangles (flat rest shape).
+    std::vector<double> part(m.num_particles(), 0.0);
+    for (const auto& t : m.triangles) {
+      const sim::Vec2 a = m.uv[t[1]] - m.uv[t[0]], b = m.uv[t[2]] - m.uv[t[0]];
+      const double A = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+      for (int k : t) part[k] += A / 3.0;
+    }
+    // The collision effect's grid when there is one (building one costs 0.1–0.3 s).
+    std::optional<sim::SignedDistanceGrid> own;
+    const sim::SignedDistanceGrid* grid = nullptr;
+    for (const auto& eff : scene.system->effects())
+      if (!grid) grid = sim::body_collision_grid(*eff);
+    if (!grid) grid = &own.emplace(scene.avatar->surface);
+    const sim::SignedDistanceGrid& sdf = *grid;
+    std::vector<double> pressure;
+    for (int i = 0; i < m.num_particles(); ++i) {
+      Vec3 n;
+      if (sdf.sample(points[i], n) > contact_distance) continue;
+      const double fn = std::max(0.0, -sim::at(f, i).dot(n.normalized()));
+      ++out.contact.particles;
+      out.contact.area += part[i];
+      out.contact.force += fn;
+      pressure.push_back(part[i] > 0 ? fn / part[i] : 0.0);
+    }
+    out.contact.pressure = percentiles(pressure);
+  }
+}
+
+std::string to_json(const Certificate& c) {
+  using nlohmann::json;
+  json j;
+  j["vgd_version"] = c.version;
+  json inputs = json::object();
+  for (const auto& [k, v] : c.inputs) inputs[k] = v;
+  j["inputs"] = inputs;
+  json settings = json::object();
+  for (const auto& [k, v] : c.settings) settings[k] = v;
+  j["settings"] = settings;
+  j["stop"] = {{"reason", c.stop_reason}, {"message", c.stop_message}, {"simulated_s", c.simulated_s},
+               {"wall_s", c.wall_s}, {"frames", c.frames}};
+  json stages = json::array();
+  for (const auto& s : c.stages) stages.push_back({{"name", s.name}, {"wall_s", s.wall_s}, {"simulated_s", s.simulated_s}});
+  j["stages"] = stages;
+  json prof = json::object();
+  for (const auto& [name, sec] : c.effect_seconds) prof[name] = prof.value(name, 0.0) + sec;
+  j["profile"] = {{"effect_seconds", prof},
+                  {"steps", c.steps},
+                  {"force_evaluations", c.force_evaluations},
+                  {"linear_iterations", c.linear_iterations}};
+  if (c.self_detections >= 0)
+    j["profile"]["self_collision"] = {
+        {"detections", c.self_detections}, {"pairs", c.self_pairs}, {"reverted_particles", c.self_reverted},
+        {"untangling_moves", c.self_untangled}};
+  j["cloth"] = {{"particles", c.particles}, {"triangles", c.triangles}};
+  j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
+                      {"deepest_at_m", json::array({c.deepest_at.x(), c.deepest_at.y(), c.deepest_at.z()})},
+                      {"limit_m", c.penetration_limit}};
+  if (c.triangle_intersections >= 0) {
+    j["triangle_intersections"] = c.triangle_intersections;
+    if (!c.crossings_by_pieces.empty()) j["triangle_intersections_by_pieces"] = c.crossings_by_pieces;
+  }
+  json seams = json::array();
+  for (const auto& s : c.seams) {
+    seams.push_back({{"name", s.name}, {"pairs", s.pairs}, {"closed", s.closed}, {"max_gap_m", s.max_gap},
+                     {"mean_gap_m", s.mean_gap}});
+    if (s.max_gap > 0) seams.back()["widest_at_m"] = json::array({s.widest_at.x(), s.widest_at.y(), s.widest_at.z()});
+  }
+  j["seams"] = seams;
+  json strain = json::array();
+  for (const auto& s : c.strain)
+    strain.push_back({{"piece", s.piece}, {"warp", to_json(s.warp)}, {"weft", to_json(s.weft)},
+                      {"shear_deg", to_json(s.shear_deg)}});
+  j["strain"] = strain;
+  j["contact"] = {{"particles", c.contact.particles}, {"area_m2", c.contact.area}, {"force_n", c.contact.force},
+                  {"pressure_pa", to_json(c.contact.pressure)}};
+  j["kinetic_energy"] = {{"unit", "J per particle"}, {"times_s", c.times}, {"values", c.kinetic_energy}};
+  j["passed"] = c.passed();
+  return j.dump(2) + "\n";
+}
+
+}  // namespace vgd::dress

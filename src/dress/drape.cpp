@@ -1,0 +1,238 @@
+#include "vgd/dress/drape.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+
+#include "vgd/core/data.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/core/version.hpp"
+#include "vgd/dress/dress.hpp"
+#include "vgd/scene/quality.hpp"
+#include "vgd/sim/effects/seam.hpp"
+#include "vgd/sim/effects/self_collision.hpp"
+#include "vgd/xvc/io.hpp"
+
+namespace vgd::dress {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string metres(double v) { return format_double(v) + " m"; }
+
+}  // namespace
+
+scene::SceneDef drape_scene(const DrapeOptions& o) {
+  std::error_code ec;
+  if (!fs::is_regular_file(o.garment, ec)) throw Error(o.garment.string(), "", "no such garment document");
+  const fs::path garment = fs::absolute(o.garment);
+  const xvc::Document doc = xvc::load_file(garment);
+
+  scene::SceneDef def;
+  def.name = "drape " + garment.stem().string();
+
+  // The body: the mannequin of the garment's size unless told otherwise.
+  if (o.avatar) {
+    def.avatar = *o.avatar;
+  } else {
+    scene::AvatarDef a;
+    a.kind = scene::AvatarDef::Kind::mannequin;
+    std::string size = o.size;
+    if (size.empty())
+      if (const auto* g = doc.container("GRADATIONS")) size = std::string(g->attribute("sample_size"));
+    a.size = size.empty() ? "38" : size;
+    a.table = o.mannequin_table;
+    def.avatar = a;
+  }
+
+  // Each garment's fabric: its own MATERIAL, else vgd's shirting (or the
+  // --material given, for every garment).
+  std::vector<fs::path> garments{garment};
+  for (const auto& p : o.over) {
+    if (std::find(garments.begin(), garments.end(), fs::absolute(p)) != garments.end())
+      throw Error(p.string(), "", "the same garment is given twice");
+    if (!fs::is_regular_file(p, ec)) throw Error(p.string(), "", "no such garment document");
+    garments.push_back(fs::absolute(p));
+  }
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    std::optional<xvc::Document> loaded;
+    if (k > 0) loaded = xvc::load_file(garments[k]);
+    const xvc::Document& gdoc = k == 0 ? doc : *loaded;
+    scene::MaterialSource fabric;
+    if (!o.material_xvc.empty()) {
+      fabric.xvc = fs::absolute(o.material_xvc);
+      fabric.id = o.material_id;
+    } else if (const auto* mats = gdoc.container("MATERIALS"); mats && !mats->children.empty()) {
+      fabric.xvc = garments[k];
+      fabric.id = std::string(mats->children.front().id());
+    } else {
+      fabric.xvc = data_file("materials/shirting.xvc");
+      fabric.id = "shirting";
+    }
+    if (fabric.id.empty()) {
+      const xvc::Document mdoc = xvc::load_file(fabric.xvc);
+      const auto* mats = mdoc.container("MATERIALS");
+      if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
+      fabric.id = std::string(mats->children.front().id());
+    }
+    const std::string mat = k == 0 ? "fabric" : "fabric" + std::to_string(k + 1);
+    def.materials[mat] = fabric;
+
+    scene::ClothDef cloth;
+    cloth.name = garments[k].stem().string();
+    scene::GarmentDef g;
+    g.file = garments[k];
+    g.size = o.size;
+    g.spacing = o.spacing;
+    if (k == 0) g.pieces = o.pieces;
+    g.layer = static_cast<int>(k);
+    cloth.garment = g;
+    cloth.model = scene::ClothModel::mass_spring;
+    cloth.material = mat;
+    def.cloth.push_back(cloth);
+  }
+
+  auto& e = def.effects;
+  e.gravity = sim::GravityDef{};
+  // Air drag, mass-proportional so it does not depend on the mesh (a garment
+  // settles in about a second instead of swinging for ten).
+  e.viscosity = sim::ViscosityDef{0.0, 2.0};
+  e.collision = sim::BodyCollisionDef{};
+  // Seams pull hard enough to slide cloth over the body against friction: a
+  // pair pulls with 200 N/m near closing and at most 1 N; implicit Euler keeps
+  // that stable. Pairs merge at 2 mm. Measured on the shipped garments
+  // (docs/drape.md): 0.5 N left seams open; 2 N closed them but the yank
+  // (particles at 20 m/s) folded the skirt's waistband through itself.
+  scene::SeamsDef seams;
+  seams.effect.stiffness = 200.0;
+  seams.effect.max_force = 1.0;
+  seams.effect.damping = 0.01;
+  // A pair next to a sewn one merges within 2 cm (about 1.3 mesh spacings), so
+  // seams zip closed where tight cloth (a sleeve cap's ease, the armpit) would
+  // hold the last pairs a few mm apart.
+  seams.effect.zip_distance = 0.02;
+  // The last open pair of a seam, stalled for 0.4 s, merges within 5 cm: an
+  // armpit's corner pair otherwise hung 2.7–4.8 cm open for good (the four
+  // pieces' corners held on both sides of the crease) and the drape never
+  // came to rest (T-shirt sizes 34, spacings 1.4, 1.5 cm; docs/drape.md).
+  seams.effect.last_stitch_distance = 0.05;
+  seams.effect.last_stitch_frames = 10;
+  e.seams = seams;
+  if (o.self_collision) {
+    e.self_collision = sim::SelfCollisionDef{};
+    // Seams accelerate particles to tens of m/s; capped at 1 m/s (a 20 cm gap
+    // closes in 0.2 s), each particle's motion over a 10 ms step stays under
+    // 1 cm and self-collision tests stay local (minutes per simulated second
+    // without it on the T-shirt).
+    e.speed_limit = sim::SpeedLimitDef{1.0};
+  }
+
+  // Implicit Euler at 2, 4 or 8 steps per frame (quality.hpp).
+  def.integrator = scene::quality_integrator(o.quality, true);
+  def.run.fps = o.fps;
+  def.run.duration = o.time_limit;
+  def.run.rest_energy = o.rest_energy;
+  def.run.rest_frames = o.rest_frames;
+  validate(def);
+  return def;
+}
+
+DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSink*>& sinks,
+                      const std::function<void(const DrapeStageProgress&)>& progress) {
+  DrapeResult r;
+  const auto t_start = Clock::now();
+  r.scene = dress::build(def);
+  const double placing_wall = seconds_since(t_start);
+  sim::System& sys = *r.scene.system;
+  r.state = sim::initial_state(sys.model());
+  auto integrator = sim::make_integrator(r.scene.integrator);
+
+  // The seam effect, for progress.
+  const sim::Effect* seam_effect = nullptr;
+  for (const auto& e : sys.effects())
+    if (sim::seam_report(*e)) seam_effect = e.get();
+
+  Certificate& c = r.certificate;
+  double sewn_at = -1.0, sewn_wall = 0.0;
+  const auto t_run = Clock::now();
+  auto on_frame = [&](const sim::Progress& p) {
+    DrapeStageProgress d;
+    d.t = p.t;
+    d.time_limit = p.duration;
+    d.wall_s = seconds_since(t_start);
+    if (seam_effect) {
+      const auto* rep = sim::seam_report(*seam_effect);
+      d.seams_closed = rep->total.closed;
+      d.seam_pairs = rep->total.total;
+    }
+    if (sewn_at < 0 && d.seams_closed == d.seam_pairs) {
+      sewn_at = p.t;
+      sewn_wall = seconds_since(t_run);
+    }
+    d.stage = sewn_at < 0 ? "sewing" : "settling";
+    d.kinetic_energy = p.kinetic_energy;
+    if (progress) progress(d);
+  };
+  if (progress) progress({"placing", 0.0, def.run.duration, placing_wall, 0, 0, 0.0});
+  r.summary = sim::run(sys, *integrator, r.state, r.scene.run, sinks, on_frame);
+  r.positions = sys.expand(r.state.x);
+
+  // The certificate.
+  c.version = std::string(kVersion);
+  int garment_count = 0;
+  for (const auto& cl : def.cloth)
+    if (cl.garment)
+      c.inputs.emplace_back(garment_count++ == 0 ? "garment" : "garment_" + std::to_string(garment_count),
+                            cl.garment->file.string());
+  if (r.scene.avatar) c.inputs.emplace_back("avatar", r.scene.avatar->source);
+  for (const auto& [k, m] : def.materials)
+    if (!m.xvc.empty()) c.inputs.emplace_back(k == "fabric" ? "material" : "material_" + k.substr(6), m.xvc.string() + "#" + m.id);
+  if (def.integrator.preset) c.settings.emplace_back("quality", to_string(*def.integrator.preset));
+  c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
+  c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
+  c.settings.emplace_back("fps", format_double(def.run.fps));
+  c.settings.emplace_back("time_limit", format_double(def.run.duration) + " s");
+  c.settings.emplace_back("rest_energy", format_double(def.run.rest_energy) + " J per particle");
+  c.settings.emplace_back("rest_frames", std::to_string(def.run.rest_frames));
+  double merge_distance = 0.0, contact = 0.004;
+  if (def.effects.collision) {
+    c.settings.emplace_back("clearance", metres(def.effects.collision->clearance));
+    contact = def.effects.collision->clearance + 0.001;
+  }
+  if (def.effects.seams) {
+    merge_distance = def.effects.seams->effect.merge_distance;
+    c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
+  }
+  c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
+  c.stop_reason = !r.summary.ok ? "error" : r.summary.at_rest ? "rest" : "time limit";
+  c.stop_message = r.summary.error;
+  c.simulated_s = r.summary.simulated_s;
+  c.wall_s = seconds_since(t_start);
+  c.frames = r.summary.frames;
+  c.stages.push_back({"placing", placing_wall, 0.0});
+  const double run_wall = r.summary.wall_s;
+  if (sewn_at >= 0) {
+    c.stages.push_back({"sewing", sewn_wall, sewn_at});
+    c.stages.push_back({"settling", run_wall - sewn_wall, r.summary.simulated_s - sewn_at});
+  } else {
+    c.stages.push_back({"sewing", run_wall, r.summary.simulated_s});
+  }
+  for (const auto& p : sys.profile()) c.effect_seconds.emplace_back(p.name, p.seconds);
+  for (const auto& e : sys.effects())
+    if (std::string(e->name()) == "self-collision") {
+      const auto& st = sim::self_collision_stats(*e);
+      c.self_detections = st.detections, c.self_pairs = st.pairs_total, c.self_reverted = st.reverted, c.self_untangled = st.untangled;
+    }
+  c.steps = r.summary.stats.steps;
+  c.force_evaluations = r.summary.stats.rhs_evaluations;
+  c.linear_iterations = r.summary.stats.linear_iterations;
+  c.times = r.summary.times;
+  c.kinetic_energy = r.summary.kinetic_energy;
+  measure_state(r.scene, r.positions, merge_distance, contact, true, c);
+  return r;
+}
+
+}  // namespace vgd::dress

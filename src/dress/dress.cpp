@@ -1,0 +1,147 @@
+#include "vgd/dress/dress.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "vgd/body/mannequin.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/dress/placement.hpp"
+#include "vgd/xvc/io.hpp"
+
+namespace vgd::dress {
+
+using body::Avatar;
+using body::BodySegment;
+
+std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
+                                                                         const Avatar& avatar, Diagnostics& diag) {
+  // Heights for the suggestions: the mannequin's landmarks, else the torso's top
+  // (neck) and a waist at the usual 62 % of the height.
+  xvc::ArrangementOptions ao;
+  if (avatar.measurements) {
+    const body::MannequinLandmarks l = body::mannequin_landmarks(*avatar.measurements);
+    ao.neck_point_height = l.neck_base;
+    ao.waist_height = l.waist;
+  } else if (const BodySegment* torso = avatar.segment("torso")) {
+    ao.neck_point_height = (torso->start + torso->length * torso->axis).y();
+    ao.waist_height = 0.62 * (ao.neck_point_height / 0.845);
+  }
+  std::map<std::string, std::vector<xvc::Arrangement>> out;
+  const auto suggested = xvc::suggest_arrangements(doc, ao);
+  for (const auto* p : doc.patterns()) {
+    const std::string id(p->id());
+    auto stored = xvc::arrangements_of(*p);
+    if (!stored.empty()) {
+      out[id] = std::move(stored);
+      continue;
+    }
+    for (const auto& [pid, list] : suggested)
+      if (pid == id && !list.empty()) out[id] = list;
+    if (!out.count(id))
+      diag.warn(doc.name(), id, "piece " + std::string(p->attribute("piece")) +
+                                    " has no arrangement and vgd cannot suggest one from its name; "
+                                    "give it one with vgd place");
+  }
+  return out;
+}
+
+std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
+                                       const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
+                                       const Avatar& avatar, const std::vector<Underlayer>& under) {
+  std::vector<PlacedPiece> out;
+  for (const auto& gp : garment.pieces) {
+    const auto it = arrangements.find(gp.pattern_id);
+    if (it == arrangements.end() || gp.copy >= static_cast<int>(it->second.size()))
+      throw Error(doc.name(), gp.pattern_id,
+                  "piece " + gp.name + " has no arrangement (where it goes round the body) and none can be "
+                                       "suggested from its name: set one with 'vgd place --set " +
+                      gp.name + "=torso:front:1.25'");
+    const xvc::Arrangement& a = it->second[gp.copy];
+    PiecePlacement p;
+    try {
+      p = place_piece(gp.mesh.nodes, a, avatar, under);
+    } catch (const Error& e) {
+      throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
+    }
+    PlacedPiece pp;
+    pp.positions = std::move(p.points);
+    pp.flipped = p.reverses_winding;
+    pp.segment = a.segment;
+    pp.arrangement = a.segment + " " + a.side + " at " + format_fixed(a.height, 3) + " m, " +
+                     format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
+    out.push_back(std::move(pp));
+  }
+  return out;
+}
+
+scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avatar) {
+  namespace fs = std::filesystem;
+  scene::MadeCloths made;
+  // Two garments may both have a FRONT_38: with more than one garment the
+  // pieces carry their garment's name.
+  const int garments = static_cast<int>(std::count_if(def.cloth.begin(), def.cloth.end(),
+                                                      [](const scene::ClothDef& x) { return x.garment.has_value(); }));
+  std::vector<std::pair<int, std::vector<Underlayer>>> layers;  // each garment's placed cloth, by layer
+  for (int ci = 0; ci < static_cast<int>(def.cloth.size()); ++ci) {
+    const scene::ClothDef& c = def.cloth[ci];
+    if (!c.garment) continue;
+    const scene::GarmentDef& gd = *c.garment;
+    const std::string path = "cloth[" + std::to_string(ci) + "].garment";
+    const fs::path file = scene::resolve_path(def, gd.file);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+      throw Error(def.source.string(), path + ".file", "cannot read the XVC document " + file.string() + " (no such file)");
+    const xvc::Document doc = xvc::load_file(file);
+    scene::MadeCloth& out = made[ci];
+    const auto arrangements = garment_arrangements(doc, avatar, out.diagnostics);
+    AssemblyOptions ao;
+    ao.size = gd.size;
+    ao.spacing = gd.spacing;
+    ao.pieces = gd.pieces;
+    for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
+    const Garment g = assemble_garment(doc, ao, out.diagnostics);
+    std::vector<Underlayer> under;  // the garments of lower layers placed so far
+    for (const auto& [layer, cloth] : layers)
+      if (layer < gd.layer) under.insert(under.end(), cloth.begin(), cloth.end());
+    const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under);
+    auto& mine = layers.emplace_back(gd.layer, std::vector<Underlayer>{}).second;
+    std::vector<int> first(g.pieces.size(), 0);  // each piece's first particle within the cloth
+    int count = 0;
+    for (std::size_t k = 0; k < g.pieces.size(); ++k) {
+      const GarmentPiece& gp = g.pieces[k];
+      sim::Model mp;
+      const int n = static_cast<int>(gp.mesh.nodes.size());
+      mp.x0.resize(3 * n);
+      mp.v0 = sim::VecX::Zero(3 * n);
+      for (int i = 0; i < n; ++i) sim::at(mp.x0, i) = placed[k].positions[i];
+      mp.uv = mesh::material_coordinates(gp.mesh);
+      mp.triangles = gp.mesh.triangles;
+      if (placed[k].flipped)  // keep triangles counter-clockwise seen from outside the body
+        for (auto& t : mp.triangles) std::swap(t[1], t[2]);
+      mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
+      const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
+      out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp)});
+      first[k] = count;
+      count += n;
+    }
+    for (const auto& gs : g.seams) {
+      sim::SeamPairs sp;
+      sp.name = gs.name.empty() ? gs.id : gs.name;
+      for (const auto& [a, b] : gs.pairs) sp.pairs.push_back({first[a.piece] + a.node, first[b.piece] + b.node});
+      out.seams.push_back(std::move(sp));
+    }
+  }
+  return made;
+}
+
+scene::Scene build(const scene::SceneDef& def) {
+  scene::validate(def);
+  std::optional<Avatar> avatar;
+  if (def.avatar) avatar = scene::build_avatar(def);
+  scene::MadeCloths made;
+  if (avatar) made = dress_garments(def, *avatar);
+  return scene::build(def, std::move(avatar), made);
+}
+
+}  // namespace vgd::dress

@@ -1,0 +1,138 @@
+// Garment assembly: hems of one seam get the same number of vertices, and the
+// seam pairs sit on the hems in sewing order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "vgd/dress/garment.hpp"
+#include "vgd/xvc/style.hpp"
+#include "vgd/xvc/xvc.hpp"
+
+namespace vgd::dress {
+namespace {
+
+using pattern::ContourPoint;
+using pattern::PointKind;
+using pattern::Vec2;
+
+pattern::Piece rectangle(const std::string& name, double x0, double w, double h) {
+  pattern::Piece p;
+  p.block = name + "_38";
+  p.name = name;
+  p.size = "38";
+  p.boundary = {{Vec2(x0, 0), PointKind::turn},
+                {Vec2(x0 + w, 0), PointKind::turn},
+                {Vec2(x0 + w, h), PointKind::turn},
+                {Vec2(x0, h), PointKind::turn}};
+  p.grain_line = pattern::Segment{Vec2(x0 + w / 2, 0.1), Vec2(x0 + w / 2, h - 0.1)};
+  return p;
+}
+
+xvc::Node hem(const std::string& id, const std::string& from, const std::string& to, const std::string& dir) {
+  return {"HEM", {{"id", id}, {"from", from}, {"to", to}, {"direction", dir}, {"type", "plain"}}, {}};
+}
+
+// FRONT 0.30 x 0.50 and BACK 0.34 x 0.53: the front's right side (stretch 2,
+// from (0.3,0) up) sewn to the back's left side (stretch 4, from (x0,h) down,
+// so reverse runs it upwards too).
+xvc::Document two_panels(std::vector<xvc::Node> seams) {
+  pattern::Style s;
+  s.name = "panels";
+  s.sample_size = "38";
+  s.sizes = {"38"};
+  s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("BACK", 1.0, 0.34, 0.53)};
+  xvc::Node root = xvc::from_style(s).root();
+  for (auto& c : root.children)
+    if (c.tag == "SEAMS") c.children = std::move(seams);
+  return xvc::Document(std::move(root), "panels.xvc");
+}
+
+std::vector<std::string> stretch_ids(const xvc::Document& d, int pattern) {
+  std::vector<std::string> ids;
+  for (const auto& st : xvc::boundary_stretches(*d.patterns()[pattern])) ids.push_back(st.id);
+  return ids;
+}
+
+TEST(Garment, SeamHemsGetEqualVertexCountsAndPairsFollowTheSewingDirection) {
+  const xvc::Document probe = two_panels({});
+  const auto f = stretch_ids(probe, 0), b = stretch_ids(probe, 1);
+  ASSERT_EQ(f.size(), 4u);
+  ASSERT_EQ(b.size(), 4u);
+  xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "side"}, {"type", "plain"}},
+                 {hem("hem1", f[1], f[1], "forward"), hem("hem2", b[3], b[3], "reverse")}};
+  const xvc::Document doc = two_panels({seam});
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  const Garment g = assemble_garment(doc, opt, diag);
+  ASSERT_EQ(g.pieces.size(), 2u);
+  ASSERT_EQ(g.seams.size(), 1u);
+  const GarmentSeam& sm = g.seams[0];
+  EXPECT_NEAR(sm.length_a, 0.50, 1e-12);
+  EXPECT_NEAR(sm.length_b, 0.53, 1e-12);
+  // ceil(0.53 / 0.02) = 27 segments: 28 pairs.
+  ASSERT_EQ(sm.pairs.size(), 28u);
+  for (std::size_t k = 0; k < sm.pairs.size(); ++k) {
+    const auto& [a, bnode] = sm.pairs[k];
+    EXPECT_EQ(a.piece, 0);
+    EXPECT_EQ(bnode.piece, 1);
+    const Vec2 pa = g.pieces[0].mesh.nodes[a.node], pb = g.pieces[1].mesh.nodes[bnode.node];
+    // Proportional positions along the two hems, both running upwards.
+    const double t = static_cast<double>(k) / 27.0;
+    EXPECT_NEAR(pa.x(), 0.30, 1e-12);
+    EXPECT_NEAR(pa.y(), 0.50 * t, 1e-9);
+    EXPECT_NEAR(pb.x(), 1.0, 1e-12);
+    EXPECT_NEAR(pb.y(), 0.53 * t, 1e-9);
+  }
+  // No Steiner point was added on the boundary, and the mesh covers the piece.
+  for (const auto& p : g.pieces) {
+    EXPECT_EQ(p.mesh.boundary_steiner_nodes, 0);
+    double area = 0;
+    for (const auto& t : p.mesh.triangles) {
+      const Vec2 e1 = p.mesh.nodes[t[1]] - p.mesh.nodes[t[0]], e2 = p.mesh.nodes[t[2]] - p.mesh.nodes[t[0]];
+      area += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    }
+    EXPECT_NEAR(area, pattern::signed_area(p.piece.boundary), 1e-12);
+  }
+}
+
+TEST(Garment, ThreeHemSeamSewsTheFirstToTheOthersInTurn) {
+  const xvc::Document probe = two_panels({});
+  const auto f = stretch_ids(probe, 0), b = stretch_ids(probe, 1);
+  // The front's bottom (0.30) sewn to the back's right side (0.53) then its top (0.34).
+  xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "cap"}, {"type", "plain"}},
+                 {hem("hem1", f[0], f[0], "forward"), hem("hem2", b[1], b[1], "forward"),
+                  hem("hem3", b[2], b[2], "forward")}};
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  const Garment g = assemble_garment(two_panels({seam}), opt, diag);
+  ASSERT_EQ(g.seams.size(), 1u);
+  const auto& pairs = g.seams[0].pairs;
+  const int n = static_cast<int>(std::ceil(0.87 / 0.02 - 1e-9));  // 44 segments on the first hem
+  EXPECT_EQ(pairs.size(), static_cast<std::size_t>(n + 2));       // the corner of the back is sewn twice
+  // The first hem's ends meet the back's corners (1.34, 0) and (1.0, 0.53).
+  EXPECT_LT((g.pieces[1].mesh.nodes[pairs.front()[1].node] - Vec2(1.34, 0.0)).norm(), 1e-12);
+  EXPECT_LT((g.pieces[1].mesh.nodes[pairs.back()[1].node] - Vec2(1.0, 0.53)).norm(), 1e-12);
+  EXPECT_EQ(pairs.front()[0].node, g.pieces[0].mesh.contour_nodes[0][0]);
+}
+
+TEST(Garment, OverlappingHemsAreRefusedNamingTheHem) {
+  const xvc::Document probe = two_panels({});
+  const auto f = stretch_ids(probe, 0), b = stretch_ids(probe, 1);
+  xvc::Node s1{"SEAM", {{"id", "seam1"}}, {hem("hem1", f[1], f[2], "forward"), hem("hem2", b[3], b[3], "reverse")}};
+  xvc::Node s2{"SEAM", {{"id", "seam2"}}, {hem("hem3", f[2], f[2], "forward"), hem("hem4", b[1], b[1], "reverse")}};
+  Diagnostics diag;
+  try {
+    assemble_garment(two_panels({s1, s2}), {}, diag);
+    FAIL() << "overlapping hems were accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("panels.xvc"), std::string::npos) << m;
+    EXPECT_NE(m.find("hem3"), std::string::npos) << m;
+    EXPECT_NE(m.find("overlaps hem hem1"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace vgd::dress

@@ -1,0 +1,1 @@
+#include "vgd/low/low.hpp"

@@ -1,0 +1,1 @@
+#include "vgd/high/top.hpp"  // upstream: refused
