@@ -4,11 +4,12 @@
 
 #include "cli.hpp"
 #include "vgd/body/avatar_io.hpp"
+#include "vgd/core/strings.hpp"
 
 namespace {
 
 struct Options {
-  std::string input, output, unit = "auto", up = "auto", facing = "+z";
+  std::string input, output, unit = "auto", up = "auto", facing = "auto";
   bool json = false;
 };
 
@@ -19,9 +20,9 @@ vgd::body::AvatarImportOptions import_options(const Options& o) {
 }
 
 void add_import_options(CLI::App* sub, const std::shared_ptr<Options>& o) {
-  sub->add_option("--unit", o->unit, "File unit: auto, m, cm, mm, in")->capture_default_str();
+  sub->add_option("--unit", o->unit, "File unit: auto, m, dm, cm, mm, in")->capture_default_str();
   sub->add_option("--up", o->up, "File up axis: auto, x, y, z, -x, -y, -z")->capture_default_str();
-  sub->add_option("--facing", o->facing, "Where the body faces once +Y is up: +z, -z, +x, -x")->capture_default_str();
+  sub->add_option("--facing", o->facing, "Where the body faces once +Y is up: auto (from the feet), +z, -z, +x, -x")->capture_default_str();
 }
 
 vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common) {
@@ -50,11 +51,31 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
                     r.box.min.z(), r.box.max.x(), r.box.max.y(), r.box.max.z());
         std::printf("unit %s (%s: %s); up %s (%s: %s)\n", r.unit.c_str(), r.unit_guessed ? "guessed" : "known",
                     r.unit_reason.c_str(), r.up.c_str(), r.up_guessed ? "guessed" : "known", r.up_reason.c_str());
+        std::printf("facing %s (%s: %s)\n", r.facing.c_str(), r.facing_guessed ? "guessed" : "known",
+                    r.facing_reason.c_str());
         std::printf("%s: %d boundary, %d non-manifold, %d inconsistent edges\n", r.watertight ? "watertight" : "NOT watertight",
                     r.boundary_edges, r.non_manifold_edges, r.inconsistent_edges);
         std::string segs;
         for (const auto& s : r.segments) segs += (segs.empty() ? "" : ", ") + s;
         std::printf("segments: %s\n", segs.empty() ? "none found" : segs.c_str());
+        if (r.measuring) {
+          const auto& m = r.measuring->measurements;
+          const auto& l = r.measuring->landmarks;
+          auto cm = [](double v) { return v > 0 ? vgd::format_fixed(100 * v, 1) + " cm" : std::string("-"); };
+          std::printf("measured: height %s, bust %s, under-bust %s, waist %s, hip %s, neck %s, shoulders %s, arm %s, inseam %s\n",
+                      cm(m.height).c_str(), cm(m.bust).c_str(), cm(m.under_bust).c_str(), cm(m.waist).c_str(),
+                      cm(m.hip).c_str(), cm(m.neck).c_str(), cm(m.shoulder_width).c_str(), cm(m.arm_length).c_str(),
+                      cm(m.inseam).c_str());
+          std::printf("landmark heights: neck %s, shoulders %s, bust %s, waist %s, hip %s, crotch %s, ankle %s; arms: %s\n",
+                      cm(l.neck).c_str(), cm(l.shoulder).c_str(), cm(l.bust).c_str(), cm(l.waist).c_str(),
+                      cm(l.hip).c_str(), cm(l.crotch).c_str(), cm(l.ankle).c_str(),
+                      l.left_arm && l.right_arm ? "both" : l.left_arm ? "left only" : l.right_arm ? "right only" : "none");
+        }
+        if (r.nearest)
+          std::printf("nearest size: %s %s (%s; height %.1f, bust %.1f, waist %.1f, hip %.1f cm; %.1f cm RMS off)\n",
+                      r.nearest->table.c_str(), r.nearest->size.label.c_str(), r.nearest->size.sex.c_str(),
+                      100 * r.nearest->size.height, 100 * r.nearest->size.bust, 100 * r.nearest->size.waist,
+                      100 * r.nearest->size.hip, 100 * r.nearest->rms);
         for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
         std::fflush(stdout);
       }

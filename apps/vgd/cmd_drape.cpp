@@ -27,6 +27,7 @@ namespace {
 struct Options {
   std::vector<std::string> garments;
   std::string size, avatar, output = "out", material, material_id, table, trj, quality = "standard";
+  std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
   bool self_collision = true, frames = false, json = false;
@@ -94,6 +95,12 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--size", o->size, "Garment size to sew, and the mannequin's size (default: the sample size)");
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
       ->check(CLI::ExistingFile);
+  sub->add_option("--unit", o->avatar_unit, "--avatar's unit: auto (from the file, else the body's height), m, dm, cm, mm, in")
+      ->capture_default_str();
+  sub->add_option("--up", o->avatar_up, "--avatar's up axis: auto (from the body), x, y, z, -x, -y, -z")
+      ->capture_default_str();
+  sub->add_option("--facing", o->avatar_facing, "Where --avatar faces once up is +Y: auto (from the feet), +z, -z, +x, -x")
+      ->capture_default_str();
   sub->add_option("--pieces", o->pieces, "Sew only these pieces (names or block names; default: every piece)");
   sub->add_option("--size-table", o->table, "Size table of the mannequin (vgd mannequin --list-sizes; default: "
                                            "women's EN 13402, then men's, then ASTM misses)");
@@ -148,6 +155,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       scene::AvatarDef a;
       a.kind = scene::AvatarDef::Kind::file;
       a.file = fs::absolute(o->avatar);
+      a.unit = o->avatar_unit, a.up = o->avatar_up, a.facing = o->avatar_facing;
       d.avatar = a;
     }
     const scene::SceneDef def = dress::drape_scene(d);
@@ -168,6 +176,8 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     StageBar bar(!common.quiet && !o->json);
     dress::DrapeResult r = dress::run_drape(def, sinks, std::ref(bar));
     bar.finish();
+    if (r.scene.avatar)
+      for (const auto& note : r.scene.avatar->notes) vgd::cli::say(common, "vgd: " + o->avatar + ": " + note);
     vgd::cli::print_diagnostics(r.scene.diagnostics, common);
 
     std::error_code ec;

@@ -77,7 +77,7 @@ vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs:
 // The body: an avatar file in vgd's frame (metres, +Y up), as vgd drape writes it.
 vrml::Body load_body(const fs::path& file) {
   vgd::body::AvatarImportOptions o;
-  o.unit = "m", o.up = "y", o.recentre = false, o.segments = false;
+  o.unit = "m", o.up = "y", o.facing = "+z", o.recentre = false, o.segments = false, o.human = false;
   const auto avatar = vgd::body::import_avatar(file, o);
   vrml::Body b;
   b.name = "avatar";

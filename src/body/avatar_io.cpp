@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
@@ -49,6 +51,135 @@ std::optional<double> metadata_number(const ModelFile& f, const char* key) {
   return it->second;
 }
 
+// A mesh of helper geometry rather than body: MakeHuman's base mesh carries
+// proxies for clothes, eyes and joints ("helper-tights", "joint-l-knee").
+bool helper_mesh(const ModelMesh& m) {
+  for (const std::string& n : {to_lower(m.name), to_lower(m.node)})
+    if (n.find("helper") != std::string::npos || n.rfind("joint-", 0) == 0 || n.rfind("joint_", 0) == 0) return true;
+  return false;
+}
+
+double triangle_area(const mesh::SurfaceMesh& s, const std::array<int, 3>& t) {
+  return 0.5 * (s.vertices[t[1]] - s.vertices[t[0]]).cross(s.vertices[t[2]] - s.vertices[t[0]]).norm();
+}
+
+// Connected parts of a mesh (triangles sharing a vertex), their triangle
+// lists, largest area first.
+std::vector<std::vector<int>> connected_parts(const mesh::SurfaceMesh& s) {
+  std::vector<int> parent(s.vertices.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  std::function<int(int)> find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (const auto& t : s.triangles)
+    for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
+  std::map<int, std::vector<int>> by_root;
+  for (int i = 0; i < s.num_triangles(); ++i) by_root[find(s.triangles[i][0])].push_back(i);
+  std::vector<std::pair<double, std::vector<int>>> parts;
+  for (auto& [root, tris] : by_root) {
+    double a = 0;
+    for (int i : tris) a += triangle_area(s, s.triangles[i]);
+    parts.emplace_back(a, std::move(tris));
+  }
+  std::sort(parts.begin(), parts.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<std::vector<int>> out;
+  for (auto& p : parts) out.push_back(std::move(p.second));
+  return out;
+}
+
+// The up direction the body itself shows, if it shows one clearly. The axis:
+// the one along which the surface is spread furthest (area-weighted standard
+// deviation of the triangles' centres), which a T-pose's arm span does not
+// beat (arms are a small share of the area, the legs and trunk spread along
+// the height). The sign: the feet end's slice, 4 % in, cuts two loops (the
+// legs), the head end's one.
+struct UpFromBody {
+  std::string up;      // "" when unclear
+  std::string reason;
+};
+UpFromBody up_from_body(const mesh::SurfaceMesh& s) {
+  Vec3 mean = Vec3::Zero();
+  double total = 0;
+  std::vector<std::pair<Vec3, double>> centres;
+  centres.reserve(s.triangles.size());
+  for (const auto& t : s.triangles) {
+    const double a = triangle_area(s, t);
+    const Vec3 c = (s.vertices[t[0]] + s.vertices[t[1]] + s.vertices[t[2]]) / 3.0;
+    centres.emplace_back(c, a);
+    mean += a * c, total += a;
+  }
+  if (!(total > 0)) return {};
+  mean /= total;
+  Vec3 var = Vec3::Zero();
+  for (const auto& [c, a] : centres) var += a * (c - mean).cwiseAbs2();
+  const Vec3 sd = (var / total).cwiseSqrt();
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (sd[i] > sd[k]) k = i;
+  double second = 0;
+  for (int i = 0; i < 3; ++i)
+    if (i != k) second = std::max(second, sd[i]);
+  if (sd[k] < 1.15 * second) return {};  // no axis stands out
+  const std::string axis(1, "xyz"[k]);
+  // Slices across the axis, near each end.
+  mesh::SurfaceMesh m = s;
+  mesh::transform(m, up_rotation(axis));
+  const mesh::Box3 b = mesh::bounding_box(m);
+  const double h = b.size().y();
+  auto loops_at = [&](double y) {
+    int n = 0;
+    for (const auto& l : mesh::slice_horizontal(m, y))
+      if (l.size() > 2) ++n;
+    return n;
+  };
+  const int low = loops_at(b.min.y() + 0.04 * h), high = loops_at(b.max.y() - 0.04 * h);
+  const std::string spread = "the body's surface spreads furthest along " + axis;
+  if (low >= 2 && high == 1) return {axis, spread + ", the legs at its low end"};
+  if (high >= 2 && low == 1) return {"-" + axis, spread + ", the legs at its high end"};
+  return {};
+}
+
+// Where the body faces, from its feet: the soles' centre (lowest 3 % of the
+// height) lies forward of the ankles' (5–9 %). Needs +Y up; "" when unclear.
+std::string facing_from_feet(const mesh::SurfaceMesh& s) {
+  const mesh::Box3 b = mesh::bounding_box(s);
+  const double h = b.size().y();
+  Vec3 sole = Vec3::Zero(), ankle = Vec3::Zero();
+  double ws = 0, wa = 0;
+  for (const auto& t : s.triangles) {
+    const Vec3 c = (s.vertices[t[0]] + s.vertices[t[1]] + s.vertices[t[2]]) / 3.0;
+    const double f = (c.y() - b.min.y()) / h, a = triangle_area(s, t);
+    if (f < 0.03) sole += a * c, ws += a;
+    else if (f > 0.05 && f < 0.09) ankle += a * c, wa += a;
+  }
+  if (!(ws > 0 && wa > 0)) return "";
+  const Vec3 d = sole / ws - ankle / wa;
+  const double dx = d.x(), dz = d.z();
+  if (std::hypot(dx, dz) < 0.01 * h) return "";  // the feet point nowhere in particular
+  if (std::abs(dz) >= std::abs(dx)) return dz > 0 ? "+z" : "-z";
+  return dx > 0 ? "+x" : "-x";
+}
+
+// glTF's external buffers that are not there (a .gltf whose .bin was not copied).
+std::vector<std::string> missing_gltf_buffers(const fs::path& path) {
+  std::vector<std::string> missing;
+  try {
+    const auto j = nlohmann::json::parse(read_file(path));
+    if (!j.contains("buffers") || !j["buffers"].is_array()) return missing;
+    for (const auto& b : j["buffers"])
+      if (b.contains("uri") && b["uri"].is_string()) {
+        const std::string uri = b["uri"].get<std::string>();
+        if (uri.rfind("data:", 0) == 0) continue;
+        std::error_code ec;
+        if (!fs::exists(path.parent_path() / uri, ec)) missing.push_back(uri);
+      }
+  } catch (const std::exception&) {
+    // not JSON: assimp says what is wrong with it
+  }
+  return missing;
+}
+
 mesh::SurfaceCheck fill_check(AvatarReport& r, const mesh::SurfaceMesh& s) {
   const auto c = mesh::check_surface(s);
   r.vertices = c.vertices, r.triangles = c.triangles;
@@ -87,7 +218,7 @@ double loop_area(const std::vector<mesh::Vec2d>& l) {
 
 }  // namespace
 
-std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface) {
+std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface, const BodyLandmarks* landmarks) {
   std::vector<BodySegment> out;
   const mesh::Box3 box = mesh::bounding_box(surface);
   const double H = box.size().y(), y0 = box.min.y();
@@ -109,17 +240,32 @@ std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface) 
       const auto loops = mesh::slice_horizontal(surface, y);
       const int k = loop_around(loops, centre);
       if (k < 0) return;
-      s.rings.push_back(ring_of(loops[k], y, y - ya));
+      SegmentRing r = ring_of(loops[k], y, y - ya);
+      // A slice that takes in an arm (at the shoulders, an arm hanging
+      // against the flank) is no wider than the trunk below it.
+      if (!s.rings.empty() && r.half_width > 1.25 * s.rings.back().half_width) {
+        const SegmentRing& prev = s.rings.back();
+        r.half_width = prev.half_width;
+        r.centre.x() = prev.centre.x();
+      }
+      s.rings.push_back(r);
     }
     s.start = Vec3(s.rings.front().centre.x(), ya, s.rings.front().centre.z());
     s.length = yb - ya;
     out.push_back(std::move(s));
   };
-  // Proportions of an adult body (fractions of the height above the floor).
-  const double waist = y0 + 0.62 * H, shoulder = y0 + 0.80 * H;
+  // The landmarks measured on the body, else proportions of an adult body
+  // (fractions of the height above the floor).
+  double waist = y0 + 0.62 * H, shoulder = y0 + 0.80 * H;
+  if (landmarks && landmarks->waist > 0 && landmarks->shoulder > landmarks->waist)
+    waist = y0 + landmarks->waist, shoulder = y0 + landmarks->shoulder;
+  if (landmarks && landmarks->crotch > 0) crotch = y0 + landmarks->crotch;
   trunk("hips", crotch + 0.01 * H, waist, 8);
   trunk("torso", waist, shoulder, 8);
-  trunk("neck", y0 + 0.835 * H, y0 + 0.865 * H, 3);
+  // The neck from its base, 3 % of the height above the shoulders (as on the
+  // mannequin), when the shoulders were measured.
+  const double neck = landmarks && landmarks->shoulder > 0 ? shoulder + 0.03 * H : y0 + 0.835 * H;
+  trunk("neck", neck, neck + 0.03 * H, 3);
   // Legs: the two largest loops below the crotch, left (+X) and right.
   for (int side = 0; side < 2; ++side) {
     BodySegment s;
@@ -166,37 +312,119 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
   static const std::vector<std::string> ups{"auto", "x", "y", "z", "-x", "-y", "-z", "+x", "+y", "+z"};
   if (std::find(ups.begin(), ups.end(), up_opt) == ups.end())
     throw Error(file, "up", "unknown up axis '" + o.up + "' (auto, x, y, z, -x, -y, -z)");
-  static const std::vector<std::string> facings{"+z", "-z", "+x", "-x", "z", "x"};
+  static const std::vector<std::string> facings{"auto", "+z", "-z", "+x", "-x", "z", "x"};
   if (std::find(facings.begin(), facings.end(), facing_opt) == facings.end())
-    throw Error(file, "facing", "unknown facing '" + o.facing + "' (+z, -z, +x, -x)");
+    throw Error(file, "facing", "unknown facing '" + o.facing + "' (auto, +z, -z, +x, -x)");
 
   AvatarReport r;
   r.file = file;
   r.format = to_lower(path.extension().string());
   if (!r.format.empty() && r.format.front() == '.') r.format.erase(0, 1);
+  const bool gltf = r.format == "gltf" || r.format == "glb";
+  if (r.format == "gltf")
+    if (const auto missing = missing_gltf_buffers(path); !missing.empty())
+      throw Error(file, "buffers", "the glTF file keeps its data in " + missing.front() +
+                                       ", which is not beside it (" + (path.parent_path() / missing.front()).string() +
+                                       "): copy the .bin files with the .gltf, or export a single .glb");
 
-  ModelFile model = read_model_file(path);
+  ModelReadOptions ro;
+  ro.bind_pose = gltf;  // glTF: a skinned mesh ignores its node's transform
+  ModelFile model = read_model_file(path, ro);
   mesh::SurfaceMesh& s = model.surface;
-  const int meshes = model.meshes, dropped = model.dropped;
-  r.meshes = meshes;
-  r.dropped_primitives = dropped;
+  r.dropped_primitives = model.dropped;
   if (s.triangles.empty())
-    throw Error(file, "", "the file holds no triangles" + std::string(dropped ? " (only points or lines)" : ""));
+    throw Error(file, "", "the file holds no triangles" + std::string(model.dropped ? " (only points or lines)" : ""));
+  for (int i = 0; i < s.num_vertices(); ++i)
+    if (!s.vertices[i].allFinite())
+      throw Error(file, "vertex " + std::to_string(i + 1),
+                  "has a coordinate that is not a finite number (NaN or infinity): the file is corrupt");
+  if (std::any_of(model.meshes.begin(), model.meshes.end(), [](const ModelMesh& m) { return m.skinned; }) && gltf)
+    r.notes.push_back("skinned meshes taken in their bind pose (glTF: the node transform of a skinned mesh is ignored)");
+
+  // ---- the body: helper meshes and loose small parts left out ----
+  if (o.human) {
+    std::vector<char> keep(s.triangles.size(), 1);
+    std::vector<std::string> helpers;
+    for (const auto& m : model.meshes)
+      if (helper_mesh(m) && m.triangles < s.num_triangles()) {
+        std::fill_n(keep.begin() + m.first_triangle, m.triangles, 0);
+        helpers.push_back(m.name.empty() ? m.node : m.name);
+      }
+    int kept_meshes = 0;
+    for (const auto& m : model.meshes) kept_meshes += !helper_mesh(m) || m.triangles == s.num_triangles();
+    r.meshes = kept_meshes;
+    if (!helpers.empty()) {
+      std::string list;
+      for (std::size_t i = 0; i < helpers.size() && i < 6; ++i) list += (i ? ", " : "") + helpers[i];
+      r.notes.push_back("left out " + std::to_string(helpers.size()) + " helper mesh" + (helpers.size() > 1 ? "es" : "") +
+                        " (" + list + (helpers.size() > 6 ? ", ..." : "") + ")");
+    }
+    mesh::SurfaceMesh body;
+    body.vertices = s.vertices;
+    for (int i = 0; i < s.num_triangles(); ++i)
+      if (keep[i]) body.triangles.push_back(s.triangles[i]);
+    // Parts not touching the body (eyes, teeth, hair, loose props): a part
+    // under 5 % of the largest one's area is left out.
+    const mesh::Box3 box = mesh::bounding_box(body);
+    mesh::SurfaceMesh welded = body;
+    mesh::weld_vertices(welded, 1e-7 * box.size().norm());
+    const auto parts = connected_parts(welded);
+    if (parts.size() > 1) {
+      std::vector<double> area;
+      for (const auto& p : parts) {
+        double a = 0;
+        for (int i : p) a += triangle_area(welded, welded.triangles[i]);
+        area.push_back(a);
+      }
+      std::vector<char> keep_body(body.triangles.size(), 0);
+      int left_out = 0;
+      double left_area = 0;
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        if (area[k] < 0.05 * area[0]) {
+          ++left_out, left_area += area[k];
+          continue;
+        }
+        for (int i : parts[k]) keep_body[i] = 1;
+      }
+      if (left_out > 0) {
+        mesh::SurfaceMesh kept;
+        kept.vertices = body.vertices;
+        for (int i = 0; i < body.num_triangles(); ++i)
+          if (keep_body[i]) kept.triangles.push_back(body.triangles[i]);
+        body = std::move(kept);
+        r.notes.push_back("left out " + std::to_string(left_out) + " loose part" + (left_out > 1 ? "s" : "") +
+                          " smaller than 5 % of the body (" + format_fixed(100.0 * left_area / area[0], 1) +
+                          " % of its area together: eyes, teeth, hair or props)");
+      }
+    }
+    s = std::move(body);
+  }
   mesh::remove_unused_vertices(s);
 
   // ---- up axis ----
-  const bool gltf = r.format == "gltf" || r.format == "glb";
   std::string up = up_opt.front() == '+' ? up_opt.substr(1) : up_opt;
   if (up == "auto") {
-    r.up_guessed = false;
+    // The file's own word, where it has one.
+    std::string meta_up, meta_reason;
     if (gltf) {
-      up = "y", r.up_reason = "glTF is +Y up by specification";
+      meta_up = "y", meta_reason = "glTF is +Y up by specification";
     } else if (r.format == "dae") {
-      up = "y", r.up_reason = "Collada up_axis applied by the importer";
+      meta_up = "y", meta_reason = "Collada up_axis applied by the importer";
     } else if (const auto ax = metadata_number(model, "UpAxis")) {
       const auto sign = metadata_number(model, "UpAxisSign").value_or(1.0);
-      up = std::string(sign < 0 ? "-" : "") + "xyz"[std::clamp(static_cast<int>(*ax), 0, 2)];
-      r.up_reason = "the file's UpAxis metadata";
+      meta_up = std::string(sign < 0 ? "-" : "") + "xyz"[std::clamp(static_cast<int>(*ax), 0, 2)];
+      meta_reason = "the file's UpAxis metadata";
+    }
+    // The body's word wins when it is clear: files lie (a body modelled
+    // lying down, an armature's rotation, a converter's axis swap).
+    const UpFromBody found = o.human ? up_from_body(s) : UpFromBody{};
+    if (!found.up.empty()) {
+      up = found.up;
+      r.up_reason = found.reason;
+      if (!meta_up.empty() && meta_up != found.up)
+        r.notes.push_back("up axis " + found.up + " from the body itself, not " + meta_up + " (" + meta_reason + ")");
+    } else if (!meta_up.empty()) {
+      up = meta_up, r.up_reason = meta_reason;
     } else {
       // The longest extent, towards the side with more surface area.
       const Vec3 size = mesh::bounding_box(s).size();
@@ -207,13 +435,12 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
       double above = 0, below = 0;
       for (const auto& t : s.triangles) {
         const Vec3 &a = s.vertices[t[0]], &b = s.vertices[t[1]], &c = s.vertices[t[2]];
-        const double area = 0.5 * (b - a).cross(c - a).norm();
-        (((a[k] + b[k] + c[k]) / 3.0 > mid) ? above : below) += area;
+        (((a[k] + b[k] + c[k]) / 3.0 > mid) ? above : below) += triangle_area(s, t);
       }
       up = std::string(above >= below ? "" : "-") + "xyz"[k];
-      r.up_guessed = true;
-      r.up_reason = "no metadata: the longest extent, towards the side with more surface area";
+      r.up_reason = "no metadata and no clear body axis: the longest extent, towards the side with more surface area";
     }
+    r.up_guessed = meta_up.empty() || up != meta_up;
   } else {
     r.up_reason = "given";
   }
@@ -227,11 +454,18 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
     const Vec3 size = mesh::bounding_box(s).size();
     if ((size.array() <= 0).count() >= 2) throw Error(file, "", "the mesh is degenerate: it has no extent in two directions");
   }
+  const auto human = [](double h) { return h >= 1.0 && h <= 2.3; };      // m: the unit guess
+  const auto plausible = [](double h) { return h >= 0.5 && h <= 2.5; };  // m: anything else is no body
+  const LengthUnit units[] = {LengthUnit::metre, LengthUnit::decimetre, LengthUnit::centimetre, LengthUnit::millimetre,
+                              LengthUnit::inch};
   double metres = 1.0;
   if (unit_opt != "auto") {
     metres = metres_per(*parse_length_unit(unit_opt));
     r.unit = to_string(*parse_length_unit(unit_opt));
     r.unit_reason = "given";
+    if (o.human && !plausible(raw_height * metres))
+      throw Error(file, "unit", "the body is " + format_fixed(raw_height * metres, 3) + " m tall in " + r.unit +
+                                    " (the unit given): not a human body (0.5–2.5 m)");
   } else {
     std::optional<double> meta;
     std::string meta_reason;
@@ -239,32 +473,62 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
     else if (r.format == "dae") meta = 1.0, meta_reason = "Collada <unit> applied by the importer";
     else if (const auto f = metadata_number(model, "UnitScaleFactor"))
       meta = *f * 0.01, meta_reason = "the file's UnitScaleFactor metadata (" + format_double(*f) + " cm per unit)";
-    const auto human = [](double h) { return h >= 1.0 && h <= 2.3; };
     if (meta && human(raw_height * *meta)) {
       metres = *meta;
       r.unit_reason = meta_reason;
     } else {
+      // At most one of m, dm, cm, mm and in makes a height of 1.0–2.3 m (they
+      // are at least 2.54 times apart).
       r.unit_guessed = true;
-      const LengthUnit candidates[] = {LengthUnit::metre, LengthUnit::centimetre, LengthUnit::millimetre, LengthUnit::inch};
       LengthUnit best = LengthUnit::metre;
       double best_err = 1e300;
-      for (const auto u : candidates) {
+      for (const auto u : units) {
         const double h = raw_height * metres_per(u);
         const double err = human(h) ? 0.0 : std::abs(std::log(h / 1.7));
         if (err < best_err) best_err = err, best = u;
       }
       metres = metres_per(best);
-      r.unit_reason = std::string(best_err == 0 ? "a human is 1.0–2.3 m tall" : "closest to a human height (1.7 m)") +
+      if (o.human && !plausible(raw_height * metres)) {
+        std::string heights;
+        for (const auto u : units)
+          heights += std::string(heights.empty() ? "" : ", ") + format_fixed(raw_height * metres_per(u), 3) + " m in " +
+                     to_string(u);
+        throw Error(file, "", "not a human body: it is " + format_double(raw_height) + " units tall (" + heights +
+                                  "); a body is 0.5–2.5 m tall (give --unit if the file's unit is unusual)");
+      }
+      r.unit_reason = std::string(best_err == 0 ? "a human is 1.0–2.3 m tall (m, dm, cm, mm and in considered)"
+                                                : "closest to a human height (1.7 m)") +
                       (meta ? "; the metadata's unit gives " + format_fixed(raw_height * *meta, 3) + " m" : "");
+      if (meta) r.notes.push_back("unit " + std::string(to_string(best)) + " from the body's height, not the file's (" +
+                                  meta_reason + ": " + format_fixed(raw_height * *meta, 3) + " m tall)");
     }
     r.unit = "m";
-    for (const auto u : {LengthUnit::metre, LengthUnit::centimetre, LengthUnit::millimetre, LengthUnit::inch})
+    for (const auto u : units)
       if (metres_per(u) == metres) r.unit = to_string(u);
     if (r.unit == "m" && metres != 1.0) r.unit = format_double(metres) + " m";
   }
 
+  // ---- facing ----
+  std::string facing = facing_opt == "z" ? "+z" : facing_opt == "x" ? "+x" : facing_opt;
+  if (facing == "auto" && !o.human) facing = "+z";
+  if (facing == "auto") {
+    mesh::SurfaceMesh upright = s;
+    mesh::transform(upright, up_rotation(up));
+    facing = facing_from_feet(upright);
+    if (facing.empty()) {
+      facing = "+z";
+      r.facing_reason = "the feet show no direction: taken as facing +Z";
+      r.facing_guessed = true;
+    } else {
+      r.facing_reason = "the feet point " + facing;
+    }
+  } else {
+    r.facing_reason = "given";
+  }
+  r.facing = facing;
+
   // ---- normalise ----
-  mesh::transform(s, metres * facing_rotation(facing_opt) * up_rotation(up));
+  mesh::transform(s, metres * facing_rotation(facing) * up_rotation(up));
   r.welded_vertices = mesh::weld_vertices(s, o.weld_tolerance);
   if (o.recentre) {
     const mesh::Box3 b = mesh::bounding_box(s);
@@ -280,8 +544,25 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
 
   Avatar av;
   av.source = file;
+  av.notes.push_back("unit " + r.unit + " (" + r.unit_reason + ")");
+  av.notes.push_back("up " + r.up + " (" + r.up_reason + ")");
+  av.notes.push_back("facing " + r.facing + " (" + r.facing_reason + ")");
+  av.notes.insert(av.notes.end(), r.notes.begin(), r.notes.end());
   av.surface = std::move(s);
-  if (o.segments) av.segments = segments_from_slices(av.surface);
+  if (o.segments) {
+    if (o.human) {
+      BodyMeasuring measured = measure_body(av.surface);
+      av.segments = segments_from_slices(av.surface, &measured.landmarks);
+      for (auto& arm : arm_segments(av.surface, measured.landmarks)) av.segments.push_back(std::move(arm));
+      av.landmarks = measured.landmarks;
+      for (const auto& n : measured.notes) r.notes.push_back(n), av.notes.push_back(n);
+      if (measured.measurements.bust > 0 && measured.measurements.waist > 0 && measured.measurements.hip > 0)
+        r.nearest = nearest_size(measured.measurements);
+      r.measuring = std::move(measured);
+    } else {
+      av.segments = segments_from_slices(av.surface);
+    }
+  }
   for (const auto& seg : av.segments) r.segments.push_back(seg.name);
   av.triangle_segment.assign(av.surface.triangles.size(), -1);
   if (report_out) *report_out = r;
@@ -294,6 +575,7 @@ AvatarReport report_avatar(const Avatar& avatar) {
   r.meshes = 1;
   r.unit = "m", r.unit_reason = "vgd's frame";
   r.up = "y", r.up_reason = "vgd's frame";
+  r.facing = "+z", r.facing_reason = "vgd's frame";
   fill_check(r, avatar.surface);
   for (const auto& s : avatar.segments) r.segments.push_back(s.name);
   return r;
@@ -320,8 +602,29 @@ std::string to_json(const AvatarReport& r) {
                    {"degenerate_triangles", r.degenerate_triangles},
                    {"unit", {{"value", r.unit}, {"guessed", r.unit_guessed}, {"reason", r.unit_reason}}},
                    {"up", {{"value", r.up}, {"guessed", r.up_guessed}, {"reason", r.up_reason}}},
+                   {"facing", {{"value", r.facing}, {"guessed", r.facing_guessed}, {"reason", r.facing_reason}}},
                    {"segments", r.segments},
                    {"notes", r.notes}};
+  if (r.measuring) {
+    const auto& l = r.measuring->landmarks;
+    const auto& m = r.measuring->measurements;
+    nlohmann::json lj{{"height_m", l.height},       {"neck_m", l.neck},   {"shoulder_m", l.shoulder},
+                      {"bust_m", l.bust},           {"under_bust_m", l.under_bust},
+                      {"waist_m", l.waist},         {"hip_m", l.hip},     {"crotch_m", l.crotch},
+                      {"ankle_m", l.ankle}};
+    for (const auto& [name, arm] : {std::pair{"left_arm", &l.left_arm}, {"right_arm", &l.right_arm}})
+      if (*arm)
+        lj[name] = {{"shoulder_m", v3((*arm)->shoulder)}, {"elbow_m", v3((*arm)->elbow)},
+                    {"wrist_m", v3((*arm)->wrist)}, {"wrist_girth_m", (*arm)->wrist_girth}};
+    j["landmarks"] = lj;
+    j["measurements"] = {{"height_m", m.height},   {"bust_m", m.bust},         {"under_bust_m", m.under_bust},
+                         {"waist_m", m.waist},     {"hip_m", m.hip},           {"shoulder_width_m", m.shoulder_width},
+                         {"neck_m", m.neck},       {"arm_length_m", m.arm_length}, {"inseam_m", m.inseam}};
+  }
+  if (r.nearest)
+    j["nearest_size"] = {{"table", r.nearest->table}, {"size", r.nearest->size.label}, {"sex", r.nearest->size.sex},
+                         {"rms_m", r.nearest->rms}, {"bust_m", r.nearest->size.bust}, {"waist_m", r.nearest->size.waist},
+                         {"hip_m", r.nearest->size.hip}, {"height_m", r.nearest->size.height}};
   return j.dump(2);
 }
 

@@ -455,8 +455,18 @@ MannequinSdf::MannequinSdf(const BodyMeasurements& m, const MannequinOptions& op
   check_measurements(m);
   f_->m = m;
   f_->opt = options;
-  if (options.calibrate) f_->calibrate();
-  else f_->build();
+  if (options.calibrate && options.arm_angle_deg > 50.0) {
+    // Raised arms (a T-pose) would be measured as the shoulder width: the
+    // girths and shoulders are calibrated in the A-pose, then the arms raised.
+    f_->opt.arm_angle_deg = 45.0;
+    f_->calibrate();
+    f_->opt.arm_angle_deg = options.arm_angle_deg;
+    f_->build();
+  } else if (options.calibrate) {
+    f_->calibrate();
+  } else {
+    f_->build();
+  }
 }
 MannequinSdf::~MannequinSdf() = default;
 MannequinSdf::MannequinSdf(MannequinSdf&&) noexcept = default;

@@ -63,10 +63,10 @@ const assimp_module::Api& api(const std::string& file) {
 
 }  // namespace
 
-ModelFile read_model_file(const fs::path& path) {
+ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options) {
   const std::string file = path.string();
   ModelFile out;
-  const std::string why = api(file).read(path, out);
+  const std::string why = api(file).read(path, options, out);
   if (!why.empty())
     throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + why);
   return out;

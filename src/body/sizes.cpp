@@ -1,7 +1,9 @@
-// Body size tables (body_sizes.hpp, data/bodies/README.md).
+// Body size tables (sizes.hpp, data/bodies/README.md).
 #include "vgd/body/sizes.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -116,6 +118,22 @@ std::vector<BodyMeasurements> load_size_table(const std::filesystem::path& path)
   }
   if (rows.empty()) throw Error(file, "", "the size table has no rows");
   return rows;
+}
+
+NearestSize nearest_size(const BodyMeasurements& body) {
+  NearestSize best;
+  best.rms = std::numeric_limits<double>::infinity();
+  for (const auto& name : size_table_names())
+    for (const auto& row : load_size_table(size_table_file(name))) {
+      double sum = 0;
+      int n = 0;
+      for (const auto [a, b] : {std::pair{body.height, row.height}, {body.bust, row.bust}, {body.waist, row.waist},
+                                {body.hip, row.hip}})
+        if (a > 0) sum += (a - b) * (a - b), ++n;
+      const double rms = n ? std::sqrt(sum / n) : std::numeric_limits<double>::infinity();
+      if (rms < best.rms) best = {name, row, rms};
+    }
+  return best;
 }
 
 std::vector<std::string> size_table_names() { return {"en13402-women", "en13402-men", "astm-d5585-misses"}; }

@@ -8,6 +8,7 @@ double metres_per(LengthUnit u) {
   switch (u) {
     case LengthUnit::millimetre: return 0.001;
     case LengthUnit::centimetre: return 0.01;
+    case LengthUnit::decimetre: return 0.1;
     case LengthUnit::metre: return 1.0;
     case LengthUnit::inch: return 0.0254;
   }
@@ -18,6 +19,7 @@ const char* to_string(LengthUnit u) {
   switch (u) {
     case LengthUnit::millimetre: return "mm";
     case LengthUnit::centimetre: return "cm";
+    case LengthUnit::decimetre: return "dm";
     case LengthUnit::metre: return "m";
     case LengthUnit::inch: return "in";
   }
@@ -31,6 +33,8 @@ std::optional<LengthUnit> parse_length_unit(std::string_view text) {
     return LengthUnit::millimetre;
   if (t == "cm" || t == "centimetre" || t == "centimetres" || t == "centimeter" || t == "centimeters")
     return LengthUnit::centimetre;
+  if (t == "dm" || t == "decimetre" || t == "decimetres" || t == "decimeter" || t == "decimeters")
+    return LengthUnit::decimetre;
   if (t == "m" || t == "metre" || t == "metres" || t == "meter" || t == "meters")
     return LengthUnit::metre;
   if (t == "in" || t == "inch" || t == "inches" || t == "\"" || t == "english" || t == "imperial")

@@ -16,13 +16,19 @@ using body::BodySegment;
 
 std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
                                                                          const Avatar& avatar, Diagnostics& diag) {
-  // Heights for the suggestions: the mannequin's landmarks, else the torso's top
-  // (neck) and a waist at the usual 62 % of the height.
+  // Heights for the suggestions: the mannequin's landmarks, else those measured
+  // on an imported body, else the torso's top (neck) and a waist at the usual
+  // 62 % of the height.
   xvc::ArrangementOptions ao;
   if (avatar.measurements) {
     const body::MannequinLandmarks l = body::mannequin_landmarks(*avatar.measurements);
     ao.neck_point_height = l.neck_base;
     ao.waist_height = l.waist;
+  } else if (const auto& l = avatar.landmarks; l && l->shoulder > 0 && l->waist > 0) {
+    // Measured on the body: the neck's base sits 3 % of the height above the
+    // shoulders' top, as on the mannequin.
+    ao.neck_point_height = l->shoulder + 0.03 * l->height;
+    ao.waist_height = l->waist;
   } else if (const BodySegment* torso = avatar.segment("torso")) {
     ao.neck_point_height = (torso->start + torso->length * torso->axis).y();
     ao.waist_height = 0.62 * (ao.neck_point_height / 0.845);

@@ -29,6 +29,8 @@ Avatar build_avatar(const SceneDef& def) {
         body::AvatarImportOptions io;
         io.unit = a.unit;
         io.up = a.up;
+        io.facing = a.facing;
+        io.human = a.human;
         return body::import_avatar(p, io);
       }
       case AvatarDef::Kind::sphere: {

@@ -261,6 +261,8 @@ AvatarDef read_avatar(Object o) {
       a.file = text(f.need("path", "the mesh file"), f.at("path"), o.context());
       f.string("unit", a.unit);
       f.string("up", a.up);
+      f.string("facing", a.facing);
+      f.flag("human", a.human);
       f.finish();
     }
   }

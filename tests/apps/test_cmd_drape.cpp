@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <sstream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "support/run_vgd.hpp"
@@ -258,6 +260,52 @@ TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
       EXPECT_LT(s["warp"]["p95"].get<double>(), 0.15) << s.dump();
       EXPECT_LT(s["weft"]["p95"].get<double>(), 0.15) << s.dump();
     }
+}
+
+// A body brought from elsewhere: the size-38 mannequin written the way
+// Blender stores it (centimetres, Z up, front towards −Y), read back with
+// every decision automatic. The importer finds its unit, up axis, facing,
+// landmarks and arms; the T-shirt's sleeves go on the arms it found, and the
+// drape passes every check, as on the mannequin itself.
+TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
+  const auto dir = scratch_dir("drape-imported-body");
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "38", "-o", (dir / "m38.obj").string(), "-q"}).code, 0);
+  std::ifstream in(dir / "m38.obj");
+  std::ofstream out(dir / "blender.obj");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x, y, z;
+      v >> x >> y >> z;
+      out << "v " << 100 * x << ' ' << -100 * z << ' ' << 100 * y << '\n';  // (x, y, z) m -> (x, -z, y) cm
+    } else if (line.rfind("f ", 0) == 0) {
+      std::istringstream f(line.substr(2));
+      std::string a;
+      out << 'f';
+      while (f >> a) out << ' ' << a.substr(0, a.find('/'));
+      out << '\n';
+    }
+  }
+  out.close();
+  const auto report = run_vgd({"avatar", "report", (dir / "blender.obj").string(), "--json"});
+  ASSERT_EQ(report.code, 0) << report.err;
+  const json j = json::parse(report.out);
+  EXPECT_EQ(j["unit"]["value"], "cm");
+  EXPECT_EQ(j["up"]["value"], "z");
+  EXPECT_EQ(j["facing"]["value"], "+z");
+  EXPECT_EQ(j["nearest_size"]["size"], "38");
+  const auto out_dir = dir / "drape";
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--avatar",
+                          (dir / "blender.obj").string(), "-o", out_dir.string(), "--time-limit", "6"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  EXPECT_NE(r.err.find("up z"), std::string::npos) << "the importer's decisions are printed";
+  const json c = read_json(out_dir / "certificate.json");
+  EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
+  EXPECT_TRUE(c["passed"].get<bool>());
 }
 
 // The smallest size: the armpit's corner pair (four pieces meet there) hung

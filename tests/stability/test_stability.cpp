@@ -407,7 +407,7 @@ TEST_P(Stability, AStripPulledDownOverFingers) {
     }
   }
   CaseDef c;
-  c.avatar = R"({"file": {"path": ")" + obj.string() + R"(", "unit": "m", "up": "y"}})";
+  c.avatar = R"({"file": {"path": ")" + obj.string() + R"(", "unit": "m", "up": "y", "human": false}})";
   c.particles = 41, c.size = 0.2, c.particles_v = 5, c.size_v = 0.02, c.duration = 0.25;
   c.placement = R"({"origin": [-0.1, 0.026, -0.01], "u": [1, 0, 0], "v": [0, 0, 1]})";
   c.pins = R"("pins": [{"piece": "cloth", "sets": ["edge-u0"], "velocity": [0.2, -0.2, 0]},

@@ -56,12 +56,41 @@ struct BodySegment {
 // The cross-section at s (m), linearly interpolated, clamped to [0, length].
 SegmentRing ring_at(const BodySegment& segment, double s);
 
+// Landmarks found on a body's surface (landmarks.hpp, measure_body). Heights
+// are above the floor.
+struct ArmLandmarks {
+  Vec3 shoulder = Vec3::Zero();  // m: the shoulder joint, on the arm's axis 3 cm inside the chest's half-width
+  Vec3 elbow = Vec3::Zero();     // m: 56 % of the way from the shoulder to the wrist
+  Vec3 wrist = Vec3::Zero();     // m: the arm's thinnest slice before the hand
+  double wrist_girth = 0.0;      // m
+};
+
+struct BodyLandmarks {
+  double height = 0.0;  // m, top of the head above the floor
+  // Heights above the floor, m (0 where not found).
+  double neck = 0.0;        // the neck's thinnest slice
+  double shoulder = 0.0;    // top of the shoulders beside the neck
+  double bust = 0.0;        // fullest slice of the chest
+  double under_bust = 0.0;  // 3 % of the height below the bust
+  double waist = 0.0;       // thinnest slice of the trunk between hips and chest
+  double hip = 0.0;         // fullest slice between crotch and waist
+  double crotch = 0.0;      // lowest slice whose loop encloses the trunk's centre line
+  double ankle = 0.0;       // thinnest slice of a leg at 3–10 % of the height (the foot's top on a mannequin)
+  std::optional<ArmLandmarks> left_arm, right_arm;  // the body's left is +X
+};
+
 struct Avatar {
   std::string source;              // the file, or "mannequin <label>"
   mesh::SurfaceMesh surface;       // world frame, m
   std::vector<BodySegment> segments;
   std::vector<int> triangle_segment;  // per triangle: index in segments, -1 when unknown
   std::optional<BodyMeasurements> measurements;  // mannequins: what they were made from
+  // Imported bodies: what the importer decided (unit, up, facing, each with
+  // its reason) and what it left out, for the commands to print.
+  std::vector<std::string> notes;
+  // Imported bodies: landmarks measured on the surface (placement measures
+  // from them); mannequins are placed from their measurements instead.
+  std::optional<BodyLandmarks> landmarks;
 
   // The segment with this name, or nullptr.
   const BodySegment* segment(std::string_view name) const;

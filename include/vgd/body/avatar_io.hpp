@@ -11,22 +11,31 @@
 
 #include "vgd/mesh/surface.hpp"
 #include "vgd/body/avatar.hpp"
+#include "vgd/body/landmarks.hpp"
+#include "vgd/body/sizes.hpp"
 
 namespace vgd::body {
 
 struct AvatarImportOptions {
-  // File unit: "auto", "m", "cm", "mm", "in". auto: the file's metadata (glTF is
-  // metres by specification, FBX's UnitScaleFactor) when it gives a human height
-  // (1.0–2.3 m), else the unit that does.
+  // File unit: "auto", "m", "dm", "cm", "mm", "in". auto: the file's metadata
+  // (glTF is metres by specification, FBX's UnitScaleFactor) when it gives a
+  // human height (1.0–2.3 m), else the one of m, dm, cm, mm and in that does
+  // (at most one can). A body that is not 0.5–2.5 m tall in the unit chosen is
+  // refused: it is no human body, or the unit is wrong.
   std::string unit = "auto";
   // The file's up direction: "auto", "x", "y", "z", "-x", "-y", "-z". auto: the
-  // file's metadata (glTF +Y, FBX UpAxis, Collada's up_axis applied by assimp),
-  // else the longest extent of the bounding box, pointing to the side holding
-  // more of the surface area (the trunk and head outweigh the legs).
+  // body's own, when it is clear (the axis along which its surface spreads
+  // furthest, which a T-pose's arm span does not beat; the end whose slice cuts
+  // two legs is down), else the file's metadata (glTF +Y, FBX UpAxis,
+  // Collada's up_axis applied by assimp), else the longest extent of the
+  // bounding box, pointing to the side holding more of the surface area.
   std::string up = "auto";
-  // Where the body faces once up is +Y: "+z" (no change), "-z", "+x", "-x".
-  // Not detected: a Z-up file converted as Blender does (front = −Y) faces +Z.
-  std::string facing = "+z";
+  // Where the body faces once up is +Y: "auto" (from the feet, which point
+  // forward; +Z when they show nothing), "+z" (no change), "-z", "+x", "-x".
+  std::string facing = "auto";
+  // false for a prop rather than a body (a drape's sphere, a body already in
+  // vgd's frame): no height check, no helper or loose parts left out.
+  bool human = true;
   double weld_tolerance = 1e-6;  // m, after unit conversion
   bool recentre = true;          // feet on y = 0, bounding box centred on x = z = 0
   bool segments = true;          // best-effort segments from horizontal slices
@@ -50,13 +59,22 @@ struct AvatarReport {
   std::string up;                   // x, y, z, -x, -y, -z (in the file)
   bool up_guessed = false;
   std::string up_reason;
+  std::string facing;               // +z, -z, +x, -x (in the file, once up is +Y)
+  bool facing_guessed = false;
+  std::string facing_reason;
   std::vector<std::string> segments;  // names of the segments found
+  std::optional<BodyMeasuring> measuring;  // landmarks and measurements (bodies; options.segments)
+  std::optional<NearestSize> nearest;      // the shipped tables' size nearest to them
   std::vector<std::string> notes;     // anything else worth saying
 };
 
-// Imports an avatar. Throws vgd::Error naming the file for: a missing or empty
-// file, content no importer understands, a file without triangles, a flat
-// (zero-height) mesh, or a bad option value.
+// Imports an avatar. Helper meshes (MakeHuman's "helper-*" and "joint-*") and
+// loose parts under 5 % of the body's area (eyes, teeth, hair) are left out
+// with a note; a glTF's skinned meshes are taken in their bind pose. Throws
+// vgd::Error naming the file for: a missing or empty file, a .gltf whose
+// .bin is not beside it, content no importer understands, a file without
+// triangles, a coordinate that is NaN or infinite, a flat (zero-height) mesh,
+// a body that is not 0.5–2.5 m tall, or a bad option value.
 Avatar import_avatar(const std::filesystem::path& path, const AvatarImportOptions& options = {},
                      AvatarReport* report = nullptr);
 
@@ -77,8 +95,11 @@ std::vector<std::string> avatar_export_extensions();
 
 // Best-effort segments of an avatar in the avatar frame, from horizontal
 // slices: hips and torso (the loop around the centre line), neck (same, above
-// the shoulders), legs (the two largest loops below the crotch). Arms are not
-// found. Returns what was found.
-std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface);
+// the shoulders), legs (the two largest loops below the crotch). Arms come
+// from landmarks (arm_segments). Returns what was found.
+// With `landmarks` (measure_body), the trunk's segments start and end at the
+// measured crotch, waist and shoulders.
+std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface,
+                                              const BodyLandmarks* landmarks = nullptr);
 
 }  // namespace vgd::body

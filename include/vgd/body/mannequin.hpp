@@ -23,7 +23,7 @@ struct MannequinOptions {
   int target_triangles = 10000;  // aimed at, clamped to 5 000–20 000; the result is within about ±20 %
   double facet_size = 0.0;       // m, CGAL facet size; > 0 overrides target_triangles
   double facet_distance = 0.0;   // m, largest facet-to-surface distance (resolves armpit and crotch gaps); 0 = facet size / 8
-  double arm_angle_deg = 45.0;   // A-pose: angle between each arm and the vertical; opened up to 50° when the chest needs it
+  double arm_angle_deg = 45.0;   // angle between each arm and the vertical: 45 an A-pose, 90 a T-pose; opened up to 50° when the chest needs it
   bool calibrate = true;         // false: girths from the closed-form ellipse estimate only (±2–3 %)
 };
 

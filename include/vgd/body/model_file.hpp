@@ -17,19 +17,37 @@
 
 namespace vgd::body {
 
+// One mesh of the file as it lies in ModelFile::surface.
+struct ModelMesh {
+  std::string name;       // the mesh's name (OBJ: its group or object)
+  std::string node;       // the node that holds it
+  int first_vertex = 0, vertices = 0;
+  int first_triangle = 0, triangles = 0;
+  bool skinned = false;   // it has bones
+};
+
 struct ModelFile {
-  // Every triangle mesh of the node tree, each vertex moved by its node's
-  // accumulated transform, merged into one surface (vertices not welded).
+  // Every triangle mesh of the node tree merged into one surface (vertices
+  // not welded), each vertex moved by its node's accumulated transform, except
+  // skinned meshes when ModelReadOptions::bind_pose (glTF 2.0 §3.7.3: "the
+  // transform of the node that the mesh is attached to is ignored"; their
+  // vertices are the bind pose).
   mesh::SurfaceMesh surface;
-  int meshes = 0;   // meshes that gave triangles
-  int dropped = 0;  // faces that were points or lines
+  std::vector<ModelMesh> meshes;  // those that gave triangles, in surface order
+  int dropped = 0;                // faces that were points or lines
   // The file's numeric metadata (FBX's UnitScaleFactor, UpAxis, UpAxisSign, ...).
   std::map<std::string, double> metadata;
 };
 
-// Reads `path`. Throws vgd::Error naming the file when it cannot be read or
-// understood, with assimp's reason.
-ModelFile read_model_file(const std::filesystem::path& path);
+struct ModelReadOptions {
+  bool bind_pose = false;  // skinned meshes without their node transform (glTF's rule)
+};
+
+// Reads `path`; assimp validates the scene it builds before vgd reads it (a
+// file whose scene is inconsistent is refused, not followed). Throws
+// vgd::Error naming the file when it cannot be read or understood, with the
+// reason.
+ModelFile read_model_file(const std::filesystem::path& path, const ModelReadOptions& options = {});
 
 // Writes `surface` (with per-vertex `normals`, one per vertex) as one mesh
 // named "body" to `path` in assimp's format `format_id` (objnomtl, plyb,

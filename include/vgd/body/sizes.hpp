@@ -28,6 +28,15 @@ std::filesystem::path size_table_file(std::string_view name);
 // EN 13402-3 women's 38). Throws vgd::Error listing the sizes available.
 BodyMeasurements find_size(std::string_view size, std::string_view table = "");
 
+// The size of the shipped tables nearest to a body: smallest root mean square
+// of the differences in height, bust, waist and hip (those given, > 0).
+struct NearestSize {
+  std::string table;          // e.g. "en13402-women"
+  BodyMeasurements size;      // the table's row (label, sex, measurements)
+  double rms = 0.0;           // m
+};
+NearestSize nearest_size(const BodyMeasurements& body);
+
 // Fills measurements given as 0 from the others (proportions in data/bodies/README.md):
 // under_bust, shoulder_width, neck, arm_length, inseam.
 void complete_measurements(BodyMeasurements& m);

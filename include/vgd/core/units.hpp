@@ -6,12 +6,12 @@
 
 namespace vgd {
 
-enum class LengthUnit { millimetre, centimetre, metre, inch };
+enum class LengthUnit { millimetre, centimetre, decimetre, metre, inch };
 
-// Metres per one unit: mm 0.001, cm 0.01, m 1, inch 0.0254 (exact by definition).
+// Metres per one unit: mm 0.001, cm 0.01, dm 0.1, m 1, inch 0.0254 (exact by definition).
 double metres_per(LengthUnit u);
 
-// Short name used in files and reports: "mm", "cm", "m", "in".
+// Short name used in files and reports: "mm", "cm", "dm", "m", "in".
 const char* to_string(LengthUnit u);
 
 // Parses unit words as CAD files write them, case-insensitively:

@@ -133,8 +133,10 @@ struct AvatarDef {
   int triangles = 0;                // target triangle count, 0 = the generator's default
   // file
   std::filesystem::path file;       // relative to the scene file's folder
-  std::string unit = "auto";        // auto, m, cm, mm, in
-  std::string up = "auto";          // auto, y, z
+  std::string unit = "auto";        // auto, m, dm, cm, mm, in (body/avatar_io.hpp)
+  std::string up = "auto";          // auto, x, y, z, -x, -y, -z
+  std::string facing = "auto";      // auto, +z, -z, +x, -x
+  bool human = true;                // false: a prop (a hand, a table), not checked for a human's height
   // sphere / cylinder (Blender's UV sphere and cylinder)
   Vec3 centre = Vec3::Zero();       // m: sphere centre; cylinder: centre of the bottom cap
   double radius = 0.3;              // m

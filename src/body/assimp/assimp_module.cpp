@@ -12,14 +12,18 @@
 namespace vgd::body::assimp_module {
 namespace {
 
-// Merges every mesh of the node tree, each with its accumulated transform.
-void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, ModelFile& out) {
+// Merges every mesh of the node tree, each with its accumulated transform
+// (none for a skinned mesh when `bind_pose`).
+void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, bool bind_pose, ModelFile& out) {
   const aiMatrix4x4 t = parent * node->mTransformation;
   for (unsigned i = 0; i < node->mNumMeshes; ++i) {
     const aiMesh* m = scene->mMeshes[node->mMeshes[i]];
     const int base = out.surface.num_vertices();
+    const int first_triangle = out.surface.num_triangles();
+    const bool skinned = m->HasBones();
+    const aiMatrix4x4 mt = skinned && bind_pose ? aiMatrix4x4() : t;
     for (unsigned v = 0; v < m->mNumVertices; ++v) {
-      const aiVector3D p = t * m->mVertices[v];
+      const aiVector3D p = mt * m->mVertices[v];
       out.surface.vertices.emplace_back(p.x, p.y, p.z);
     }
     bool any = false;
@@ -34,9 +38,19 @@ void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
                                        base + static_cast<int>(face.mIndices[2])});
       any = true;
     }
-    out.meshes += any;
+    if (any) {
+      ModelMesh mm;
+      mm.name = m->mName.C_Str();
+      mm.node = node->mName.C_Str();
+      mm.first_vertex = base;
+      mm.vertices = static_cast<int>(m->mNumVertices);
+      mm.first_triangle = first_triangle;
+      mm.triangles = out.surface.num_triangles() - first_triangle;
+      mm.skinned = skinned;
+      out.meshes.push_back(std::move(mm));
+    }
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], t, out);
+  for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], t, bind_pose, out);
 }
 
 void read_metadata(const aiScene* s, ModelFile& out) {
@@ -54,16 +68,18 @@ void read_metadata(const aiScene* s, ModelFile& out) {
   }
 }
 
-std::string read(const std::filesystem::path& path, ModelFile& out) {
+std::string read(const std::filesystem::path& path, const ModelReadOptions& options, ModelFile& out) {
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, 0);
-  const aiScene* scene =
-      importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  // Validation first: some importers hand back scenes with null nodes or
+  // meshes (two RAW files of assimp's own test models crashed the reader).
+  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                                              aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) {
     const std::string why = importer.GetErrorString();
     return why.empty() ? "assimp gave no scene" : why;
   }
-  collect(scene, scene->mRootNode, aiMatrix4x4(), out);
+  collect(scene, scene->mRootNode, aiMatrix4x4(), options.bind_pose, out);
   read_metadata(scene, out);
   return "";
 }

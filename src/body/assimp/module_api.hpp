@@ -11,12 +11,12 @@
 
 namespace vgd::body::assimp_module {
 
-inline constexpr int kApiVersion = 1;
+inline constexpr int kApiVersion = 2;
 
 struct Api {
   int version = kApiVersion;
   // Returns "" on success, else why the file could not be read.
-  std::string (*read)(const std::filesystem::path& path, ModelFile& out) = nullptr;
+  std::string (*read)(const std::filesystem::path& path, const ModelReadOptions& options, ModelFile& out) = nullptr;
   // Returns "" on success, else why the file could not be written.
   std::string (*write)(const mesh::SurfaceMesh& surface, const std::vector<Eigen::Vector3d>& normals,
                        const std::filesystem::path& path, const std::string& format_id) = nullptr;

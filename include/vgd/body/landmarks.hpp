@@ -1,0 +1,36 @@
+#pragma once
+// Landmarks and measurements found on a body's surface (docs/avatar.md),
+// whatever made it: an imported scan or model, or vgd's mannequin. The body
+// must be upright in vgd's frame (metres, +Y up, facing +Z, feet on y = min).
+//
+// Girths are what a tape measures: the convex-hull perimeter of the slice's
+// loop around the trunk's centre line (ISO 8559-1: horizontal). Heights are
+// above the lowest point of the body. Arms are found from slices across them
+// (planes x = const beyond the trunk), so any pose from T to A gives them;
+// arms held in front of the trunk are not found.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vgd/body/avatar.hpp"
+#include "vgd/mesh/surface.hpp"
+
+namespace vgd::body {
+
+struct BodyMeasuring {
+  BodyLandmarks landmarks;
+  // What a tailor would measure on this body (m; label "measured"). Fields
+  // not found are 0.
+  BodyMeasurements measurements;
+  std::vector<std::string> notes;  // what was not found, and why
+};
+
+// Landmarks and measurements of an upright body.
+BodyMeasuring measure_body(const mesh::SurfaceMesh& upright);
+
+// The arm segments (left-arm, right-arm) of an upright body from its
+// landmarks and slices: the axis from shoulder to wrist, rings from the
+// slices across the arm. Empty where an arm was not found.
+std::vector<BodySegment> arm_segments(const mesh::SurfaceMesh& upright, const BodyLandmarks& landmarks);
+
+}  // namespace vgd::body

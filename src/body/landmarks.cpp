@@ -1,0 +1,312 @@
+// Landmarks and measurements found on a body's surface (landmarks.hpp).
+#include "vgd/body/landmarks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+#include "vgd/core/strings.hpp"
+
+namespace vgd::body {
+
+namespace {
+
+using mesh::Vec2d;
+using Loop = std::vector<Vec2d>;
+constexpr double kPi = 3.14159265358979323846;
+
+Vec2d loop_centroid(const Loop& l) {
+  Vec2d c = Vec2d::Zero();
+  for (const auto& p : l) c += p;
+  return c / static_cast<double>(std::max<std::size_t>(l.size(), 1));
+}
+
+// The loop of the slice at y that encloses the trunk's centre line (x, z) =
+// centre, or nullptr.
+struct Slices {
+  const mesh::SurfaceMesh& m;
+  Vec2d centre;
+  std::vector<Loop> loops;
+  const Loop* central(double y) {
+    loops = mesh::slice_horizontal(m, y);
+    for (const auto& l : loops)
+      if (l.size() > 2 && mesh::point_in_polygon(l, centre)) return &l;
+    return nullptr;
+  }
+};
+
+double half_width(const Loop& l, double cx) {
+  double w = 0;
+  for (const auto& p : l) w = std::max(w, std::abs(p.x() - cx));
+  return w;
+}
+
+// The thinnest or fullest central girth over heights [a, b] (m, step dy):
+// {height, girth}, or {0, 0} when no slice there encloses the centre line.
+std::pair<double, double> girth_extreme(Slices& s, double a, double b, double dy, bool fullest,
+                                        double max_half_width = std::numeric_limits<double>::infinity()) {
+  double best_y = 0, best = fullest ? 0.0 : std::numeric_limits<double>::infinity();
+  for (double y = a; y <= b + 1e-12; y += dy) {
+    const Loop* l = s.central(y);
+    if (!l || half_width(*l, s.centre.x()) > max_half_width) continue;
+    const double g = mesh::convex_hull_perimeter(*l);
+    if (fullest ? g > best : g < best) best = g, best_y = y;
+  }
+  if (best_y == 0) return {0.0, 0.0};
+  return {best_y, best};
+}
+
+// A leg's thinnest slice over [a, b]: the largest loop left of the centre line
+// (+X, the body's left); {height, girth}.
+std::pair<double, double> leg_thinnest(const mesh::SurfaceMesh& m, double cx, double a, double b, double dy) {
+  double best_y = 0, best = std::numeric_limits<double>::infinity();
+  for (double y = a; y <= b + 1e-12; y += dy) {
+    double area = 0, g = 0;
+    for (const auto& l : mesh::slice_horizontal(m, y)) {
+      if (l.size() < 3 || loop_centroid(l).x() <= cx) continue;
+      double ar = 0;
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        const auto& p = l[i];
+        const auto& q = l[(i + 1) % l.size()];
+        ar += p.x() * q.y() - q.x() * p.y();
+      }
+      if (std::abs(ar) > area) area = std::abs(ar), g = mesh::convex_hull_perimeter(l);
+    }
+    if (area > 0 && g < best) best = g, best_y = y;
+  }
+  if (best_y == 0) return {0.0, 0.0};
+  return {best_y, best};
+}
+
+// One station of an arm: the slice across it by the plane x = c.
+struct ArmStation {
+  Vec3 centre;       // m, the loop's centroid
+  double perimeter;  // m, convex hull
+  double extent_y, extent_z;
+};
+
+// The stations of one arm (side +1: the body's left, +X), from beside the
+// trunk to the fingertips; empty when no arm is there.
+std::vector<ArmStation> arm_stations(const mesh::SurfaceMesh& m, const mesh::SurfaceMesh& across, double cx,
+                                     double trunk_half_width, double crotch, double H, int side) {
+  const mesh::Box3 b = mesh::bounding_box(m);
+  const double reach = side > 0 ? b.max.x() - cx : cx - b.min.x();
+  std::vector<ArmStation> out;
+  for (double d = trunk_half_width + 0.02; d < reach - 0.005; d += 0.01) {
+    const double c = cx + side * d;
+    // `across` is the body turned so that x is up: (x, y, z) -> (y, x, -z); a
+    // loop point (a, b) is (x = c, y = a, z = -b).
+    const ArmStation* pick = nullptr;
+    ArmStation best;
+    double best_y = crotch - 0.25 * H;  // a hanging hand reaches about the crotch
+    for (const auto& l : mesh::slice_horizontal(across, c)) {
+      if (l.size() < 3) continue;
+      const Vec2d q = loop_centroid(l);
+      if (q.x() <= best_y) continue;  // the arm is the highest loop the plane cuts
+      // and it goes on from the last station (not a leg of a wide stance).
+      if (!out.empty() && (Vec3(c, q.x(), -q.y()) - out.back().centre).norm() > 0.08) continue;
+      double ylo = 1e300, yhi = -1e300, zlo = 1e300, zhi = -1e300;
+      for (const auto& p : l) ylo = std::min(ylo, p.x()), yhi = std::max(yhi, p.x()), zlo = std::min(zlo, -p.y()), zhi = std::max(zhi, -p.y());
+      best = {Vec3(c, q.x(), -q.y()), mesh::convex_hull_perimeter(l), yhi - ylo, zhi - zlo};
+      best_y = q.x();
+      pick = &best;
+    }
+    if (!pick) {
+      if (out.empty()) continue;  // not out of the trunk's shadow yet
+      break;                      // past the fingertips
+    }
+    out.push_back(best);
+  }
+  return out;
+}
+
+// Rotation taking unit `a` to +Y (a proper rotation).
+Eigen::Matrix3d to_up(const Vec3& a) {
+  return Eigen::Quaterniond::FromTwoVectors(a, Vec3::UnitY()).toRotationMatrix();
+}
+
+std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std::vector<ArmStation>& st, double cx,
+                                          double trunk_half_width) {
+  if (st.size() < 8) return std::nullopt;
+  ArmLandmarks a;
+  const Vec3 tip = st.back().centre;
+  Vec3 axis = (tip - st.front().centre).normalized();
+  // The shoulder joint (the centre of the arm's ball, as vgd's mannequin is
+  // built): on the arm's axis, 3 cm inside the chest's half-width.
+  const double inside = std::abs(st.front().centre.x() - cx) - (trunk_half_width - 0.03);
+  a.shoulder = st.front().centre - std::max(inside, 0.0) / std::max(std::abs(axis.x()), 0.2) * axis;
+  const double L = (tip - a.shoulder).norm();
+  // The wrist: the thinnest true cross-section (planes normal to the arm, not
+  // the oblique planes x = const, which take in the hand's thickness early)
+  // between 45 % and 92 % of the way to the fingertips.
+  const Eigen::Matrix3d r = to_up(axis);
+  mesh::SurfaceMesh along = m;
+  mesh::transform(along, r);
+  double thinnest = std::numeric_limits<double>::infinity(), at = 0;
+  for (double t = 0.45 * L; t <= 0.92 * L; t += 0.005) {
+    const Vec3 c = r * (a.shoulder + t * axis);
+    const Vec2d cxz(c.x(), c.z());
+    double best_d = 0.06, perimeter = 0;
+    for (const auto& l : mesh::slice_horizontal(along, c.y())) {
+      if (l.size() < 3) continue;
+      const double d = (loop_centroid(l) - cxz).norm();
+      if (d < best_d) best_d = d, perimeter = mesh::convex_hull_perimeter(l);
+    }
+    if (perimeter > 0 && perimeter < thinnest) thinnest = perimeter, at = t;
+  }
+  if (!std::isfinite(thinnest)) return std::nullopt;
+  a.wrist = a.shoulder + at * axis;
+  a.wrist_girth = thinnest;
+  a.elbow = a.shoulder + 0.56 * (a.wrist - a.shoulder);
+  return a;
+}
+
+}  // namespace
+
+BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
+  BodyMeasuring out;
+  BodyLandmarks& lm = out.landmarks;
+  BodyMeasurements& bm = out.measurements;
+  bm = BodyMeasurements{};
+  bm.label = "measured";
+  bm.bust = bm.under_bust = bm.waist = bm.hip = bm.shoulder_width = bm.neck = bm.arm_length = bm.inseam = 0.0;
+  const mesh::Box3 box = mesh::bounding_box(m);
+  const double H = box.size().y(), y0 = box.min.y();
+  lm.height = bm.height = H;
+  if (!(H > 0)) return out;
+  Slices s{m, Vec2d(box.centre().x(), box.centre().z()), {}};
+  const double dy = 0.0025 * H;
+  auto at = [&](double f) { return y0 + f * H; };
+
+  // Crotch: the lowest slice from 30 % up whose loop encloses the centre line.
+  for (double y = at(0.30); y < at(0.60); y += dy)
+    if (s.central(y)) {
+      lm.crotch = y - y0;
+      break;
+    }
+  if (lm.crotch == 0) out.notes.push_back("no crotch found: no slice at 30–60 % of the height encloses the centre line");
+  bm.inseam = lm.crotch;
+
+  const auto [waist_y, waist_g] = girth_extreme(s, at(0.55), at(0.68), dy, false);
+  lm.waist = waist_y > 0 ? waist_y - y0 : 0.0, bm.waist = waist_g;
+  const double waist_half = waist_y > 0 ? half_width(*s.central(waist_y), s.centre.x()) : 0.0;
+  if (lm.crotch > 0 && waist_y > 0) {
+    const auto [hy, hg] = girth_extreme(s, y0 + lm.crotch + 0.01 * H, std::min(waist_y, at(0.58)), dy, true);
+    lm.hip = hy > 0 ? hy - y0 : 0.0, bm.hip = hg;
+  }
+  if (waist_y > 0) {
+    // The chest: a slice that takes in an arm (a hanging arm touching the
+    // flank, the shoulders) is wider than the trunk; such slices are skipped.
+    const auto [by, bg] = girth_extreme(s, waist_y + 0.04 * H, at(0.76), dy, true, 1.45 * waist_half + 0.03);
+    lm.bust = by > 0 ? by - y0 : 0.0, bm.bust = bg;
+    // Under the bust: the girth 3 % of the height below it (the trunk narrows
+    // on down to the waist, so it has no minimum of its own to find).
+    if (by > 0)
+      if (const Loop* l = s.central(by - 0.03 * H)) lm.under_bust = by - 0.03 * H - y0, bm.under_bust = mesh::convex_hull_perimeter(*l);
+  }
+  const auto [ny, ng] = girth_extreme(s, at(0.80), at(0.92), dy, false);
+  lm.neck = ny > 0 ? ny - y0 : 0.0, bm.neck = ng;
+  if (ny > 0) {
+    // Shoulders: going down from the neck, the first slice whose trunk loop is
+    // more than twice as wide as the neck's.
+    const double neck_half = half_width(*s.central(ny), s.centre.x());
+    for (double y = ny; y > at(0.70); y -= dy)
+      if (const Loop* l = s.central(y); l && half_width(*l, s.centre.x()) > 2.0 * neck_half) {
+        lm.shoulder = y - y0;
+        break;
+      }
+  }
+  lm.ankle = leg_thinnest(m, s.centre.x(), at(0.03), at(0.10), dy).first;
+  if (lm.ankle > 0) lm.ankle -= y0;
+
+  // Arms: slices across x beside the trunk (its width at the chest).
+  const Loop* chest = s.central(lm.bust > 0 ? y0 + lm.bust : at(0.70));
+  if (!chest || lm.crotch == 0) {
+    out.notes.push_back("no arms looked for: the trunk or the crotch was not found");
+  } else {
+    const double trunk_half = half_width(*chest, s.centre.x());
+    mesh::SurfaceMesh across = m;
+    Eigen::Matrix3d q;
+    q << 0, 1, 0, 1, 0, 0, 0, 0, -1;  // (x, y, z) -> (y, x, -z), a proper rotation
+    mesh::transform(across, q);
+    for (int side : {1, -1}) {
+      auto arm = arm_landmarks(m, arm_stations(m, across, s.centre.x(), trunk_half, y0 + lm.crotch, H, side),
+                               s.centre.x(), trunk_half);
+      if (!arm) out.notes.push_back(std::string("no ") + (side > 0 ? "left" : "right") +
+                                    " arm found beside the trunk (arms held in front of the body are not found)");
+      (side > 0 ? lm.left_arm : lm.right_arm) = arm;
+    }
+    double arms = 0;
+    int n = 0;
+    for (const auto* a : {&lm.left_arm, &lm.right_arm})
+      if (*a) arms += ((*a)->wrist - (*a)->shoulder).norm(), ++n;
+    bm.arm_length = n ? arms / n : 0.0;
+    // The shoulder width, outside of one upper arm to the other at the
+    // joints' height (as vgd's mannequin is made), for arms that hang (A-pose).
+    if (lm.left_arm && lm.right_arm) {
+      const Vec3 la = (lm.left_arm->wrist - lm.left_arm->shoulder).normalized();
+      if (std::abs(la.y()) > 0.5) {
+        const double yj = 0.5 * (lm.left_arm->shoulder.y() + lm.right_arm->shoulder.y());
+        double lo = 1e300, hi = -1e300;
+        if (const Loop* l = s.central(yj))
+          for (const auto& p : *l) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+        if (hi > lo) bm.shoulder_width = hi - lo;
+      } else {
+        out.notes.push_back("shoulder width not measured: the arms are raised (T-pose)");
+      }
+    }
+  }
+  for (auto [name, v] : {std::pair{"waist", bm.waist}, {"hip", bm.hip}, {"bust", bm.bust}, {"neck", bm.neck}})
+    if (v == 0) out.notes.push_back(std::string("no ") + name + " found");
+  return out;
+}
+
+std::vector<BodySegment> arm_segments(const mesh::SurfaceMesh& m, const BodyLandmarks& lm) {
+  std::vector<BodySegment> out;
+  for (int side : {1, -1}) {
+    const auto& arm = side > 0 ? lm.left_arm : lm.right_arm;
+    if (!arm) continue;
+    BodySegment s;
+    s.name = side > 0 ? "left-arm" : "right-arm";
+    s.start = arm->shoulder;
+    s.axis = (arm->wrist - arm->shoulder).normalized();
+    s.front = (Vec3::UnitZ() - Vec3::UnitZ().dot(s.axis) * s.axis).normalized();
+    s.length = (arm->wrist - arm->shoulder).norm();
+    // Rings from true cross-sections (planes normal to the axis): the loop
+    // nearest the axis, as a circle of its perimeter. Near the shoulder the
+    // plane also cuts the trunk; the radius is capped at the first clean
+    // section's.
+    const Eigen::Matrix3d r = to_up(s.axis);
+    mesh::SurfaceMesh along = m;
+    mesh::transform(along, r);
+    const int n = 12;
+    std::vector<double> radius(n + 1, 0.0);
+    for (int i = 0; i <= n; ++i) {
+      const double t = s.length * i / n;
+      const Vec3 c = r * (s.start + t * s.axis);
+      const Vec2d cxz(c.x(), c.z());
+      double best_d = 0.05;
+      for (const auto& l : mesh::slice_horizontal(along, c.y())) {
+        if (l.size() < 3) continue;
+        if (const double d = (loop_centroid(l) - cxz).norm(); d < best_d)
+          best_d = d, radius[i] = mesh::convex_hull_perimeter(l) / (2 * kPi);
+      }
+    }
+    // The largest plausible radius: the section a third of the way down.
+    const double cap = std::max(radius[n / 3], 0.02) * 1.25;
+    for (int i = 0; i <= n; ++i) {
+      SegmentRing ring;
+      ring.s = s.length * i / n;
+      ring.centre = s.start + ring.s * s.axis;
+      const double rr = radius[i] > 0 ? std::min(radius[i], cap) : cap / 1.25;
+      ring.half_width = ring.half_depth = rr;
+      s.rings.push_back(ring);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace vgd::body

@@ -1,0 +1,299 @@
+// Bodies as designers bring them: generated from vgd's mannequin (A-pose and
+// T-pose), written in other units, up axes and facings, with helper meshes and
+// loose parts, as a skinned glTF under a scaled and rotated armature; each must
+// come in upright, facing +Z, at its true height, vertex for vertex. And the
+// files that are no body at all get an error that says what is wrong.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include "support/test_paths.hpp"
+#include "vgd/body/avatar_io.hpp"
+#include "vgd/body/mannequin.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/core/units.hpp"
+
+namespace vgd::body {
+namespace {
+
+const Avatar& mannequin(bool t_pose) {
+  static const Avatar a_pose = [] {
+    MannequinOptions o;
+    o.target_triangles = 5000;
+    return make_mannequin(BodyMeasurements{}, o);
+  }();
+  static const Avatar t = [] {
+    MannequinOptions o;
+    o.target_triangles = 5000;
+    o.arm_angle_deg = 90.0;  // arms straight out: the arm span is longer than the body is tall
+    return make_mannequin(BodyMeasurements{}, o);
+  }();
+  return t_pose ? t : a_pose;
+}
+
+// The body recentred as the importer recentres (feet on y = 0, box centred on x = z = 0).
+mesh::SurfaceMesh recentred(mesh::SurfaceMesh s) {
+  const mesh::Box3 b = mesh::bounding_box(s);
+  mesh::translate(s, Vec3(-b.centre().x(), -b.min.y(), -b.centre().z()));
+  return s;
+}
+
+// Rotation taking vgd's frame (+Y up, facing +Z) to a file whose up is `up` and
+// whose body faces `facing` (given in the file's frame once up is turned to +Y).
+Eigen::Matrix3d to_file(const std::string& up, const std::string& facing) {
+  Eigen::Matrix3d face;  // +Z -> facing, about +Y
+  if (facing == "+z") face.setIdentity();
+  else if (facing == "-z") face << -1, 0, 0, 0, 1, 0, 0, 0, -1;
+  else if (facing == "+x") face << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  else face << 0, 0, -1, 0, 1, 0, 1, 0, 0;
+  Eigen::Matrix3d tilt;  // +Y -> up
+  if (up == "y") tilt.setIdentity();
+  else if (up == "-y") tilt << 1, 0, 0, 0, -1, 0, 0, 0, -1;
+  else if (up == "z") tilt << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  else if (up == "-z") tilt << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  else if (up == "x") tilt << 0, 1, 0, -1, 0, 0, 0, 0, 1;
+  else tilt << 0, -1, 0, 1, 0, 0, 0, 0, 1;  // -x
+  return tilt * face;
+}
+
+// OBJ text of `s` moved by (scale · rotation, shift), as group `name`;
+// `first` is the 1-based index of its first vertex in the file.
+std::string obj_group(const mesh::SurfaceMesh& s, const std::string& name, double scale, const Eigen::Matrix3d& rot,
+                      const Vec3& shift, int first) {
+  std::ostringstream out;
+  out.precision(9);
+  out << "g " << name << "\n";
+  for (const auto& v : s.vertices) {
+    const Vec3 p = scale * (rot * v) + shift;
+    out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << "\n";
+  }
+  for (const auto& t : s.triangles) out << "f " << t[0] + first << ' ' << t[1] + first << ' ' << t[2] + first << "\n";
+  return out.str();
+}
+
+// Largest distance (m) from a vertex of either mesh to the nearest vertex of
+// the other, both recentred (assimp may reorder vertices between groups).
+double vertex_error(const Avatar& got, const mesh::SurfaceMesh& want) {
+  const mesh::SurfaceMesh w = recentred(want);
+  if (got.surface.num_vertices() != w.num_vertices()) return 1e9;
+  auto one_way = [](const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+    double worst = 0;
+    for (const auto& p : from) {
+      double best = 1e300;
+      for (const auto& q : to) best = std::min(best, (p - q).squaredNorm());
+      worst = std::max(worst, best);
+    }
+    return std::sqrt(worst);
+  };
+  return std::max(one_way(got.surface.vertices, w.vertices), one_way(w.vertices, got.surface.vertices));
+}
+
+struct PoseCase {
+  bool t_pose;
+  std::string unit, up, facing;
+};
+
+class ImportedBody : public ::testing::TestWithParam<PoseCase> {};
+
+TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
+  const PoseCase& c = GetParam();
+  const Avatar& body = mannequin(c.t_pose);
+  if (c.t_pose) {
+    // The case that fooled the longest-extent rule: arm span over height.
+    const Vec3 size = mesh::bounding_box(body.surface).size();
+    ASSERT_GT(size.x(), size.y()) << "not a T-pose";
+  }
+  const double scale = 1.0 / metres_per(*parse_length_unit(c.unit));
+  const auto dir = test::scratch_dir("avatar_pose");
+  const auto file = dir / ((c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
+                           (c.facing[0] == '-' ? "neg" : "pos") + ".obj");
+  write_file_atomic(file, obj_group(body.surface, "body", scale, to_file(c.up, c.facing), Vec3(0.3, -0.2, 0.1) * scale, 1));
+  AvatarReport r;
+  const Avatar got = import_avatar(file, {}, &r);
+  EXPECT_EQ(r.unit, c.unit) << r.unit_reason;
+  EXPECT_EQ(r.up, c.up) << r.up_reason;
+  EXPECT_EQ(r.facing, c.facing) << r.facing_reason;
+  const double height = mesh::bounding_box(body.surface).size().y();
+  EXPECT_NEAR(r.height, height, 0.01);
+  EXPECT_LT(vertex_error(got, body.surface), 1e-4) << "not the mannequin vertex for vertex";
+  // The importer says what it decided.
+  ASSERT_GE(got.notes.size(), 3u);
+  EXPECT_EQ(got.notes[0].rfind("unit " + c.unit, 0), 0u) << got.notes[0];
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Poses, ImportedBody,
+    ::testing::Values(PoseCase{false, "m", "y", "+z"}, PoseCase{true, "m", "y", "+z"}, PoseCase{true, "cm", "z", "+z"},
+                      PoseCase{true, "mm", "-z", "-x"}, PoseCase{true, "dm", "y", "+x"}, PoseCase{false, "in", "x", "-z"},
+                      PoseCase{true, "in", "-y", "-z"}, PoseCase{false, "dm", "-x", "+x"}),
+    [](const auto& info) {
+      const PoseCase& c = info.param;
+      std::string up = c.up[0] == '-' ? "neg" + c.up.substr(1) : c.up;
+      return std::string(c.t_pose ? "T" : "A") + "_" + c.unit + "_up_" + up + "_facing_" +
+             (c.facing[0] == '-' ? "neg" : "pos") + c.facing.substr(1);
+    });
+
+// MakeHuman-style files: the body with helper meshes (clothes proxies,
+// joints) and loose eyes, upside down. The body comes in alone, upright, and
+// the notes say what was left out.
+TEST(ImportedBodyWithHelpers, HelpersAndLoosePartsAreLeftOut) {
+  const Avatar& body = mannequin(false);
+  const auto dir = test::scratch_dir("avatar_helpers");
+  const Eigen::Matrix3d rot = to_file("-y", "+z");
+  // A helper as big as the legs (a tights proxy): a box round them.
+  mesh::SurfaceMesh box;
+  for (int i = 0; i < 8; ++i) box.vertices.emplace_back(i & 1 ? 0.2 : -0.2, i & 2 ? 0.8 : 0.0, i & 4 ? 0.15 : -0.15);
+  for (const auto& t : std::vector<std::array<int, 3>>{{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                                        {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}})
+    box.triangles.push_back(t);
+  mesh::SurfaceMesh eye = box;  // a small loose part inside the head
+  for (auto& v : eye.vertices) v = Vec3(0.03, 1.6, 0.08) + 0.05 * v;
+  std::string text = obj_group(body.surface, "body", 1.0, rot, Vec3::Zero(), 1);
+  int next = body.surface.num_vertices() + 1;
+  text += obj_group(box, "helper-tights", 1.0, rot, Vec3::Zero(), next);
+  next += box.num_vertices();
+  text += obj_group(box, "joint-l-knee", 1.0, rot, Vec3::Zero(), next);
+  next += box.num_vertices();
+  text += obj_group(eye, "l-eye", 1.0, rot, Vec3::Zero(), next);
+  write_file_atomic(dir / "makehuman-like.obj", text);
+  AvatarReport r;
+  const Avatar got = import_avatar(dir / "makehuman-like.obj", {}, &r);
+  EXPECT_EQ(r.up, "-y") << r.up_reason;
+  EXPECT_EQ(r.meshes, 2) << "the body and the eye; helpers left out";
+  EXPECT_LT(vertex_error(got, body.surface), 1e-4);
+  std::string notes;
+  for (const auto& n : r.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("helper-tights"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("loose part"), std::string::npos) << notes;
+}
+
+// A Mixamo-style skinned glTF: the mesh under an armature node that scales by
+// 0.01 and turns the body on its back. glTF ignores a skinned mesh's node
+// transform; the body is read in its bind pose, at its height.
+TEST(ImportedBodySkinned, AnArmatureTransformIsIgnored) {
+  const Avatar& body = mannequin(false);
+  const auto& s = body.surface;
+  const auto dir = test::scratch_dir("avatar_skinned");
+  std::string bin;
+  auto put = [&](const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); };
+  for (const auto& v : s.vertices) {
+    const float f[3] = {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+    put(f, sizeof f);
+  }
+  const std::size_t joints_at = bin.size();
+  for (int i = 0; i < s.num_vertices(); ++i) {
+    const unsigned char j[4] = {0, 0, 0, 0};
+    put(j, sizeof j);
+  }
+  const std::size_t weights_at = bin.size();
+  for (int i = 0; i < s.num_vertices(); ++i) {
+    const float w[4] = {1, 0, 0, 0};
+    put(w, sizeof w);
+  }
+  const std::size_t index_at = bin.size();
+  for (const auto& t : s.triangles) {
+    const std::uint32_t q[3] = {static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                                static_cast<std::uint32_t>(t[2])};
+    put(q, sizeof q);
+  }
+  const std::size_t ibm_at = bin.size();  // the joint's inverse bind matrix: identity
+  for (int k = 0; k < 16; ++k) {
+    const float f = k % 5 == 0 ? 1.0f : 0.0f;
+    put(&f, sizeof f);
+  }
+  write_file_atomic(dir / "skinned.bin", bin);
+  const mesh::Box3 b = mesh::bounding_box(s);
+  char gltf[4096];
+  std::snprintf(gltf, sizeof gltf, R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [
+    {"name": "Armature", "children": [1, 2], "scale": [0.01, 0.01, 0.01], "rotation": [-0.7071068, 0, 0, 0.7071068]},
+    {"name": "Body", "mesh": 0, "skin": 0},
+    {"name": "Hips"}
+  ],
+  "skins": [{"joints": [2], "inverseBindMatrices": 4}],
+  "meshes": [{"name": "Body", "primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}, "indices": 3}]}],
+  "buffers": [{"uri": "skinned.bin", "byteLength": %zu}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": 64}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": %d, "type": "VEC3", "min": [%g, %g, %g], "max": [%g, %g, %g]},
+    {"bufferView": 1, "componentType": 5121, "count": %d, "type": "VEC4"},
+    {"bufferView": 2, "componentType": 5126, "count": %d, "type": "VEC4"},
+    {"bufferView": 3, "componentType": 5125, "count": %d, "type": "SCALAR"},
+    {"bufferView": 4, "componentType": 5126, "count": 1, "type": "MAT4"}
+  ]
+})",
+                bin.size(), joints_at, joints_at, weights_at - joints_at, weights_at, index_at - weights_at, index_at,
+                ibm_at - index_at, ibm_at, s.num_vertices(), b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(),
+                b.max.z(), s.num_vertices(), s.num_vertices(), 3 * s.num_triangles());
+  write_file_atomic(dir / "skinned.gltf", gltf);
+  AvatarReport r;
+  const Avatar got = import_avatar(dir / "skinned.gltf", {}, &r);
+  EXPECT_EQ(r.unit, "m") << r.unit_reason;
+  EXPECT_EQ(r.up, "y") << r.up_reason;
+  EXPECT_NEAR(r.height, b.size().y(), 0.01);
+  std::string notes;
+  for (const auto& n : r.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("bind pose"), std::string::npos) << notes;
+
+  // The same file without its .bin: the error names the missing file.
+  std::filesystem::remove(dir / "skinned.bin");
+  try {
+    import_avatar(dir / "skinned.gltf");
+    ADD_FAILURE() << "a glTF without its .bin was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("skinned.bin"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("vgd can read"), std::string::npos) << e.what();
+  }
+}
+
+std::string error_of(const std::filesystem::path& p, const AvatarImportOptions& o = {}) {
+  try {
+    import_avatar(p, o);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Nonsense bodies are refused with what is wrong, not imported with a note.
+TEST(ImportedBodyErrors, NoHumanBodySaysWhy) {
+  const auto& s = mannequin(false).surface;
+  const auto dir = test::scratch_dir("avatar_nonsense");
+  // 3 mm tall in metres, and 30 m tall in metres: no unit makes them a body.
+  write_file_atomic(dir / "tiny.obj", obj_group(s, "body", 0.0018, Eigen::Matrix3d::Identity(), Vec3::Zero(), 1));
+  const std::string tiny = error_of(dir / "tiny.obj");
+  EXPECT_NE(tiny.find("not a human body"), std::string::npos) << tiny;
+  EXPECT_NE(tiny.find("tiny.obj"), std::string::npos) << tiny;
+  write_file_atomic(dir / "giant.obj", obj_group(s, "body", 18.0, Eigen::Matrix3d::Identity(), Vec3::Zero(), 1));
+  EXPECT_NE(error_of(dir / "giant.obj").find("not a human body"), std::string::npos) << error_of(dir / "giant.obj");
+  // A unit given that makes no body.
+  AvatarImportOptions mm;
+  mm.unit = "mm";
+  write_file_atomic(dir / "metres.obj", obj_group(s, "body", 1.0, Eigen::Matrix3d::Identity(), Vec3::Zero(), 1));
+  const std::string given = error_of(dir / "metres.obj", mm);
+  EXPECT_NE(given.find("the unit given"), std::string::npos) << given;
+  // A coordinate that is not a number: named as such, not as a flat mesh.
+  std::string text = obj_group(s, "body", 1.0, Eigen::Matrix3d::Identity(), Vec3::Zero(), 1);
+  const std::size_t x = text.find("\nv ") + 3;
+  text.replace(x, text.find(' ', x) - x, "1e999");  // the first vertex's x overflows to infinity
+  write_file_atomic(dir / "infinite.obj", text);
+  const std::string inf = error_of(dir / "infinite.obj");
+  EXPECT_NE(inf.find("not a finite number"), std::string::npos) << inf;
+  EXPECT_EQ(inf.find("flat"), std::string::npos) << inf;
+}
+
+}  // namespace
+}  // namespace vgd::body
