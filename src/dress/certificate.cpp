@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 
+#include "vgd/core/strings.hpp"
 #include "vgd/mesh/surface_checks.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
 #include "vgd/sim/sdf.hpp"
@@ -77,12 +78,38 @@ nlohmann::json to_json(const Percentiles& p) {
 
 }  // namespace
 
-bool Certificate::passed() const {
-  bool seams_closed = true;
-  for (const auto& s : seams) seams_closed = seams_closed && s.closed == s.pairs;
-  return stop_reason == "rest" && max_penetration <= penetration_limit && seams_closed &&
-         triangle_intersections <= 0;
+std::vector<Failure> Certificate::failures() const {
+  std::vector<Failure> out;
+  auto pct = [](double v) { return format_fixed(100 * v, 0) + " %"; };
+  if (stop_reason == "error") out.push_back({"error", stop_message});
+  else if (stop_reason != "rest") out.push_back({"no rest", "stopped at the time limit, " + format_fixed(simulated_s, 2) + " s simulated"});
+  for (const auto& s : seams)
+    if (s.closed != s.pairs)
+      out.push_back({"seams open", s.name + ": " + std::to_string(s.closed) + "/" + std::to_string(s.pairs) +
+                                       " pairs closed, widest gap " + format_fixed(1000 * s.max_gap, 1) + " mm"});
+  if (max_penetration > penetration_limit)
+    out.push_back({"penetration", format_fixed(1000 * max_penetration, 2) + " mm inside the body (limit " +
+                                      format_fixed(1000 * penetration_limit, 1) + " mm), " +
+                                      std::to_string(particles_inside) + " particles inside"});
+  if (triangle_intersections > 0) {
+    std::string where;
+    for (const auto& [pieces, n] : crossings_by_pieces) where += (where.empty() ? "" : ", ") + pieces + " " + std::to_string(n);
+    out.push_back({"self-intersection", std::to_string(triangle_intersections) + " crossing triangle pairs (" + where + ")"});
+  }
+  for (const auto& s : strain)
+    for (const auto& [dir, p] : {std::pair{"warp", s.warp}, {"weft", s.weft}})
+      if (p.p95 > strain_limit)
+        out.push_back({"over-stretched", s.piece + ": " + dir + " strain p95 " + pct(p.p95) + " (limit " +
+                                             pct(strain_limit) + ")"});
+  for (const auto& w : placement)
+    if (w.moved.norm() > displacement_limit)
+      out.push_back({"displaced", w.piece + ": its centre moved " + format_fixed(100 * w.moved.norm(), 1) + " cm (" +
+                                      format_fixed(100 * w.moved.y(), 1) + " cm up) from where it was placed on the " +
+                                      w.segment + " (limit " + format_fixed(100 * displacement_limit, 0) + " cm)"});
+  return out;
 }
+
+bool Certificate::passed() const { return failures().empty(); }
 
 void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_distance, double contact_distance,
                    bool intersections, Certificate& out) {
@@ -160,6 +187,15 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
   // Strain per piece.
   out.strain.clear();
   for (const auto& p : scene.pieces) out.strain.push_back(piece_strain(m, p, x));
+
+  // Where each piece placed round the body ended.
+  out.placement.clear();
+  for (const auto& p : scene.pieces) {
+    if (p.segment.empty() || p.count == 0) continue;
+    Vec3 then = Vec3::Zero(), now = Vec3::Zero();
+    for (int i = p.first; i < p.first + p.count; ++i) then += sim::at(m.x0, i), now += points[i];
+    out.placement.push_back({p.name, p.segment, (now - then) / p.count});
+  }
 
   // Contact pressure: at rest the body carries what pushes each touching
   // particle into it, the inward normal part of every force but the contact's.
@@ -245,6 +281,16 @@ std::string to_json(const Certificate& c) {
     strain.push_back({{"piece", s.piece}, {"warp", to_json(s.warp)}, {"weft", to_json(s.weft)},
                       {"shear_deg", to_json(s.shear_deg)}});
   j["strain"] = strain;
+  json where = json::array();
+  for (const auto& w : c.placement)
+    where.push_back({{"piece", w.piece}, {"segment", w.segment},
+                     {"moved_m", json::array({w.moved.x(), w.moved.y(), w.moved.z()})}});
+  j["placement"] = where;
+  j["limits"] = {{"penetration_m", c.penetration_limit}, {"strain_p95", c.strain_limit},
+                 {"displacement_m", c.displacement_limit}};
+  json failures = json::array();
+  for (const auto& f : c.failures()) failures.push_back({{"class", f.kind}, {"detail", f.detail}});
+  j["failures"] = failures;
   j["contact"] = {{"particles", c.contact.particles}, {"area_m2", c.contact.area}, {"force_n", c.contact.force},
                   {"pressure_pa", to_json(c.contact.pressure)}};
   j["kinetic_energy"] = {{"unit", "J per particle"}, {"times_s", c.times}, {"values", c.kinetic_energy}};

@@ -127,7 +127,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
         for (auto& t : mp.triangles) std::swap(t[1], t[2]);
       mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
-      out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp)});
+      out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment});
       first[k] = count;
       count += n;
     }

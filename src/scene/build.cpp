@@ -278,6 +278,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     const ClothDef& c = def.cloth[ci];
     const MaterialDef& m = in.material(c.material, c.model);
     std::vector<std::pair<std::string, sim::Model>> parts;
+    std::vector<std::string> segments;  // per part, made cloth only
     const MadeCloth* mine = nullptr;
     if (c.grid) {
       parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
@@ -294,12 +295,15 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
         sim::Model mp = piece.model;
         set_masses(mp, m, c.model);
         parts.emplace_back(piece.name, std::move(mp));
+        segments.push_back(piece.segment);
       }
     }
     const int first_piece = static_cast<int>(pieces.size());
-    for (auto& [name, part] : parts) {
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      auto& [name, part] = parts[k];
       PieceInfo info;
       info.name = name;
+      if (k < segments.size()) info.segment = segments[k];
       info.cloth = ci;
       info.first = model.num_particles();
       info.count = part.num_particles();

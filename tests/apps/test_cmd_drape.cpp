@@ -308,6 +308,25 @@ TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
   EXPECT_TRUE(c["passed"].get<bool>());
 }
 
+// A skirt four sizes too small for its body (size 34 on the size-50
+// mannequin) sews and rests with nothing inside the body or through itself,
+// but pulled to more than twice its length: the certificate says so, naming
+// the piece, and does not pass it.
+TEST(CliDrape, ATooSmallSkirtIsNotPassed) {
+  const auto dir = scratch_dir("drape-small-skirt");
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "50", "-o", (dir / "m50.obj").string(), "-q"}).code, 0);
+  const auto out = dir / "drape";
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "--size", "34",
+                          "--avatar", (dir / "m50.obj").string(), "-o", out.string(), "--time-limit", "6", "-q"});
+  EXPECT_EQ(r.code, 3) << r.err;
+  const json c = read_json(out / "certificate.json");
+  EXPECT_FALSE(c["passed"].get<bool>());
+  bool named = false;
+  for (const auto& f : c["failures"])
+    named = named || (f["class"] == "over-stretched" && f["detail"].get<std::string>().find("WAISTBAND_34") != std::string::npos);
+  EXPECT_TRUE(named) << c["failures"].dump();
+}
+
 // The smallest size: the armpit's corner pair (four pieces meet there) hung
 // 2.7 cm open with every other pair sewn, each particle held on its own side
 // of the crease, and the drape never came to rest; the seam's last stalled

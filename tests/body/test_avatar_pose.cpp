@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/errors.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/body/mannequin.hpp"
@@ -259,13 +260,9 @@ TEST(ImportedBodySkinned, AnArmatureTransformIsIgnored) {
   }
 }
 
+// The error importing `p` gives, as the user reads it.
 std::string error_of(const std::filesystem::path& p, const AvatarImportOptions& o = {}) {
-  try {
-    import_avatar(p, o);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_of([&] { import_avatar(p, o); }).format();
 }
 
 // Nonsense bodies are refused with what is wrong, not imported with a note.

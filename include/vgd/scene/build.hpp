@@ -33,6 +33,7 @@ struct PieceInfo {
   int nu = 0, nv = 0;          // grid: particles along u and v; 0 for meshed pieces
   ClothModel model = ClothModel::mass_spring;
   MaterialDef material;
+  std::string segment;         // made cloth: the body segment it was placed on ("" otherwise)
 };
 
 // A scene ready to run.
@@ -62,6 +63,7 @@ body::Avatar build_avatar(const SceneDef& def);
 struct MadePiece {
   std::string name;
   sim::Model model;
+  std::string segment;  // the body segment it was placed on (PieceInfo::segment)
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;

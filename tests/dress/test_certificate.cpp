@@ -1,0 +1,85 @@
+// The certificate's verdict: every check that fails is named with its class
+// from the fixed list and the figures behind it, and a drape with any of
+// them is not passed.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "vgd/dress/certificate.hpp"
+
+namespace vgd::dress {
+namespace {
+
+// A drape that passes: at rest, every seam closed, nothing inside the body or
+// through itself, strain and placement within their limits.
+Certificate good() {
+  Certificate c;
+  c.stop_reason = "rest";
+  c.simulated_s = 2.0;
+  c.seams.push_back({"left side seam", 30, 30, 0.0, 0.0, Vec3::Zero()});
+  c.triangle_intersections = 0;
+  c.max_penetration = 0.0002;
+  PieceStrain s;
+  s.piece = "FRONT_38";
+  s.warp.p95 = 0.04, s.weft.p95 = 0.05;
+  c.strain.push_back(s);
+  c.placement.push_back({"FRONT_38", "torso", Vec3(0, -0.02, 0.01)});
+  return c;
+}
+
+std::string classes(const Certificate& c) {
+  std::string out;
+  for (const auto& f : c.failures()) out += f.kind + "|";
+  return out;
+}
+
+TEST(Certificate, AGoodDrapePasses) {
+  EXPECT_TRUE(good().passed());
+  EXPECT_EQ(classes(good()), "");
+}
+
+TEST(Certificate, EachFailureIsNamedWithItsFigures) {
+  Certificate c = good();
+  c.strain.front().weft.p95 = 2.4;  // 240 %: pulled, not draped
+  auto f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].kind, "over-stretched");
+  EXPECT_NE(f[0].detail.find("FRONT_38"), std::string::npos) << f[0].detail;
+  EXPECT_NE(f[0].detail.find("240 %"), std::string::npos) << f[0].detail;
+  EXPECT_FALSE(c.passed());
+
+  c = good();
+  c.placement.front().moved = Vec3(0, 0.25, 0);  // a skirt ridden up to the armpits
+  f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].kind, "displaced");
+  EXPECT_NE(f[0].detail.find("25.0 cm up"), std::string::npos) << f[0].detail;
+
+  c = good();
+  c.stop_reason = "time limit";
+  c.seams.front().closed = 12;
+  c.max_penetration = 0.004;
+  c.triangle_intersections = 7;
+  c.crossings_by_pieces["BACK_38 / FRONT_38"] = 7;
+  EXPECT_EQ(classes(c), "no rest|seams open|penetration|self-intersection|");
+  EXPECT_NE(c.failures()[1].detail.find("left side seam: 12/30"), std::string::npos) << c.failures()[1].detail;
+
+  c = good();
+  c.stop_reason = "error";
+  c.stop_message = "the step diverged";
+  EXPECT_EQ(classes(c), "error|");
+}
+
+// The limits are the certificate's own: just within passes, just beyond fails.
+TEST(Certificate, LimitsAreInclusive) {
+  Certificate c = good();
+  c.strain.front().warp.p95 = c.strain_limit;
+  c.placement.front().moved = Vec3(0, c.displacement_limit, 0);
+  c.max_penetration = c.penetration_limit;
+  EXPECT_TRUE(c.passed()) << classes(c);
+  c.strain.front().warp.p95 = c.strain_limit * 1.01;
+  EXPECT_EQ(classes(c), "over-stretched|");
+}
+
+}  // namespace
+}  // namespace vgd::dress
