@@ -628,17 +628,18 @@ std::string to_json(const AvatarReport& r) {
   return j.dump(2);
 }
 
-std::vector<std::string> avatar_export_extensions() { return {".obj", ".ply", ".stl", ".glb", ".gltf", ".dae"}; }
+std::vector<std::string> avatar_export_extensions() { return {".obj", ".ply", ".stl", ".glb", ".gltf", ".dae", ".fbx"}; }
 
 void export_avatar(const Avatar& avatar, const fs::path& path) {
   const std::string file = path.string();
   const std::string ext = to_lower(path.extension().string());
-  const std::pair<const char*, const char*> formats[] = {{".obj", "objnomtl"}, {".ply", "plyb"}, {".stl", "stlb"},
-                                                         {".glb", "glb2"},     {".gltf", "gltf2"}, {".dae", "collada"}};
+  const std::pair<const char*, const char*> formats[] = {{".obj", "objnomtl"}, {".ply", "plyb"},     {".stl", "stlb"},
+                                                         {".glb", "glb2"},     {".gltf", "gltf2"},   {".dae", "collada"},
+                                                         {".fbx", "fbxa"}};
   const char* id = nullptr;
   for (const auto& [e, f] : formats)
     if (ext == e) id = f;
-  if (!id) throw Error(file, "", "cannot write '" + ext + "' files (obj, ply, stl, glb, gltf, dae)");
+  if (!id) throw Error(file, "", "cannot write '" + ext + "' files (obj, ply, stl, glb, gltf, dae, fbx)");
   const auto& s = avatar.surface;
   if (s.triangles.empty()) throw Error(file, avatar.source, "the avatar has no triangles to write");
 

@@ -60,7 +60,7 @@ TEST_P(AvatarRoundTrip, ExportThenImportKeepsTheMesh) {
     EXPECT_EQ(e.path().filename().string().rfind(".vgd-export-", 0), std::string::npos);
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, AvatarRoundTrip, ::testing::Values(".obj", ".ply", ".stl", ".glb", ".gltf", ".dae"),
+INSTANTIATE_TEST_SUITE_P(Formats, AvatarRoundTrip, ::testing::Values(".obj", ".ply", ".stl", ".glb", ".gltf", ".dae", ".fbx"),
                          [](const auto& info) { return info.param.substr(1); });
 
 TEST(AvatarImport, CentimetresZUpAreNormalisedAutomatically) {

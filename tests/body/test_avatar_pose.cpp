@@ -96,6 +96,7 @@ double vertex_error(const Avatar& got, const mesh::SurfaceMesh& want) {
 struct PoseCase {
   bool t_pose;
   std::string unit, up, facing;
+  std::string format = "obj";  // obj: written by the test; others: through export_avatar (assimp)
 };
 
 class ImportedBody : public ::testing::TestWithParam<PoseCase> {};
@@ -110,9 +111,16 @@ TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
   }
   const double scale = 1.0 / metres_per(*parse_length_unit(c.unit));
   const auto dir = test::scratch_dir("avatar_pose");
-  const auto file = dir / ((c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
+  auto file = dir / ((c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
                            (c.facing[0] == '-' ? "neg" : "pos") + ".obj");
-  write_file_atomic(file, obj_group(body.surface, "body", scale, to_file(c.up, c.facing), Vec3(0.3, -0.2, 0.1) * scale, 1));
+  if (c.format == "obj") {
+    write_file_atomic(file, obj_group(body.surface, "body", scale, to_file(c.up, c.facing), Vec3(0.3, -0.2, 0.1) * scale, 1));
+  } else {
+    Avatar moved = body;
+    mesh::transform(moved.surface, scale * to_file(c.up, c.facing), Vec3(0.3, -0.2, 0.1) * scale);
+    file.replace_extension("." + c.format);
+    export_avatar(moved, file);
+  }
   AvatarReport r;
   const Avatar got = import_avatar(file, {}, &r);
   EXPECT_EQ(r.unit, c.unit) << r.unit_reason;
@@ -130,11 +138,13 @@ INSTANTIATE_TEST_SUITE_P(
     Poses, ImportedBody,
     ::testing::Values(PoseCase{false, "m", "y", "+z"}, PoseCase{true, "m", "y", "+z"}, PoseCase{true, "cm", "z", "+z"},
                       PoseCase{true, "mm", "-z", "-x"}, PoseCase{true, "dm", "y", "+x"}, PoseCase{false, "in", "x", "-z"},
-                      PoseCase{true, "in", "-y", "-z"}, PoseCase{false, "dm", "-x", "+x"}),
+                      PoseCase{true, "in", "-y", "-z"}, PoseCase{false, "dm", "-x", "+x"},
+                      PoseCase{false, "cm", "z", "+x", "dae"}, PoseCase{true, "m", "-z", "+z", "fbx"},
+                      PoseCase{true, "mm", "y", "-x", "glb"}, PoseCase{false, "in", "x", "+z", "ply"}),
     [](const auto& info) {
       const PoseCase& c = info.param;
       std::string up = c.up[0] == '-' ? "neg" + c.up.substr(1) : c.up;
-      return std::string(c.t_pose ? "T" : "A") + "_" + c.unit + "_up_" + up + "_facing_" +
+      return c.format + "_" + (c.t_pose ? "T" : "A") + "_" + c.unit + "_up_" + up + "_facing_" +
              (c.facing[0] == '-' ? "neg" : "pos") + c.facing.substr(1);
     });
 

@@ -85,7 +85,7 @@ AvatarReport report_avatar(const Avatar& avatar);
 std::string to_json(const AvatarReport& report);
 
 // Writes the avatar's surface in the format of the path's extension: .obj,
-// .ply (binary), .stl (binary), .glb, .gltf (+ .bin beside it), .dae. Every
+// .ply (binary), .stl (binary), .glb, .gltf (+ .bin beside it), .dae, .fbx (ASCII: assimp 5.2 cannot read back its binary FBX). Every
 // file is written atomically (vgd::write_file_atomic). Throws vgd::Error for an
 // unknown extension or a failed write.
 void export_avatar(const Avatar& avatar, const std::filesystem::path& path);
