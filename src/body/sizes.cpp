@@ -127,7 +127,7 @@ NearestSize nearest_size(const BodyMeasurements& body) {
     for (const auto& row : load_size_table(size_table_file(name))) {
       double sum = 0;
       int n = 0;
-      for (const auto [a, b] : {std::pair{body.height, row.height}, {body.bust, row.bust}, {body.waist, row.waist},
+      for (const auto& [a, b] : {std::pair{body.height, row.height}, {body.bust, row.bust}, {body.waist, row.waist},
                                 {body.hip, row.hip}})
         if (a > 0) sum += (a - b) * (a - b), ++n;
       const double rms = n ? std::sqrt(sum / n) : std::numeric_limits<double>::infinity();

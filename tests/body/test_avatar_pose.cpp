@@ -141,8 +141,8 @@ INSTANTIATE_TEST_SUITE_P(
                       PoseCase{true, "in", "-y", "-z"}, PoseCase{false, "dm", "-x", "+x"},
                       PoseCase{false, "cm", "z", "+x", "dae"}, PoseCase{true, "m", "-z", "+z", "fbx"},
                       PoseCase{true, "mm", "y", "-x", "glb"}, PoseCase{false, "in", "x", "+z", "ply"}),
-    [](const auto& info) {
-      const PoseCase& c = info.param;
+    [](const auto& p) {
+      const PoseCase& c = p.param;
       std::string up = c.up[0] == '-' ? "neg" + c.up.substr(1) : c.up;
       return c.format + "_" + (c.t_pose ? "T" : "A") + "_" + c.unit + "_up_" + up + "_facing_" +
              (c.facing[0] == '-' ? "neg" : "pos") + c.facing.substr(1);

@@ -75,8 +75,8 @@ TEST_P(Measured, TheMannequinsMeasurementsAreFoundOnItsSurface) {
 INSTANTIATE_TEST_SUITE_P(Bodies, Measured,
                          ::testing::Values(Case{"en13402-women", "38", 45.0}, Case{"en13402-women", "38", 90.0},
                                            Case{"en13402-men", "50", 45.0}, Case{"en13402-women", "44", 60.0}),
-                         [](const auto& info) {
-                           const Case& c = info.param;
+                         [](const auto& p) {
+                           const Case& c = p.param;
                            return (c.table == "en13402-men" ? "men_" : "women_") + c.size + "_arms_" +
                                   std::to_string(static_cast<int>(c.arm_angle));
                          });
