@@ -174,11 +174,18 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       sinks.push_back(owned.back().get());
     }
     StageBar bar(!common.quiet && !o->json);
-    dress::DrapeResult r = dress::run_drape(def, sinks, std::ref(bar));
+    // What the build found is said before the run: the body's import notes,
+    // a garment too small or too large for it, meshing warnings.
+    auto progress = [&](const dress::DrapeStageProgress& p) {
+      if (p.scene) {
+        if (p.scene->avatar)
+          for (const auto& note : p.scene->avatar->notes) vgd::cli::say(common, "vgd: " + o->avatar + ": " + note);
+        vgd::cli::print_diagnostics(p.scene->diagnostics, common);
+      }
+      bar(p);
+    };
+    dress::DrapeResult r = dress::run_drape(def, sinks, progress);
     bar.finish();
-    if (r.scene.avatar)
-      for (const auto& note : r.scene.avatar->notes) vgd::cli::say(common, "vgd: " + o->avatar + ": " + note);
-    vgd::cli::print_diagnostics(r.scene.diagnostics, common);
 
     std::error_code ec;
     fs::create_directories(out, ec);

@@ -555,6 +555,7 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
       av.segments = segments_from_slices(av.surface, &measured.landmarks);
       for (auto& arm : arm_segments(av.surface, measured.landmarks)) av.segments.push_back(std::move(arm));
       av.landmarks = measured.landmarks;
+      av.measured = measured.measurements;
       for (const auto& n : measured.notes) r.notes.push_back(n), av.notes.push_back(n);
       if (measured.measurements.bust > 0 && measured.measurements.waist > 0 && measured.measurements.hip > 0)
         r.nearest = nearest_size(measured.measurements);

@@ -43,6 +43,58 @@ double half_width(const Loop& l, double cx) {
   return w;
 }
 
+// The girth of a trunk slice without the arms that touch it: an arm hanging
+// against the flank makes a lobe at each side of the loop, joined to the
+// trunk by a waist where the loop's depth (its extent in z) has a local
+// minimum. The loop is cut there, on each side where a lobe at least 1 cm
+// deeper than the cut follows, and the girth is the convex hull of what lies
+// between (with the cut's own two points).
+double trunk_girth(const Loop& l, double cx) {
+  if (l.size() < 3) return 0.0;
+  double xmin = 1e300, xmax = -1e300;
+  for (const auto& p : l) xmin = std::min(xmin, p.x()), xmax = std::max(xmax, p.x());
+  const double step = 0.005;
+  // Depth of the loop along the vertical line x = c: its crossings' z range.
+  auto depth = [&](double c, double& zlo, double& zhi) {
+    zlo = 1e300, zhi = -1e300;
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      const Vec2d& a = l[i];
+      const Vec2d& b = l[(i + 1) % l.size()];
+      if ((a.x() - c) * (b.x() - c) > 0 || a.x() == b.x()) continue;
+      const double z = a.y() + (b.y() - a.y()) * (c - a.x()) / (b.x() - a.x());
+      zlo = std::min(zlo, z), zhi = std::max(zhi, z);
+    }
+    return zhi >= zlo ? zhi - zlo : 0.0;
+  };
+  auto cut = [&](int side) {  // the x where the loop is cut on this side, or its extreme
+    const double end = side > 0 ? xmax : xmin;
+    double lo, hi;
+    double best = depth(cx, lo, hi), best_c = end;
+    bool falling = true;
+    double min_depth = best, min_c = cx;
+    for (double c = cx; side > 0 ? c < end : c > end; c += side * step) {
+      const double d = depth(c, lo, hi);
+      if (falling) {
+        if (d < min_depth) min_depth = d, min_c = c;
+        else if (d > min_depth + 0.01) return min_c;  // a lobe beyond a waist: an arm
+      }
+      best = d;
+    }
+    (void)best;
+    return best_c;
+  };
+  const double left = cut(1), right = cut(-1);
+  if (left == xmax && right == xmin) return mesh::convex_hull_perimeter(l);
+  std::vector<Vec2d> kept;
+  for (const auto& p : l)
+    if (p.x() >= right && p.x() <= left) kept.push_back(p);
+  for (const double c : {left, right}) {
+    double lo, hi;
+    if (depth(c, lo, hi) > 0) kept.emplace_back(c, lo), kept.emplace_back(c, hi);
+  }
+  return kept.size() >= 3 ? mesh::convex_hull_perimeter(kept) : mesh::convex_hull_perimeter(l);
+}
+
 // The thinnest or fullest central girth over heights [a, b] (m, step dy):
 // {height, girth}, or {0, 0} when no slice there encloses the centre line.
 std::pair<double, double> girth_extreme(Slices& s, double a, double b, double dy, bool fullest,
@@ -51,7 +103,7 @@ std::pair<double, double> girth_extreme(Slices& s, double a, double b, double dy
   for (double y = a; y <= b + 1e-12; y += dy) {
     const Loop* l = s.central(y);
     if (!l || half_width(*l, s.centre.x()) > max_half_width) continue;
-    const double g = mesh::convex_hull_perimeter(*l);
+    const double g = trunk_girth(*l, s.centre.x());
     if (fullest ? g > best : g < best) best = g, best_y = y;
   }
   if (best_y == 0) return {0.0, 0.0};
@@ -204,7 +256,7 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
     // Under the bust: the girth 3 % of the height below it (the trunk narrows
     // on down to the waist, so it has no minimum of its own to find).
     if (by > 0)
-      if (const Loop* l = s.central(by - 0.03 * H)) lm.under_bust = by - 0.03 * H - y0, bm.under_bust = mesh::convex_hull_perimeter(*l);
+      if (const Loop* l = s.central(by - 0.03 * H)) lm.under_bust = by - 0.03 * H - y0, bm.under_bust = trunk_girth(*l, s.centre.x());
   }
   const auto [ny, ng] = girth_extreme(s, at(0.80), at(0.92), dy, false);
   lm.neck = ny > 0 ? ny - y0 : 0.0, bm.neck = ng;

@@ -176,7 +176,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     d.kinetic_energy = p.kinetic_energy;
     if (progress) progress(d);
   };
-  if (progress) progress({"placing", 0.0, def.run.duration, placing_wall, 0, 0, 0.0});
+  if (progress) progress({"placing", 0.0, def.run.duration, placing_wall, 0, 0, 0.0, &r.scene});
   r.summary = sim::run(sys, *integrator, r.state, r.scene.run, sinks, on_frame);
   r.positions = sys.expand(r.state.x);
 

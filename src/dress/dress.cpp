@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 #include "vgd/body/mannequin.hpp"
+#include "vgd/body/sizes.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/placement.hpp"
 #include "vgd/xvc/io.hpp"
@@ -81,6 +83,35 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
   return out;
 }
 
+void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
+               const Avatar& avatar, Diagnostics& diag) {
+  auto covers = [&](const char* s) { return std::find(segments.begin(), segments.end(), s) != segments.end(); };
+  const bool torso = covers("torso"), hips = covers("hips");
+  const std::optional<body::BodyMeasurements>& body = avatar.measurements ? avatar.measurements : avatar.measured;
+  if (!body || size.empty()) return;
+  body::BodyMeasurements made_for;
+  try {
+    made_for = body::find_size(size);
+  } catch (const Error&) {
+    return;  // a size label no table has: nothing to compare
+  }
+  const double too_small = 0.04, too_large = 0.12;  // m of girth
+  for (const auto& [name, garment, girth] : {std::tuple{"bust", made_for.bust, body->bust},
+                                             {"waist", made_for.waist, body->waist},
+                                             {"hip", made_for.hip, body->hip}}) {
+    const std::string what = name;
+    if (girth <= 0 || !((what == "bust" && torso) || (what == "waist" && (torso || hips)) || (what == "hip" && hips)))
+      continue;
+    auto cm = [](double v) { return format_fixed(100 * v, 0) + " cm"; };
+    const std::string figures = "size " + size + " is cut for a " + name + " of " + cm(garment) + " (" +
+                                (made_for.sex == "male" ? "men's " : "women's ") + made_for.label + "); the body's is " + cm(girth);
+    if (girth > garment + too_small)
+      diag.warn(document, "size " + size, "the garment is too small for the body: " + figures);
+    else if (girth < garment - too_large)
+      diag.warn(document, "size " + size, "the garment is too large for the body: " + figures);
+  }
+}
+
 scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avatar) {
   namespace fs = std::filesystem;
   scene::MadeCloths made;
@@ -111,6 +142,11 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     for (const auto& [layer, cloth] : layers)
       if (layer < gd.layer) under.insert(under.end(), cloth.begin(), cloth.end());
     const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under);
+    {
+      std::vector<std::string> segments;
+      for (const auto& p : placed) segments.push_back(p.segment);
+      check_fit(file.string(), g.size, segments, avatar, out.diagnostics);
+    }
     auto& mine = layers.emplace_back(gd.layer, std::vector<Underlayer>{}).second;
     std::vector<int> first(g.pieces.size(), 0);  // each piece's first particle within the cloth
     int count = 0;

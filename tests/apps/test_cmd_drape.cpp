@@ -317,8 +317,15 @@ TEST(CliDrape, ATooSmallSkirtIsNotPassed) {
   ASSERT_EQ(run_vgd({"mannequin", "--size", "50", "-o", (dir / "m50.obj").string(), "-q"}).code, 0);
   const auto out = dir / "drape";
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "--size", "34",
-                          "--avatar", (dir / "m50.obj").string(), "-o", out.string(), "--time-limit", "6", "-q"});
+                          "--avatar", (dir / "m50.obj").string(), "-o", out.string(), "--time-limit", "6"});
   EXPECT_EQ(r.code, 3) << r.err;
+  // Said before the drape, with both figures: the skirt's waist and hip (not
+  // the bust: a skirt does not cover it).
+  EXPECT_NE(r.err.find("too small for the body: size 34 is cut for a waist of 64 cm (women's 34); the body's is 102 cm"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cut for a hip of 88 cm"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("cut for a bust"), std::string::npos) << r.err;
+  EXPECT_LT(r.err.find("cut for a waist"), r.err.find("sewing")) << "the warning comes before the run";
   const json c = read_json(out / "certificate.json");
   EXPECT_FALSE(c["passed"].get<bool>());
   bool named = false;

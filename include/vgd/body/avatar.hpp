@@ -91,6 +91,8 @@ struct Avatar {
   // Imported bodies: landmarks measured on the surface (placement measures
   // from them); mannequins are placed from their measurements instead.
   std::optional<BodyLandmarks> landmarks;
+  // Imported bodies: the girths measured on the surface (label "measured").
+  std::optional<BodyMeasurements> measured;
 
   // The segment with this name, or nullptr.
   const BodySegment* segment(std::string_view name) const;

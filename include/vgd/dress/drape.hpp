@@ -54,6 +54,10 @@ struct DrapeStageProgress {
   double wall_s = 0.0;
   int seams_closed = 0, seam_pairs = 0;
   double kinetic_energy = 0.0;  // J per particle
+  // The scene as built, on the placing event only (null on the others): its
+  // diagnostics (a garment too small for the body, meshing warnings) and the
+  // body's import notes can be shown before the run.
+  const scene::Scene* scene = nullptr;
 };
 
 struct DrapeResult {

@@ -54,6 +54,16 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
 // element (a piece that cannot be assembled or placed).
 scene::MadeCloths dress_garments(const scene::SceneDef& def, const body::Avatar& avatar);
 
+// Whether a garment of size `size` fits `avatar`: the size's body
+// measurements in the shipped tables (the women's, then the men's, then
+// ASTM's; nothing when no table has the label) against the body's own (a
+// mannequin's, or those measured on an imported body). A warning per girth
+// the garment covers (its pieces on the torso: bust and waist; on the hips:
+// waist and hip) that its size is more than 4 cm too small or 12 cm too
+// large for, with both figures, named after the document.
+void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
+               const body::Avatar& avatar, Diagnostics& diag);
+
 // scene::build for any scene: the body built once, the garments dressed on
 // it, then the scene built with them.
 scene::Scene build(const scene::SceneDef& def);
