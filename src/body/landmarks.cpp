@@ -69,19 +69,13 @@ double trunk_girth(const Loop& l, double cx) {
   auto cut = [&](int side) {  // the x where the loop is cut on this side, or its extreme
     const double end = side > 0 ? xmax : xmin;
     double lo, hi;
-    double best = depth(cx, lo, hi), best_c = end;
-    bool falling = true;
-    double min_depth = best, min_c = cx;
+    double min_depth = depth(cx, lo, hi), min_c = cx;
     for (double c = cx; side > 0 ? c < end : c > end; c += side * step) {
       const double d = depth(c, lo, hi);
-      if (falling) {
-        if (d < min_depth) min_depth = d, min_c = c;
-        else if (d > min_depth + 0.01) return min_c;  // a lobe beyond a waist: an arm
-      }
-      best = d;
+      if (d < min_depth) min_depth = d, min_c = c;
+      else if (d > min_depth + 0.01) return min_c;  // a lobe beyond a waist: an arm
     }
-    (void)best;
-    return best_c;
+    return end;
   };
   const double left = cut(1), right = cut(-1);
   if (left == xmax && right == xmin) return mesh::convex_hull_perimeter(l);
