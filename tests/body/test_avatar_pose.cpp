@@ -99,6 +99,10 @@ struct PoseCase {
   std::string format = "obj";  // obj: written by the test; others: through export_avatar (assimp)
 };
 
+void PrintTo(const PoseCase& c, std::ostream* os) {
+  *os << c.format << ' ' << (c.t_pose ? "T-pose" : "A-pose") << ' ' << c.unit << " up " << c.up << " facing " << c.facing;
+}
+
 class ImportedBody : public ::testing::TestWithParam<PoseCase> {};
 
 TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
@@ -110,9 +114,11 @@ TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
     ASSERT_GT(size.x(), size.y()) << "not a T-pose";
   }
   const double scale = 1.0 / metres_per(*parse_length_unit(c.unit));
-  const auto dir = test::scratch_dir("avatar_pose");
-  auto file = dir / ((c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
-                           (c.facing[0] == '-' ? "neg" : "pos") + ".obj");
+  // One directory per case: ctest runs the cases in parallel.
+  const std::string stem = (c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
+                           (c.facing[0] == '-' ? "neg" : "pos");
+  const auto dir = test::scratch_dir("avatar_pose/" + stem + "-" + c.format);
+  auto file = dir / (stem + ".obj");
   if (c.format == "obj") {
     write_file_atomic(file, obj_group(body.surface, "body", scale, to_file(c.up, c.facing), Vec3(0.3, -0.2, 0.1) * scale, 1));
   } else {
