@@ -20,6 +20,7 @@ namespace {
 
 struct Options {
   std::string file, script, screenshot;
+  std::string avatar, unit = "auto", up = "auto", facing = "auto";
   bool headless = false;
   int width = 1280, height = 800, threads = 1, quit_after = 0;
 };
@@ -51,6 +52,7 @@ int run_window(const Options& o) {
     {
       vgd::studio::Studio studio;
       studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
+      if (!o.avatar.empty()) studio.set_body(o.avatar, o.unit, o.up, o.facing);
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
       for (int frame = 1; !studio.quit_confirmed(); ++frame) {
         // The close button asks about unsaved changes first (Studio::request_close).
@@ -91,6 +93,7 @@ int run_window(const Options& o) {
 
 int run_headless(const Options& o) {
   vgd::studio::Harness h(o.width, o.height);
+  if (!o.avatar.empty()) h.studio().set_body(o.avatar, o.unit, o.up, o.facing);
   if (!o.file.empty() && !h.studio().open(o.file)) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
     return 1;
@@ -113,6 +116,14 @@ int main(int argc, char** argv) {
                  "With --headless: run these studio commands (open, click, click-stretch, key, type, frames, "
                  "wait-drape, screenshot, save, expect-status; docs/studio.md)")
       ->check(CLI::ExistingFile);
+  app.add_option("--avatar", o.avatar, "Body to drape on (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
+      ->check(CLI::ExistingFile);
+  app.add_option("--unit", o.unit, "--avatar's unit: auto (from the file, else the body's height), m, dm, cm, mm, in")
+      ->check(CLI::IsMember({"auto", "m", "dm", "cm", "mm", "in"}))->capture_default_str();
+  app.add_option("--up", o.up, "--avatar's up axis: auto (from the body), x, y, z, -x, -y, -z")
+      ->check(CLI::IsMember({"auto", "x", "y", "z", "-x", "-y", "-z"}))->capture_default_str();
+  app.add_option("--facing", o.facing, "Where --avatar faces once up is +Y: auto (from the feet), +z, -z, +x, -x")
+      ->check(CLI::IsMember({"auto", "+z", "-z", "+x", "-x"}))->capture_default_str();
   app.add_option("--screenshot", o.screenshot, "Write the last frame to this PNG (a window: with --quit-after)");
   app.add_option("--quit-after", o.quit_after, "A window: close after this many frames (smoke tests)")
       ->check(CLI::PositiveNumber);

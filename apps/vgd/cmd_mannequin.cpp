@@ -18,7 +18,7 @@ struct Options {
   std::string size, table, output, sex;
   std::string height, bust, under_bust, waist, hip, shoulder, neck, arm, inseam;
   int triangles = 10000;
-  double arm_angle = 45.0;
+  double arm_angle = 45.0, arm_forward = 0.0;
   bool list = false, json = false;
 };
 
@@ -61,8 +61,10 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
   len("--inseam", o->inseam, "Inseam (crotch height)");
   sub->add_option("--triangles", o->triangles, "Triangles aimed at (5000-20000)")->check(CLI::Range(5000, 20000))
       ->capture_default_str();
-  sub->add_option("--arm-angle", o->arm_angle, "Arms' angle from the vertical, deg (opened further if the chest needs it)")
-      ->check(CLI::Range(15.0, 50.0))->capture_default_str();
+  sub->add_option("--arm-angle", o->arm_angle, "Arms' angle from the vertical, deg: 45 an A-pose, 90 a T-pose (opened further if the chest needs it)")
+      ->check(CLI::Range(15.0, 90.0))->capture_default_str();
+  sub->add_option("--arm-forward", o->arm_forward, "Arms swung forward from the frontal plane, deg (0-60)")
+      ->check(CLI::Range(0.0, 60.0))->capture_default_str();
   sub->add_flag("--list-sizes", o->list, "List the sizes of the tables and exit");
   sub->add_flag("--json", o->json, "Print the report as JSON on stdout");
   sub->footer("Without --size the body starts from the default (EN 13402-3 women's 38 on 1.68 m) and the measurements\n"
@@ -116,6 +118,7 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
     vgd::body::MannequinOptions mo;
     mo.target_triangles = o->triangles;
     mo.arm_angle_deg = o->arm_angle;
+    mo.arm_forward_deg = o->arm_forward;
     const auto t0 = std::chrono::steady_clock::now();
     const auto avatar = vgd::body::make_mannequin(m, mo);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

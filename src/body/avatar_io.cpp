@@ -192,11 +192,20 @@ mesh::SurfaceCheck fill_check(AvatarReport& r, const mesh::SurfaceMesh& s) {
   return c;
 }
 
-// The loop of a slice around (x, z) = p, or the nearest loop's index when none encloses it.
+double loop_area(const std::vector<mesh::Vec2d>& l) {
+  double a = 0;
+  for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++) a += l[j].x() * l[i].y() - l[i].x() * l[j].y();
+  return std::abs(0.5 * a);
+}
+
+// The outermost loop around p (a model's inner shells may enclose it too), or -1.
 int loop_around(const std::vector<std::vector<mesh::Vec2d>>& loops, const mesh::Vec2d& p) {
+  int best = -1;
+  double best_area = 0;
   for (std::size_t i = 0; i < loops.size(); ++i)
-    if (loops[i].size() > 2 && mesh::point_in_polygon(loops[i], p)) return static_cast<int>(i);
-  return -1;
+    if (loops[i].size() > 2 && mesh::point_in_polygon(loops[i], p))
+      if (const double a = loop_area(loops[i]); a > best_area) best_area = a, best = static_cast<int>(i);
+  return best;
 }
 
 SegmentRing ring_of(const std::vector<mesh::Vec2d>& loop, double y, double s) {
@@ -210,12 +219,6 @@ SegmentRing ring_of(const std::vector<mesh::Vec2d>& loop, double y, double s) {
   return r;
 }
 
-double loop_area(const std::vector<mesh::Vec2d>& l) {
-  double a = 0;
-  for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++) a += l[j].x() * l[i].y() - l[i].x() * l[j].y();
-  return std::abs(0.5 * a);
-}
-
 }  // namespace
 
 std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface, const BodyLandmarks* landmarks) {
@@ -223,7 +226,7 @@ std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface, 
   const mesh::Box3 box = mesh::bounding_box(surface);
   const double H = box.size().y(), y0 = box.min.y();
   if (H <= 0) return out;
-  const mesh::Vec2d centre(box.centre().x(), box.centre().z());
+  const mesh::Vec2d centre = trunk_centre(surface);
   // Crotch: the lowest height (from 30 % up) whose slice has a loop around the centre line.
   double crotch = -1;
   for (double f = 0.30; f < 0.60; f += 0.0025)

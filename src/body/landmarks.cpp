@@ -23,6 +23,17 @@ Vec2d loop_centroid(const Loop& l) {
   return c / static_cast<double>(std::max<std::size_t>(l.size(), 1));
 }
 
+// The area enclosed by a loop, m² (either orientation).
+double loop_area(const Loop& l) {
+  double a = 0;
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const auto& p = l[i];
+    const auto& q = l[(i + 1) % l.size()];
+    a += p.x() * q.y() - q.x() * p.y();
+  }
+  return 0.5 * std::abs(a);
+}
+
 // The loop of the slice at y that encloses the trunk's centre line (x, z) =
 // centre, or nullptr.
 struct Slices {
@@ -30,10 +41,15 @@ struct Slices {
   Vec2d centre;
   std::vector<Loop> loops;
   const Loop* central(double y) {
+    // The outermost such loop: a model's inner shells (a mouth, a proxy
+    // under the skin) may enclose the centre line too.
     loops = mesh::slice_horizontal(m, y);
+    const Loop* best = nullptr;
+    double best_area = 0;
     for (const auto& l : loops)
-      if (l.size() > 2 && mesh::point_in_polygon(l, centre)) return &l;
-    return nullptr;
+      if (l.size() > 2 && mesh::point_in_polygon(l, centre))
+        if (const double a = loop_area(l); a > best_area) best_area = a, best = &l;
+    return best;
   }
 };
 
@@ -49,7 +65,9 @@ double half_width(const Loop& l, double cx) {
 // minimum. The loop is cut there, on each side where a lobe at least 1 cm
 // deeper than the cut follows, and the girth is the convex hull of what lies
 // between (with the cut's own two points).
-double trunk_girth(const Loop& l, double cx) {
+// `kept_half`, when given, is the half-width (m) of what is kept.
+double trunk_girth(const Loop& l, double cx, double* kept_half = nullptr) {
+  if (kept_half) *kept_half = half_width(l, cx);
   if (l.size() < 3) return 0.0;
   double xmin = 1e300, xmax = -1e300;
   for (const auto& p : l) xmin = std::min(xmin, p.x()), xmax = std::max(xmax, p.x());
@@ -68,9 +86,12 @@ double trunk_girth(const Loop& l, double cx) {
   };
   auto cut = [&](int side) {  // the x where the loop is cut on this side, or its extreme
     const double end = side > 0 ? xmax : xmin;
+    // Lobes are at the sides: the search starts half way out, past the
+    // notches at the middle of a slice (the buttocks' cleft, the bust's).
+    const double start = cx + 0.5 * (end - cx);
     double lo, hi;
-    double min_depth = depth(cx, lo, hi), min_c = cx;
-    for (double c = cx; side > 0 ? c < end : c > end; c += side * step) {
+    double min_depth = depth(start, lo, hi), min_c = start;
+    for (double c = start; side > 0 ? c < end : c > end; c += side * step) {
       const double d = depth(c, lo, hi);
       if (d < min_depth) min_depth = d, min_c = c;
       else if (d > min_depth + 0.01) return min_c;  // a lobe beyond a waist: an arm
@@ -79,6 +100,7 @@ double trunk_girth(const Loop& l, double cx) {
   };
   const double left = cut(1), right = cut(-1);
   if (left == xmax && right == xmin) return mesh::convex_hull_perimeter(l);
+  if (kept_half) *kept_half = std::max(left - cx, cx - right);
   std::vector<Vec2d> kept;
   for (const auto& p : l)
     if (p.x() >= right && p.x() <= left) kept.push_back(p);
@@ -96,8 +118,10 @@ std::pair<double, double> girth_extreme(Slices& s, double a, double b, double dy
   double best_y = 0, best = fullest ? 0.0 : std::numeric_limits<double>::infinity();
   for (double y = a; y <= b + 1e-12; y += dy) {
     const Loop* l = s.central(y);
-    if (!l || half_width(*l, s.centre.x()) > max_half_width) continue;
-    const double g = trunk_girth(*l, s.centre.x());
+    if (!l) continue;
+    double kept = 0;
+    const double g = trunk_girth(*l, s.centre.x(), &kept);
+    if (kept > max_half_width) continue;
     if (fullest ? g > best : g < best) best = g, best_y = y;
   }
   if (best_y == 0) return {0.0, 0.0};
@@ -112,13 +136,7 @@ std::pair<double, double> leg_thinnest(const mesh::SurfaceMesh& m, double cx, do
     double area = 0, g = 0;
     for (const auto& l : mesh::slice_horizontal(m, y)) {
       if (l.size() < 3 || loop_centroid(l).x() <= cx) continue;
-      double ar = 0;
-      for (std::size_t i = 0; i < l.size(); ++i) {
-        const auto& p = l[i];
-        const auto& q = l[(i + 1) % l.size()];
-        ar += p.x() * q.y() - q.x() * p.y();
-      }
-      if (std::abs(ar) > area) area = std::abs(ar), g = mesh::convex_hull_perimeter(l);
+      if (const double ar = loop_area(l); ar > area) area = ar, g = mesh::convex_hull_perimeter(l);
     }
     if (area > 0 && g < best) best = g, best_y = y;
   }
@@ -209,7 +227,42 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
   return a;
 }
 
+// An arm as a tube round its axis, to cut it out of trunk slices.
+struct ArmTube {
+  Vec3 a, b;       // m, shoulder joint and wrist
+  double r = 0.0;  // m, the largest radius of its rings, and 5 mm
+};
+
+// The girth of a trunk loop at height y without the points inside an arm's
+// tube: what a tape passing under the arms reads where they press against the
+// flanks. `kept_half`: the half-width (m) of what is kept.
+double girth_without_arms(const Loop& l, double y, double cx, const std::vector<ArmTube>& arms, double* kept_half) {
+  std::vector<Vec2d> kept;
+  kept.reserve(l.size());
+  for (const auto& p : l) {
+    const Vec3 q(p.x(), y, p.y());
+    bool in_arm = false;
+    for (const auto& t : arms) {
+      const Vec3 ab = t.b - t.a;
+      const double u = std::clamp((q - t.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      in_arm = in_arm || (q - (t.a + u * ab)).norm() < t.r;
+    }
+    if (!in_arm) kept.push_back(p);
+  }
+  if (kept_half) *kept_half = kept.empty() ? 0.0 : half_width(kept, cx);
+  return kept.size() >= 3 ? mesh::convex_hull_perimeter(kept) : 0.0;
+}
+
 }  // namespace
+
+Vec2d trunk_centre(const mesh::SurfaceMesh& m) {
+  const mesh::Box3 box = mesh::bounding_box(m);
+  Vec2d centre(box.centre().x(), box.centre().z());
+  double largest = 0;
+  for (const auto& l : mesh::slice_horizontal(m, box.min.y() + 0.62 * box.size().y()))
+    if (const double a = loop_area(l); a > largest) largest = a, centre.y() = loop_centroid(l).y();
+  return centre;
+}
 
 BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
   BodyMeasuring out;
@@ -222,9 +275,9 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
   const double H = box.size().y(), y0 = box.min.y();
   lm.height = bm.height = H;
   if (!(H > 0)) return out;
-  Slices s{m, Vec2d(box.centre().x(), box.centre().z()), {}};
   const double dy = 0.0025 * H;
   auto at = [&](double f) { return y0 + f * H; };
+  Slices s{m, trunk_centre(m), {}};
 
   // Crotch: the lowest slice from 30 % up whose loop encloses the centre line.
   for (double y = at(0.30); y < at(0.60); y += dy)
@@ -237,7 +290,8 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
 
   const auto [waist_y, waist_g] = girth_extreme(s, at(0.55), at(0.68), dy, false);
   lm.waist = waist_y > 0 ? waist_y - y0 : 0.0, bm.waist = waist_g;
-  const double waist_half = waist_y > 0 ? half_width(*s.central(waist_y), s.centre.x()) : 0.0;
+  double waist_half = 0.0;
+  if (waist_y > 0) trunk_girth(*s.central(waist_y), s.centre.x(), &waist_half);
   if (lm.crotch > 0 && waist_y > 0) {
     const auto [hy, hg] = girth_extreme(s, y0 + lm.crotch + 0.01 * H, std::min(waist_y, at(0.58)), dy, true);
     lm.hip = hy > 0 ? hy - y0 : 0.0, bm.hip = hg;
@@ -245,7 +299,24 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
   if (waist_y > 0) {
     // The chest: a slice that takes in an arm (a hanging arm touching the
     // flank, the shoulders) is wider than the trunk; such slices are skipped.
-    const auto [by, bg] = girth_extreme(s, waist_y + 0.04 * H, at(0.76), dy, true, 1.45 * waist_half + 0.03);
+    // Going up from the waist, the first slice whose loop, arm lobes cut
+    // off, is over 1 cm wider than the one below (the trunk's sides are never
+    // that steep) is where an arm joins it without a notch to cut at; the
+    // chest is looked for below.
+    double top = at(0.76);
+    double prev_half = waist_half;
+    for (double y = waist_y + dy; y <= top; y += dy) {
+      const Loop* l = s.central(y);
+      if (!l) break;
+      double h = 0;
+      trunk_girth(*l, s.centre.x(), &h);
+      if (h > prev_half + 0.01 && y > waist_y + 0.04 * H) {
+        top = y - dy;
+        break;
+      }
+      prev_half = h;
+    }
+    const auto [by, bg] = girth_extreme(s, waist_y + 0.04 * H, top, dy, true, 1.45 * waist_half + 0.03);
     lm.bust = by > 0 ? by - y0 : 0.0, bm.bust = bg;
     // Under the bust: the girth 3 % of the height below it (the trunk narrows
     // on down to the waist, so it has no minimum of its own to find).
@@ -272,7 +343,8 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
   if (!chest || lm.crotch == 0) {
     out.notes.push_back("no arms looked for: the trunk or the crotch was not found");
   } else {
-    const double trunk_half = half_width(*chest, s.centre.x());
+    double trunk_half = 0;  // without the arms' lobes
+    trunk_girth(*chest, s.centre.x(), &trunk_half);
     mesh::SurfaceMesh across = m;
     Eigen::Matrix3d q;
     q << 0, 1, 0, 1, 0, 0, 0, 0, -1;  // (x, y, z) -> (y, x, -z), a proper rotation
@@ -283,6 +355,30 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
       if (!arm) out.notes.push_back(std::string("no ") + (side > 0 ? "left" : "right") +
                                     " arm found beside the trunk (arms held in front of the body are not found)");
       (side > 0 ? lm.left_arm : lm.right_arm) = arm;
+    }
+    // The chest again, the arms cut out by their tubes: where an arm rests
+    // against the flank without a notch between them, the loop's lobes are
+    // not cut at the bust and the slices there were skipped (above).
+    std::vector<ArmTube> tubes;
+    for (const auto& seg : arm_segments(m, lm)) {
+      double r = 0;
+      for (const auto& ring : seg.rings) r = std::max(r, ring.half_width);
+      tubes.push_back({seg.start, seg.start + seg.length * seg.axis, r + 0.005});
+    }
+    if (!tubes.empty() && waist_y > 0) {
+      double best = 0, best_y = 0;
+      for (double y = waist_y + 0.04 * H; y <= at(0.76) + 1e-12; y += dy) {
+        const Loop* l = s.central(y);
+        if (!l) continue;
+        double kept = 0;
+        const double g = girth_without_arms(*l, y, s.centre.x(), tubes, &kept);
+        if (kept <= 1.45 * waist_half + 0.03 && g > best) best = g, best_y = y;
+      }
+      if (best_y > 0) {
+        lm.bust = best_y - y0, bm.bust = best;
+        if (const Loop* l = s.central(best_y - 0.03 * H))
+          lm.under_bust = best_y - 0.03 * H - y0, bm.under_bust = girth_without_arms(*l, best_y - 0.03 * H, s.centre.x(), tubes, nullptr);
+      }
     }
     double arms = 0;
     int n = 0;

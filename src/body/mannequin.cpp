@@ -278,12 +278,15 @@ void MannequinFunction::build() {
   const double th = arm_angle;
   for (int s = 0; s < 2; ++s) {
     const double sx = s == 0 ? 1.0 : -1.0;
-    const Vec3 dir(sx * std::sin(th), -std::cos(th), 0.0);
+    // Raised forward by fw about the shoulder's x axis (0: in the frontal plane).
+    const double fw = opt.arm_forward_deg * kPi / 180.0;
+    const Vec3 dir(sx * std::sin(th), -std::cos(th) * std::cos(fw), std::cos(th) * std::sin(fw));
     shoulder_joint[s] = Vec3(sx * x_joint, lm.shoulder_joint, 0.0);
     elbow[s] = shoulder_joint[s] + 0.56 * m.arm_length * dir;
     wrist[s] = shoulder_joint[s] + m.arm_length * dir;
     hand_u[s] = dir;
-    hand_v[s] = Vec3(std::cos(th), sx * std::sin(th), 0.0);  // in the frontal plane, across the hand's thickness
+    // Across the hand's width: in the frontal plane when the arm is, turned forward with it.
+    hand_v[s] = Vec3(std::cos(th), sx * std::sin(th) * std::cos(fw), -sx * std::sin(th) * std::sin(fw));
     hand_c[s] = wrist[s] + 0.050 * H * dir;
   }
   hand_r = Vec3(0.058 * H, 0.015 * H, 0.026 * H);
@@ -316,7 +319,7 @@ double MannequinFunction::trunk(const Vec3& p) const {
 double MannequinFunction::arm(const Vec3& p, int s) const {
   const double upper = round_cone(p, shoulder_joint[s], elbow[s], r_upper_arm, r_elbow);
   const double fore = round_cone(p, elbow[s], wrist[s], r_elbow, r_wrist);
-  const double hand = ellipsoid(p, hand_c[s], hand_r, hand_u[s], hand_v[s], Vec3::UnitZ());
+  const double hand = ellipsoid(p, hand_c[s], hand_r, hand_u[s], hand_v[s], hand_u[s].cross(hand_v[s]).normalized());
   return smin(smin(upper, fore, 0.01), hand, 0.02);
 }
 
@@ -455,12 +458,15 @@ MannequinSdf::MannequinSdf(const BodyMeasurements& m, const MannequinOptions& op
   check_measurements(m);
   f_->m = m;
   f_->opt = options;
-  if (options.calibrate && options.arm_angle_deg > 50.0) {
-    // Raised arms (a T-pose) would be measured as the shoulder width: the
-    // girths and shoulders are calibrated in the A-pose, then the arms raised.
+  if (options.calibrate && (options.arm_angle_deg > 50.0 || options.arm_forward_deg != 0.0)) {
+    // Raised or forward arms (a T-pose) would be measured as the shoulder
+    // width: the girths and shoulders are calibrated in the A-pose, then the
+    // arms raised.
     f_->opt.arm_angle_deg = 45.0;
+    f_->opt.arm_forward_deg = 0.0;
     f_->calibrate();
     f_->opt.arm_angle_deg = options.arm_angle_deg;
+    f_->opt.arm_forward_deg = options.arm_forward_deg;
     f_->build();
   } else if (options.calibrate) {
     f_->calibrate();

@@ -200,9 +200,10 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   if (ar.side == "back") theta0 = M_PI;
   else if (ar.side == "left") theta0 = M_PI / 2;
   else if (ar.side == "right") theta0 = -M_PI / 2;
-  // For an upright `up`, e2 is the body's left; on a limb pointing down `up` is upwards
-  // too. Where `up` points down (e2 the body's right), left and right swap.
-  if ((ar.side == "left" || ar.side == "right") && up.y() < 0) theta0 = -theta0;
+  // e2 = up × front: on the trunk the body's left. On a limb it is front × axis,
+  // which turns with the limb: a left arm's outside (+X hanging down) is its
+  // top in a T-pose (+Y), so a sleeve's cap stays on the shoulder's side from
+  // A- to T-pose and beyond; no swap where the limb crosses the horizontal.
   const double arc0 = curve.arc_at_theta(theta0);
 
   // A half piece on the trunk (front or back, at most half way round) follows

@@ -121,6 +121,7 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
       // The body first, so the preview shows it while the garment is placed.
       body::Avatar avatar = scene::build_avatar(def);
       std::lock_guard lock(m_);
+      status_.body_notes = avatar.notes;
       body_ = std::move(avatar.surface);
       body_new_ = true;
     }

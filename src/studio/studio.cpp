@@ -48,6 +48,10 @@ struct PieceView {
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
+// An imported body's overrides (body/avatar_io.hpp): "auto" lets the importer decide.
+const char* kUnits[] = {"auto", "m", "dm", "cm", "mm", "in"};
+const char* kUps[] = {"auto", "y", "z", "x", "-y", "-z", "-x"};
+const char* kFacings[] = {"auto", "+z", "-z", "+x", "-x"};
 const char* kQualityHelp[] = {
     "Implicit Euler, 10 ms steps, no self-collision unless ticked: a quick look at a garment that needs no "
     "self-collision (a skirt). Measured error and cost: docs/accuracy-vs-time.md.",
@@ -103,6 +107,8 @@ struct Studio::Impl {
 
   // Drape.
   dress::DrapeOptions drape;
+  std::string body_text;  // the body file typed in; "" = the mannequin of the size
+  std::vector<std::string> body_notes;  // what the importer decided for the last drape's body
   bool self_collision_told = false;
   DrapeJob job;
   std::optional<dress::Certificate> cert;
@@ -636,6 +642,7 @@ struct Studio::Impl {
     if (ImGui::InputDouble("limit s", &drape.time_limit, 0, 0, "%.1f"))
       drape.time_limit = std::clamp(drape.time_limit, 0.04, 120.0);
     track("time limit");
+    body_row();
     ImGui::EndDisabled();
 
     ImGui::BeginDisabled(running || pieces.empty());
@@ -665,6 +672,45 @@ struct Studio::Impl {
                   c.stop_reason.c_str(), c.simulated_s, c.wall_s, c.passed() ? "checks passed" : "a check failed",
                   closed, pairs, c.triangle_intersections, c.max_penetration * 1000);
     }
+  }
+
+  // The body: the mannequin of the garment's size, or a file (OBJ, glTF,
+  // FBX, ...) with the importer's unit, up axis and facing, each "auto" or
+  // forced, as vgd drape --avatar --unit --up --facing.
+  void body_row() {
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("body").x - ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::InputTextWithHint("body", "the mannequin of the size (or a body file)", &body_text);
+    track("body");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("A body file (OBJ, PLY, STL, glTF/GLB, FBX, Collada) to drape on; empty: the mannequin");
+    if (body_text.empty()) {
+      drape.avatar.reset();
+      body_notes.clear();
+      return;
+    }
+    if (!drape.avatar || drape.avatar->kind != scene::AvatarDef::Kind::file) {
+      drape.avatar = scene::AvatarDef{};
+      drape.avatar->kind = scene::AvatarDef::Kind::file;
+    }
+    drape.avatar->file = body_text;
+    bool first = true;  // the three on one line under the path
+    auto combo = [&](const char* label, std::string& value, const char* const* items, int n) {
+      if (!first) ImGui::SameLine();
+      first = false;
+      ImGui::SetNextItemWidth(60);
+      if (ImGui::BeginCombo(label, value.c_str())) {
+        for (int i = 0; i < n; ++i) {
+          if (ImGui::Selectable(items[i], value == items[i])) value = items[i];
+          track(std::string(label) + ":" + items[i]);
+        }
+        ImGui::EndCombo();
+      }
+      track(label);
+    };
+    combo("unit", drape.avatar->unit, kUnits, 6);
+    combo("up", drape.avatar->up, kUps, 7);
+    combo("facing", drape.avatar->facing, kFacings, 5);
+    for (const auto& n : body_notes) ImGui::TextDisabled("%s", n.c_str());
   }
 
   void start_drape() {
@@ -703,6 +749,12 @@ struct Studio::Impl {
     // The outcome goes to the status bar once, when the run ends.
     const DrapeStatus s = job.status();
     if (was_running && !s.running) say("Drape " + s.message + ".", s.stage == "failed");
+    if (!s.body_notes.empty() && body_notes != s.body_notes) {
+      body_notes = s.body_notes;
+      std::string all;
+      for (const auto& n : body_notes) all += (all.empty() ? "" : "; ") + n;
+      say("Body: " + all);
+    }
     was_running = s.running;
   }
 
@@ -1005,7 +1057,10 @@ void Studio::draw() {
 
   ImGui::SameLine();
   ImGui::BeginChild("right", {right_w, body_h});
-  ImGui::BeginChild("simulate", {0, 4.5f * ImGui::GetFrameHeightWithSpacing() + 8}, true);
+  // Rows: size and quality; self-collision, spacing, limit; body; its unit,
+  // up, facing; Drape and progress; the certificate; the body's notes.
+  const float sim_rows = 5.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
+  ImGui::BeginChild("simulate", {0, sim_rows * ImGui::GetFrameHeightWithSpacing() + 8}, true);
   I.simulate_panel();
   ImGui::EndChild();
   ImGui::BeginChild("preview", {0, 0}, true, ImGuiWindowFlags_NoScrollbar);
@@ -1026,6 +1081,19 @@ bool Studio::modified() const { return impl_->is_modified(); }
 const std::string& Studio::status() const { return impl_->status; }
 bool Studio::status_is_error() const { return impl_->status_error; }
 dress::DrapeOptions& Studio::drape_options() { return impl_->drape; }
+void Studio::set_body(const std::filesystem::path& file, const std::string& unit, const std::string& up,
+                      const std::string& facing) {
+  impl_->body_text = file.string();
+  impl_->body_notes.clear();
+  if (file.empty()) {
+    impl_->drape.avatar.reset();
+    return;
+  }
+  scene::AvatarDef a;
+  a.kind = scene::AvatarDef::Kind::file;
+  a.file = file, a.unit = unit, a.up = up, a.facing = facing;
+  impl_->drape.avatar = a;
+}
 DrapeStatus Studio::drape_status() const { return impl_->job.status(); }
 const std::optional<dress::Certificate>& Studio::certificate() const { return impl_->cert; }
 void Studio::wait_for_drape() { impl_->job.wait(); }

@@ -4,11 +4,14 @@
 // checks the drape's figures against their limits.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "support/run_vgd.hpp"
@@ -307,6 +310,92 @@ TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
   EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
   EXPECT_TRUE(c["passed"].get<bool>());
 }
+
+// Bodies in other poses as files bring them: vgd's size-38 mannequin in a
+// T-pose and with its arms swung forward, rewritten in another unit, up axis
+// and facing. Each comes in upright and facing forward by itself, and the
+// garments drape on it as on the mannequin: every seam sewn, at rest, nothing
+// in the body or through itself, each piece where it was arranged (sleeves on
+// the arms at the arms' own angle), and passed. (The T-shirt on arms swung
+// forward is not passed yet: docs/avatar.md.)
+struct PosedBody {
+  std::string name;
+  std::vector<std::string> pose;  // vgd mannequin options
+  double scale;                   // file units per metre
+  std::string unit, up, facing;   // what the importer must find
+  std::string garment;
+};
+
+void PrintTo(const PosedBody& b, std::ostream* os) { *os << b.name << " + " << b.garment; }
+
+// `in` (OBJ, metres, +Y up, facing +Z) rewritten scaled by `scale` with up
+// `up` (z or y) and facing `facing` (+z or +x, once up is turned to +Y).
+void rewrite_obj(const std::filesystem::path& in_path, const std::filesystem::path& out_path, double scale,
+                 const std::string& up, const std::string& facing) {
+  std::ifstream in(in_path);
+  std::ofstream out(out_path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x, y, z;
+      v >> x >> y >> z;
+      if (facing == "+x") std::tie(x, z) = std::pair{z, -x};  // +Z turned to +X about +Y
+      if (up == "z") std::tie(y, z) = std::pair{-z, y};        // +Y turned to +Z about +X
+      out << "v " << scale * x << ' ' << scale * y << ' ' << scale * z << '\n';
+    } else if (line.rfind("f ", 0) == 0) {
+      std::istringstream f(line.substr(2));
+      std::string a;
+      out << 'f';
+      while (f >> a) out << ' ' << a.substr(0, a.find('/'));
+      out << '\n';
+    }
+  }
+}
+
+class CliDrapePosed : public ::testing::TestWithParam<PosedBody> {};
+
+TEST_P(CliDrapePosed, GarmentsDrapeOnAnImportedBodyInItsOwnPose) {
+  const PosedBody& b = GetParam();
+  const auto dir = scratch_dir("drape-posed-" + b.name + "-" + b.garment);
+  std::vector<std::string> make = {"mannequin", "--size", "38", "-o", (dir / "m.obj").string(), "-q"};
+  make.insert(make.end(), b.pose.begin(), b.pose.end());
+  ASSERT_EQ(run_vgd(make).code, 0);
+  const auto body = dir / (b.name + ".obj");
+  rewrite_obj(dir / "m.obj", body, b.scale, b.up, b.facing);
+  const auto out = dir / "drape";
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments" / (b.garment + ".xvc")).string(), "--avatar",
+                          body.string(), "-o", out.string(), "--time-limit", "6"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  EXPECT_NE(r.err.find("unit " + b.unit + " "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("up " + b.up + " "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("facing " + b.facing + " "), std::string::npos) << r.err;
+  const json c = read_json(out / "certificate.json");
+  EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
+  // Each piece ends within 12 cm of where it was arranged, on its segment.
+  for (const auto& p : c["placement"]) {
+    double moved = 0;
+    for (const auto& d : p["moved_m"]) moved += d.get<double>() * d.get<double>();
+    EXPECT_LT(std::sqrt(moved), 0.12) << p.dump();
+  }
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Poses, CliDrapePosed,
+    ::testing::Values(PosedBody{"t_pose_mm_z_up", {"--arm-angle", "90"}, 1000.0, "mm", "z", "+z", "t-shirt"},
+                      PosedBody{"t_pose_mm_z_up", {"--arm-angle", "90"}, 1000.0, "mm", "z", "+z", "a-line-skirt"},
+                      PosedBody{"arms_forward_in_facing_x", {"--arm-forward", "30"}, 1.0 / 0.0254, "in", "y", "+x", "a-line-skirt"}),
+    [](const auto& p) {
+      std::string g = p.param.garment;
+      for (auto& ch : g)
+        if (ch == '-') ch = '_';
+      return p.param.name + "_" + g;
+    });
 
 // A skirt four sizes too small for its body (size 34 on the size-50
 // mannequin) sews and rests with nothing inside the body or through itself,

@@ -21,19 +21,20 @@
 namespace vgd::body {
 namespace {
 
-const Avatar& mannequin(bool t_pose) {
-  static const Avatar a_pose = [] {
+// The size-38 mannequin in a pose: 'A' (arms at 45°), 'T' (90°) or 'F'
+// (45°, swung 30° forward).
+const Avatar& mannequin(char pose) {
+  auto make = [](double angle, double forward) {
     MannequinOptions o;
     o.target_triangles = 5000;
+    o.arm_angle_deg = angle;
+    o.arm_forward_deg = forward;
     return make_mannequin(BodyMeasurements{}, o);
-  }();
-  static const Avatar t = [] {
-    MannequinOptions o;
-    o.target_triangles = 5000;
-    o.arm_angle_deg = 90.0;  // arms straight out: the arm span is longer than the body is tall
-    return make_mannequin(BodyMeasurements{}, o);
-  }();
-  return t_pose ? t : a_pose;
+  };
+  static const Avatar a = make(45.0, 0.0);
+  static const Avatar t = make(90.0, 0.0);  // arms straight out: the arm span is longer than the body is tall
+  static const Avatar f = make(45.0, 30.0);
+  return pose == 'T' ? t : pose == 'F' ? f : a;
 }
 
 // The body recentred as the importer recentres (feet on y = 0, box centred on x = z = 0).
@@ -94,28 +95,28 @@ double vertex_error(const Avatar& got, const mesh::SurfaceMesh& want) {
 }
 
 struct PoseCase {
-  bool t_pose;
+  char pose;  // 'A', 'T' or 'F' (arms forward)
   std::string unit, up, facing;
   std::string format = "obj";  // obj: written by the test; others: through export_avatar (assimp)
 };
 
 void PrintTo(const PoseCase& c, std::ostream* os) {
-  *os << c.format << ' ' << (c.t_pose ? "T-pose" : "A-pose") << ' ' << c.unit << " up " << c.up << " facing " << c.facing;
+  *os << c.format << ' ' << c.pose << "-pose " << c.unit << " up " << c.up << " facing " << c.facing;
 }
 
 class ImportedBody : public ::testing::TestWithParam<PoseCase> {};
 
 TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
   const PoseCase& c = GetParam();
-  const Avatar& body = mannequin(c.t_pose);
-  if (c.t_pose) {
+  const Avatar& body = mannequin(c.pose);
+  if (c.pose == 'T') {
     // The case that fooled the longest-extent rule: arm span over height.
     const Vec3 size = mesh::bounding_box(body.surface).size();
     ASSERT_GT(size.x(), size.y()) << "not a T-pose";
   }
   const double scale = 1.0 / metres_per(*parse_length_unit(c.unit));
   // One directory per case: ctest runs the cases in parallel.
-  const std::string stem = (c.t_pose ? "t-" : "a-") + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
+  const std::string stem = std::string(1, c.pose) + "-" + c.unit + "-" + c.up + "-" + c.facing.substr(1) +
                            (c.facing[0] == '-' ? "neg" : "pos");
   const auto dir = test::scratch_dir("avatar_pose/" + stem + "-" + c.format);
   auto file = dir / (stem + ".obj");
@@ -138,19 +139,25 @@ TEST_P(ImportedBody, ComesInUprightFacingForwardAtItsHeight) {
   // The importer says what it decided.
   ASSERT_GE(got.notes.size(), 3u);
   EXPECT_EQ(got.notes[0].rfind("unit " + c.unit, 0), 0u) << got.notes[0];
+  // Measured and cut into all its segments, arms included.
+  EXPECT_EQ(r.segments.size(), 7u) << ::testing::PrintToString(r.segments);
+  for (const char* name : {"torso", "hips", "neck", "left-arm", "right-arm", "left-leg", "right-leg"})
+    EXPECT_NE(got.segment(name), nullptr) << name;
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Poses, ImportedBody,
-    ::testing::Values(PoseCase{false, "m", "y", "+z"}, PoseCase{true, "m", "y", "+z"}, PoseCase{true, "cm", "z", "+z"},
-                      PoseCase{true, "mm", "-z", "-x"}, PoseCase{true, "dm", "y", "+x"}, PoseCase{false, "in", "x", "-z"},
-                      PoseCase{true, "in", "-y", "-z"}, PoseCase{false, "dm", "-x", "+x"},
-                      PoseCase{false, "cm", "z", "+x", "dae"}, PoseCase{true, "m", "-z", "+z", "fbx"},
-                      PoseCase{true, "mm", "y", "-x", "glb"}, PoseCase{false, "in", "x", "+z", "ply"}),
+    ::testing::Values(PoseCase{'A', "m", "y", "+z"}, PoseCase{'T', "m", "y", "+z"}, PoseCase{'T', "cm", "z", "+z"},
+                      PoseCase{'T', "mm", "-z", "-x"}, PoseCase{'T', "dm", "y", "+x"}, PoseCase{'A', "in", "x", "-z"},
+                      PoseCase{'T', "in", "-y", "-z"}, PoseCase{'A', "dm", "-x", "+x"},
+                      PoseCase{'F', "m", "y", "+z"}, PoseCase{'F', "cm", "-y", "-x"}, PoseCase{'F', "in", "z", "+x"},
+                      PoseCase{'A', "cm", "z", "+x", "dae"}, PoseCase{'T', "m", "-z", "+z", "fbx"},
+                      PoseCase{'T', "mm", "y", "-x", "glb"}, PoseCase{'A', "in", "x", "+z", "ply"},
+                      PoseCase{'F', "mm", "x", "-z", "glb"}),
     [](const auto& p) {
       const PoseCase& c = p.param;
       std::string up = c.up[0] == '-' ? "neg" + c.up.substr(1) : c.up;
-      return c.format + "_" + (c.t_pose ? "T" : "A") + "_" + c.unit + "_up_" + up + "_facing_" +
+      return c.format + "_" + std::string(1, c.pose) + "_" + c.unit + "_up_" + up + "_facing_" +
              (c.facing[0] == '-' ? "neg" : "pos") + c.facing.substr(1);
     });
 
@@ -158,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
 // joints) and loose eyes, upside down. The body comes in alone, upright, and
 // the notes say what was left out.
 TEST(ImportedBodyWithHelpers, HelpersAndLoosePartsAreLeftOut) {
-  const Avatar& body = mannequin(false);
+  const Avatar& body = mannequin('A');
   const auto dir = test::scratch_dir("avatar_helpers");
   const Eigen::Matrix3d rot = to_file("-y", "+z");
   // A helper as big as the legs (a tights proxy): a box round them.
@@ -192,7 +199,7 @@ TEST(ImportedBodyWithHelpers, HelpersAndLoosePartsAreLeftOut) {
 // 0.01 and turns the body on its back. glTF ignores a skinned mesh's node
 // transform; the body is read in its bind pose, at its height.
 TEST(ImportedBodySkinned, AnArmatureTransformIsIgnored) {
-  const Avatar& body = mannequin(false);
+  const Avatar& body = mannequin('A');
   const auto& s = body.surface;
   const auto dir = test::scratch_dir("avatar_skinned");
   std::string bin;
@@ -283,7 +290,7 @@ std::string error_of(const std::filesystem::path& p, const AvatarImportOptions& 
 
 // Nonsense bodies are refused with what is wrong, not imported with a note.
 TEST(ImportedBodyErrors, NoHumanBodySaysWhy) {
-  const auto& s = mannequin(false).surface;
+  const auto& s = mannequin('A').surface;
   const auto dir = test::scratch_dir("avatar_nonsense");
   // 3 mm tall in metres, and 30 m tall in metres: no unit makes them a body.
   write_file_atomic(dir / "tiny.obj", obj_group(s, "body", 0.0018, Eigen::Matrix3d::Identity(), Vec3::Zero(), 1));

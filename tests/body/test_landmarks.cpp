@@ -1,6 +1,6 @@
 // Landmarks and measurements found on a body's surface, checked on vgd's
-// mannequin, whose measurements are known: in the A-pose and the T-pose, a
-// woman's size 38 and a man's size 50. Girths and heights within 1 cm; the
+// mannequin, whose measurements are known: in the A-pose, the T-pose and with
+// the arms swung forward, women's and men's sizes. Girths and heights within 1 cm; the
 // arms found on both sides, along the mannequin's own arm axes.
 #include <gtest/gtest.h>
 
@@ -17,7 +17,12 @@ namespace {
 struct Case {
   std::string table, size;
   double arm_angle;
+  double arm_forward = 0.0;  // deg, arms swung forward from the frontal plane
 };
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.table << ' ' << c.size << ", arms at " << c.arm_angle << " deg, " << c.arm_forward << " deg forward";
+}
 
 class Measured : public ::testing::TestWithParam<Case> {};
 
@@ -26,14 +31,15 @@ TEST_P(Measured, TheMannequinsMeasurementsAreFoundOnItsSurface) {
   const BodyMeasurements want = find_size(c.size, c.table);
   MannequinOptions o;
   o.arm_angle_deg = c.arm_angle;
+  o.arm_forward_deg = c.arm_forward;
   const Avatar body = make_mannequin(want, o);
   const MannequinLandmarks known = mannequin_landmarks(want);
   const BodyMeasuring got = measure_body(body.surface);
   const auto& m = got.measurements;
   const auto& l = got.landmarks;
-  std::printf("[ figures  ] %s %s, arms at %.0f deg: height %+.2f, bust %+.2f, under-bust %+.2f, waist %+.2f, "
+  std::printf("[ figures  ] %s %s, arms at %.0f deg, %.0f forward: height %+.2f, bust %+.2f, under-bust %+.2f, waist %+.2f, "
               "hip %+.2f, inseam %+.2f, neck %+.2f, arm %+.2f cm off\n",
-              c.table.c_str(), c.size.c_str(), c.arm_angle, 100 * (m.height - want.height), 100 * (m.bust - want.bust),
+              c.table.c_str(), c.size.c_str(), c.arm_angle, c.arm_forward, 100 * (m.height - want.height), 100 * (m.bust - want.bust),
               100 * (m.under_bust - want.under_bust), 100 * (m.waist - want.waist), 100 * (m.hip - want.hip),
               100 * (m.inseam - want.inseam), 100 * (m.neck - want.neck), 100 * (m.arm_length - want.arm_length));
   EXPECT_NEAR(m.height, want.height, 0.01);
@@ -74,11 +80,15 @@ TEST_P(Measured, TheMannequinsMeasurementsAreFoundOnItsSurface) {
 
 INSTANTIATE_TEST_SUITE_P(Bodies, Measured,
                          ::testing::Values(Case{"en13402-women", "38", 45.0}, Case{"en13402-women", "38", 90.0},
-                                           Case{"en13402-men", "50", 45.0}, Case{"en13402-women", "44", 60.0}),
+                                           Case{"en13402-men", "50", 45.0}, Case{"en13402-women", "44", 60.0},
+                                           Case{"en13402-women", "40", 45.0, 30.0}, Case{"en13402-men", "54", 40.0, 20.0},
+                                           // arms pressed against a full bust and flanks (no gap under the arm)
+                                           Case{"en13402-women", "50", 45.0}),
                          [](const auto& p) {
                            const Case& c = p.param;
                            return (c.table == "en13402-men" ? "men_" : "women_") + c.size + "_arms_" +
-                                  std::to_string(static_cast<int>(c.arm_angle));
+                                  std::to_string(static_cast<int>(c.arm_angle)) +
+                                  (c.arm_forward > 0 ? "_forward_" + std::to_string(static_cast<int>(c.arm_forward)) : "");
                          });
 
 }  // namespace

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "vgd/body/mannequin.hpp"
+#include "vgd/body/sizes.hpp"
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
 #include "vgd/dress/drape.hpp"
@@ -344,6 +347,69 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   h.drag(r->cx(), r->cy(), r->cx() + 120, r->cy());
   h.frames(2);
   EXPECT_LT(vgd::qa::ssim(crop(img, *r), crop(h.screenshot(), *r)), 0.9);
+}
+
+// The body row: a body file typed in, its unit and up axis forced in the
+// combos, reaches the drape; the importer's decisions are shown; a unit that
+// makes no human of it fails the drape with the file named.
+TEST(Studio, DrapesOnABodyFileWithTheUnitAndUpChosenInItsRow) {
+  omp_set_num_threads(1);
+  const fs::path dir = temp_dir("body");
+  // The size-38 mannequin as Blender stores it: centimetres, Z up, front -Y.
+  const auto m = vgd::body::make_mannequin(vgd::body::find_size("38"));  // the mannequin a drape of size 38 gets
+  const fs::path body = dir / "blender.obj";
+  {
+    std::ofstream out(body);
+    for (const auto& v : m.surface.vertices) out << "v " << 100 * v.x() << ' ' << -100 * v.z() << ' ' << 100 * v.y() << '\n';
+    for (const auto& t : m.surface.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  }
+  Harness h(1024, 700);
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 6.0;
+  o.spacing = 0.02;  // a coarse mesh, at the standard preset (self-collision on)
+  EXPECT_FALSE(o.avatar) << "the mannequin until a body is given";
+  h.click("body");
+  h.type(body.string());
+  h.frames(2);
+  ASSERT_TRUE(o.avatar);
+  EXPECT_EQ(o.avatar->file, body);
+  EXPECT_EQ(o.avatar->unit, "auto");
+  h.click("unit");
+  h.click("unit:cm");
+  h.click("up");
+  h.click("up:z");
+  EXPECT_EQ(o.avatar->unit, "cm");
+  EXPECT_EQ(o.avatar->up, "z");
+  EXPECT_EQ(o.avatar->facing, "auto");
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(4);
+  const auto s = h.studio().drape_status();
+  EXPECT_EQ(s.stage, "done") << s.message;
+  const auto has = [&](const std::string& note) {
+    return std::find(s.body_notes.begin(), s.body_notes.end(), note) != s.body_notes.end();
+  };
+  EXPECT_TRUE(has("unit cm (given)")) << ::testing::PrintToString(s.body_notes);
+  EXPECT_TRUE(has("up z (given)")) << ::testing::PrintToString(s.body_notes);
+  EXPECT_TRUE(has("facing +z (the feet point +z)")) << ::testing::PrintToString(s.body_notes);
+  ASSERT_TRUE(h.studio().certificate());
+  const auto& c = *h.studio().certificate();
+  int pairs = 0, closed = 0;
+  for (const auto& st : c.seams) pairs += st.pairs, closed += st.closed;
+  EXPECT_EQ(closed, pairs) << c.stop_reason << " after " << c.simulated_s;
+  EXPECT_LT(c.max_penetration, 0.001);
+  // Millimetres make a 1.7 cm body: the drape fails and says why, naming the file.
+  h.click("unit");
+  h.click("unit:mm");
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(2);
+  EXPECT_EQ(h.studio().drape_status().stage, "failed");
+  EXPECT_TRUE(h.studio().status_is_error());
+  EXPECT_NE(h.studio().status().find("blender.obj"), std::string::npos) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("not a human body"), std::string::npos) << h.studio().status();
 }
 
 TEST(Studio, StopEndsARunningDrape) {

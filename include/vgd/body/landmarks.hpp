@@ -25,6 +25,12 @@ struct BodyMeasuring {
   std::vector<std::string> notes;  // what was not found, and why
 };
 
+// The trunk's centre line (x, z), m: the bounding box's x (bodies are
+// symmetric) and the z of the centroid of the largest loop at 62 % of the
+// height (the waist; arms hanging there are loops of their own or lobes at
+// the sides), not the box's z, which arms held forward move out of the neck.
+mesh::Vec2d trunk_centre(const mesh::SurfaceMesh& upright);
+
 // Landmarks and measurements of an upright body.
 BodyMeasuring measure_body(const mesh::SurfaceMesh& upright);
 

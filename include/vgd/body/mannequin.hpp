@@ -24,6 +24,7 @@ struct MannequinOptions {
   double facet_size = 0.0;       // m, CGAL facet size; > 0 overrides target_triangles
   double facet_distance = 0.0;   // m, largest facet-to-surface distance (resolves armpit and crotch gaps); 0 = facet size / 8
   double arm_angle_deg = 45.0;   // angle between each arm and the vertical: 45 an A-pose, 90 a T-pose; opened up to 50° when the chest needs it
+  double arm_forward_deg = 0.0;  // arms swung forward about the shoulders' x axis, 0–60: 0 in the frontal plane
   bool calibrate = true;         // false: girths from the closed-form ellipse estimate only (±2–3 %)
 };
 

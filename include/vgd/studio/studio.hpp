@@ -7,7 +7,9 @@
 //   patterns   the pieces of one size, flat; hover a stretch of an outline
 //              and click to pick it, pick a second, "Add seam"
 //   simulate   size, quality preset (preview / standard / precise), self-
-//              collision, mesh spacing, time limit; "Drape" runs the drape on
+//              collision, mesh spacing, time limit, the body (the mannequin or
+//              a file, with unit / up / facing overrides and the importer's
+//              notes shown); "Drape" runs the drape on
 //              a worker thread with per-stage progress, "Stop" ends it
 //   preview    the body and the garment in 3-D (the render stage's off-screen
 //              renderer, shown as a texture), updated live while draping;
@@ -76,6 +78,7 @@ struct DrapeStatus {
   double wall_s = 0;
   int seams_closed = 0, seam_pairs = 0;
   std::string message;        // the outcome when finished
+  std::vector<std::string> body_notes;  // an imported body: the importer's decisions (unit, up, facing) and what it left out
 };
 
 class Studio {
@@ -115,6 +118,11 @@ class Studio {
   bool status_is_error() const;
   // Drape settings (quality, size, ...), as the simulate panel shows them.
   dress::DrapeOptions& drape_options();
+  // The body to drape on, as the simulate panel's body row sets it: a file
+  // with the importer's unit, up axis and facing ("auto" or forced); an empty
+  // path is the mannequin of the garment's size.
+  void set_body(const std::filesystem::path& file, const std::string& unit = "auto", const std::string& up = "auto",
+                const std::string& facing = "auto");
   DrapeStatus drape_status() const;
   // The certificate of the last finished drape.
   const std::optional<dress::Certificate>& certificate() const;
