@@ -66,9 +66,9 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
                       cm(m.height).c_str(), cm(m.bust).c_str(), cm(m.under_bust).c_str(), cm(m.waist).c_str(),
                       cm(m.hip).c_str(), cm(m.neck).c_str(), cm(m.shoulder_width).c_str(), cm(m.arm_length).c_str(),
                       cm(m.inseam).c_str());
-          std::printf("landmark heights: neck %s, shoulders %s, bust %s, waist %s, hip %s, crotch %s, ankle %s; arms: %s\n",
+          std::printf("landmark heights: neck %s, shoulders %s, bust %s, waist %s, hip %s, crotch %s, knee %s, ankle %s; arms: %s\n",
                       cm(l.neck).c_str(), cm(l.shoulder).c_str(), cm(l.bust).c_str(), cm(l.waist).c_str(),
-                      cm(l.hip).c_str(), cm(l.crotch).c_str(), cm(l.ankle).c_str(),
+                      cm(l.hip).c_str(), cm(l.crotch).c_str(), cm(l.knee).c_str(), cm(l.ankle).c_str(),
                       l.left_arm && l.right_arm ? "both" : l.left_arm ? "left only" : l.right_arm ? "right only" : "none");
         }
         if (r.nearest)

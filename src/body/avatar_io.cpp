@@ -531,11 +531,16 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
   r.facing = facing;
 
   // ---- normalise ----
-  mesh::transform(s, metres * facing_rotation(facing) * up_rotation(up));
+  const Eigen::Matrix3d to_vgd = metres * facing_rotation(facing) * up_rotation(up);
+  mesh::transform(s, to_vgd);
+  std::vector<ModelJoint> joints = std::move(model.joints);  // moved with the body
+  for (auto& j : joints) j.position = to_vgd * j.position;
   r.welded_vertices = mesh::weld_vertices(s, o.weld_tolerance);
   if (o.recentre) {
     const mesh::Box3 b = mesh::bounding_box(s);
-    mesh::translate(s, Vec3(-b.centre().x(), -b.min.y(), -b.centre().z()));
+    const Vec3 shift(-b.centre().x(), -b.min.y(), -b.centre().z());
+    mesh::translate(s, shift);
+    for (auto& j : joints) j.position += shift;
   }
   if (s.triangles.empty()) throw Error(file, "", "no triangle is left after merging coincident vertices (a degenerate mesh)");
   const auto check = fill_check(r, s);
@@ -555,6 +560,7 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
   if (o.segments) {
     if (o.human) {
       BodyMeasuring measured = measure_body(av.surface);
+      landmarks_from_skeleton(measured.landmarks, joints, measured.notes);
       av.segments = segments_from_slices(av.surface, &measured.landmarks);
       for (auto& arm : arm_segments(av.surface, measured.landmarks)) av.segments.push_back(std::move(arm));
       av.landmarks = measured.landmarks;
@@ -615,10 +621,11 @@ std::string to_json(const AvatarReport& r) {
     nlohmann::json lj{{"height_m", l.height},       {"neck_m", l.neck},   {"shoulder_m", l.shoulder},
                       {"bust_m", l.bust},           {"under_bust_m", l.under_bust},
                       {"waist_m", l.waist},         {"hip_m", l.hip},     {"crotch_m", l.crotch},
-                      {"ankle_m", l.ankle}};
+                      {"knee_m", l.knee},           {"ankle_m", l.ankle}};
     for (const auto& [name, arm] : {std::pair{"left_arm", &l.left_arm}, {"right_arm", &l.right_arm}})
       if (*arm)
         lj[name] = {{"shoulder_m", v3((*arm)->shoulder)}, {"elbow_m", v3((*arm)->elbow)},
+                    {"elbow_from_skeleton", (*arm)->elbow_from_skeleton},
                     {"wrist_m", v3((*arm)->wrist)}, {"wrist_girth_m", (*arm)->wrist_girth}};
     j["landmarks"] = lj;
     j["measurements"] = {{"height_m", m.height},   {"bust_m", m.bust},         {"under_bust_m", m.under_bust},

@@ -2,6 +2,7 @@
 #include "vgd/body/landmarks.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -400,9 +401,74 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
       }
     }
   }
+  // A girth longer than the body is tall is no human girth (a slice of a
+  // mesh whose loops do not close, a prop round the body): not reported.
+  for (auto [name, v] : {std::pair{"bust", &bm.bust}, {"under-bust", &bm.under_bust}, {"waist", &bm.waist},
+                         {"hip", &bm.hip}, {"neck", &bm.neck}})
+    if (*v > 1.2 * H) {
+      out.notes.push_back(std::string(name) + " girth " + format_fixed(100 * *v, 1) + " cm left out: longer than 1.2 × the height");
+      *v = 0.0;
+    }
   for (auto [name, v] : {std::pair{"waist", bm.waist}, {"hip", bm.hip}, {"bust", bm.bust}, {"neck", bm.neck}})
     if (v == 0) out.notes.push_back(std::string("no ") + name + " found");
   return out;
+}
+
+std::string skeleton_joint_kind(std::string_view bone_name) {
+  std::string n;
+  for (const char c : bone_name.substr(bone_name.find_last_of(':') == std::string_view::npos ? 0 : bone_name.find_last_of(':') + 1))
+    n += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  auto has = [&](const char* w) { return n.find(w) != std::string::npos; };
+  for (const char* finger : {"index", "middle", "ring", "pinky", "thumb", "finger", "toe", "twist", "roll", "end"})
+    if (has(finger)) return "";
+  if (has("forearm") || has("lowerarm") || has("elbow")) return "elbow";
+  if (has("wrist") || has("hand")) return "wrist";
+  if (has("knee") || has("lowerleg") || has("shin") || has("calf")) return "knee";
+  if (has("leg") && !has("up") && !has("thigh")) return "knee";  // Mixamo's LeftLeg starts at the knee
+  if (has("ankle") || has("foot")) return "ankle";
+  return "";
+}
+
+int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& joints, std::vector<std::string>& notes) {
+  int taken = 0;
+  std::vector<double> knees;
+  for (const auto& j : joints) {
+    const std::string kind = skeleton_joint_kind(j.name);
+    if (kind == "elbow") {
+      // The arm on the joint's side (the body's left is +X).
+      auto& arm = j.position.x() >= 0 ? lm.left_arm : lm.right_arm;
+      if (!arm) continue;
+      const Vec3 a = arm->shoulder, b = arm->wrist;
+      const double u = std::clamp((j.position - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      const double off = (j.position - (a + u * (b - a))).norm();
+      if (off > 0.08 || u < 0.2 || u > 0.9) {
+        notes.push_back("skeleton joint " + j.name + " left out: " + format_fixed(100 * off, 1) +
+                        " cm from the arm's axis, " + format_fixed(100 * u, 0) + " % of the way to the wrist");
+        continue;
+      }
+      arm->elbow = j.position;
+      arm->elbow_from_skeleton = true;
+      ++taken;
+    } else if (kind == "knee") {
+      const double y = j.position.y();
+      if (lm.crotch > 0 && (y <= lm.ankle || y >= lm.crotch)) {
+        notes.push_back("skeleton joint " + j.name + " left out: at " + format_fixed(100 * y, 1) +
+                        " cm, not between the ankle and the crotch");
+        continue;
+      }
+      knees.push_back(y);
+      ++taken;
+    }
+  }
+  if (!knees.empty()) {
+    double sum = 0;
+    for (const double y : knees) sum += y;
+    lm.knee = sum / static_cast<double>(knees.size());
+  }
+  if (taken > 0)
+    notes.push_back("elbows and knees from the file's skeleton (" + std::to_string(taken) + " joint" +
+                    (taken > 1 ? "s" : "") + ")");
+  return taken;
 }
 
 std::vector<BodySegment> arm_segments(const mesh::SurfaceMesh& m, const BodyLandmarks& lm) {

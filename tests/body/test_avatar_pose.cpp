@@ -9,10 +9,12 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/errors.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/body/avatar_io.hpp"
+#include "vgd/body/landmarks.hpp"
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -193,6 +195,149 @@ TEST(ImportedBodyWithHelpers, HelpersAndLoosePartsAreLeftOut) {
   for (const auto& n : r.notes) notes += n + "\n";
   EXPECT_NE(notes.find("helper-tights"), std::string::npos) << notes;
   EXPECT_NE(notes.find("loose part"), std::string::npos) << notes;
+}
+
+// A skinned glTF whose skeleton holds Mixamo's joints: the elbows and knees
+// come from it (the surface shows neither), moved with the body into vgd's
+// frame; fingers, hips and shoulders are not taken. The rig's elbows sit at
+// half the arm, not at the 56 % the surface rule would give.
+TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
+  const Avatar& body = mannequin('A');
+  const auto& s = body.surface;
+  const auto dir = test::scratch_dir("avatar_skeleton");
+  struct Joint {
+    std::string name;
+    Vec3 p;
+  };
+  const BodySegment* la = body.segment("left-arm");
+  const BodySegment* ra = body.segment("right-arm");
+  ASSERT_TRUE(la && ra);
+  const double knee_y = mannequin_landmarks(BodyMeasurements{}).knee;
+  const std::vector<Joint> joints = {
+      {"mixamorig:Hips", Vec3(0, 0.9, 0)},
+      {"mixamorig:LeftForeArm", la->start + 0.5 * la->length * la->axis},
+      {"mixamorig:RightForeArm", ra->start + 0.5 * ra->length * ra->axis},
+      {"mixamorig:LeftHandIndex1", la->start + 1.05 * la->length * la->axis},
+      {"mixamorig:LeftLeg", Vec3(0.09, knee_y, 0.0)},
+      {"mixamorig:RightLeg", Vec3(-0.09, knee_y, 0.0)},
+  };
+  std::string bin;
+  auto put = [&](const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); };
+  for (const auto& v : s.vertices) {
+    const float f[3] = {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+    put(f, sizeof f);
+  }
+  const std::size_t joints_at = bin.size();
+  for (int i = 0; i < s.num_vertices(); ++i) {
+    const unsigned char j[4] = {0, 1, 2, 4};  // every joint carries some weight: each becomes a bone
+    put(j, sizeof j);
+  }
+  const std::size_t weights_at = bin.size();
+  for (int i = 0; i < s.num_vertices(); ++i) {
+    const float w[4] = {0.7f, 0.1f, 0.1f, 0.1f};
+    put(w, sizeof w);
+  }
+  const std::size_t index_at = bin.size();
+  for (const auto& t : s.triangles) {
+    const std::uint32_t q[3] = {static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                                static_cast<std::uint32_t>(t[2])};
+    put(q, sizeof q);
+  }
+  const std::size_t ibm_at = bin.size();  // inverse bind matrices: translations to each joint's origin
+  for (const auto& j : joints)
+    for (int k = 0; k < 16; ++k) {
+      float f = k % 5 == 0 ? 1.0f : 0.0f;
+      if (k >= 12 && k < 15) f = static_cast<float>(-j.p[k - 12]);
+      put(&f, sizeof f);
+    }
+  write_file_atomic(dir / "rigged.bin", bin);
+  std::string nodes = R"({"name": "Armature", "children": [1)";
+  for (std::size_t k = 0; k < joints.size(); ++k) nodes += ", " + std::to_string(k + 2);
+  nodes += R"(], "scale": [0.01, 0.01, 0.01]}, {"name": "Body", "mesh": 0, "skin": 0})";
+  std::string skin = "[";
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    char t[160];
+    std::snprintf(t, sizeof t, R"(, {"name": "%s", "translation": [%g, %g, %g]})", joints[k].name.c_str(), joints[k].p.x(),
+                  joints[k].p.y(), joints[k].p.z());
+    nodes += t;
+    skin += (k ? ", " : "") + std::to_string(k + 2);
+  }
+  skin += "]";
+  const mesh::Box3 b = mesh::bounding_box(s);
+  char gltf[8192];
+  std::snprintf(gltf, sizeof gltf, R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [%s],
+  "skins": [{"joints": %s, "inverseBindMatrices": 4}],
+  "meshes": [{"name": "Body", "primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}, "indices": 3}]}],
+  "buffers": [{"uri": "rigged.bin", "byteLength": %zu}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
+    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": %d, "type": "VEC3", "min": [%g, %g, %g], "max": [%g, %g, %g]},
+    {"bufferView": 1, "componentType": 5121, "count": %d, "type": "VEC4"},
+    {"bufferView": 2, "componentType": 5126, "count": %d, "type": "VEC4"},
+    {"bufferView": 3, "componentType": 5125, "count": %d, "type": "SCALAR"},
+    {"bufferView": 4, "componentType": 5126, "count": %zu, "type": "MAT4"}
+  ]
+})",
+                nodes.c_str(), skin.c_str(), bin.size(), joints_at, joints_at, weights_at - joints_at, weights_at,
+                index_at - weights_at, index_at, ibm_at - index_at, ibm_at, bin.size() - ibm_at, s.num_vertices(),
+                b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z(), s.num_vertices(), s.num_vertices(),
+                3 * s.num_triangles(), joints.size());
+  write_file_atomic(dir / "rigged.gltf", gltf);
+  AvatarReport r;
+  const Avatar got = import_avatar(dir / "rigged.gltf", {}, &r);
+  ASSERT_TRUE(got.landmarks);
+  const BodyLandmarks& l = *got.landmarks;
+  const Vec3 shift(-b.centre().x(), -b.min.y(), -b.centre().z());  // the importer's recentring
+  ASSERT_TRUE(l.left_arm && l.right_arm);
+  EXPECT_TRUE(l.left_arm->elbow_from_skeleton);
+  EXPECT_TRUE(l.right_arm->elbow_from_skeleton);
+  EXPECT_LT((l.left_arm->elbow - (joints[1].p + shift)).norm(), 1e-3);
+  EXPECT_LT((l.right_arm->elbow - (joints[2].p + shift)).norm(), 1e-3);
+  EXPECT_NEAR(l.knee, knee_y + shift.y(), 1e-3);
+  std::string notes;
+  for (const auto& n : got.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("elbows and knees from the file's skeleton (4 joints)"), std::string::npos) << notes;
+}
+
+TEST(SkeletonJoints, RigsNamesAreRead) {
+  for (const char* n : {"mixamorig:LeftForeArm", "L_Elbow", "lowerarm01.L", "forearm.R", "Bip01 R Forearm", "RightElbow"})
+    EXPECT_EQ(skeleton_joint_kind(n), "elbow") << n;
+  for (const char* n : {"mixamorig:LeftLeg", "R_Knee", "lowerleg01.L", "shin.L", "Bip01 L Calf"})
+    EXPECT_EQ(skeleton_joint_kind(n), "knee") << n;
+  for (const char* n : {"mixamorig:LeftHand", "L_Wrist", "wrist.L", "hand.R"}) EXPECT_EQ(skeleton_joint_kind(n), "wrist") << n;
+  for (const char* n : {"mixamorig:LeftFoot", "R_Ankle", "foot.L"}) EXPECT_EQ(skeleton_joint_kind(n), "ankle") << n;
+  for (const char* n : {"mixamorig:LeftUpLeg", "mixamorig:LeftHandIndex1", "mixamorig:LeftArm", "L_Shoulder", "Hips",
+                        "mixamorig:LeftToeBase", "upperleg01.L", "thigh.L", "forearm_twist.L"})
+    EXPECT_EQ(skeleton_joint_kind(n), "") << n;
+}
+
+// A skeleton whose elbow lies off the arm is not believed.
+TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
+  BodyLandmarks l;
+  l.crotch = 0.78, l.ankle = 0.1;
+  ArmLandmarks arm;
+  arm.shoulder = Vec3(0.17, 1.35, 0);
+  arm.wrist = Vec3(0.55, 0.95, 0);
+  arm.elbow = arm.shoulder + 0.56 * (arm.wrist - arm.shoulder);
+  l.left_arm = arm;
+  std::vector<std::string> notes;
+  const std::vector<ModelJoint> joints = {{"LeftForeArm", Vec3(0.36, 1.15, 0.2)}, {"LeftLeg", Vec3(0.1, 1.2, 0)}};
+  EXPECT_EQ(landmarks_from_skeleton(l, joints, notes), 0);
+  EXPECT_FALSE(l.left_arm->elbow_from_skeleton);
+  EXPECT_EQ(l.knee, 0.0);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[0].find("LeftForeArm left out: 20.0 cm from the arm's axis"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("not between the ankle and the crotch"), std::string::npos) << notes[1];
 }
 
 // A Mixamo-style skinned glTF: the mesh under an armature node that scales by

@@ -63,6 +63,7 @@ struct ArmLandmarks {
   Vec3 elbow = Vec3::Zero();     // m: 56 % of the way from the shoulder to the wrist
   Vec3 wrist = Vec3::Zero();     // m: the arm's thinnest slice before the hand
   double wrist_girth = 0.0;      // m
+  bool elbow_from_skeleton = false;  // the elbow is the file's elbow joint, not 56 % of the arm
 };
 
 struct BodyLandmarks {
@@ -76,6 +77,8 @@ struct BodyLandmarks {
   double hip = 0.0;         // fullest slice between crotch and waist
   double crotch = 0.0;      // lowest slice whose loop encloses the trunk's centre line
   double ankle = 0.0;       // thinnest slice of a leg at 3–10 % of the height (the foot's top on a mannequin)
+  double knee = 0.0;        // the knee joints of the file's skeleton, mean height; 0 without one (a leg's
+                            // girth has no minimum at the knee: the surface does not show it)
   std::optional<ArmLandmarks> left_arm, right_arm;  // the body's left is +X
 };
 

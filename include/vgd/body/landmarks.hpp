@@ -10,9 +10,11 @@
 // arms held in front of the trunk are not found.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vgd/body/avatar.hpp"
+#include "vgd/body/model_file.hpp"
 #include "vgd/mesh/surface.hpp"
 
 namespace vgd::body {
@@ -33,6 +35,19 @@ mesh::Vec2d trunk_centre(const mesh::SurfaceMesh& upright);
 
 // Landmarks and measurements of an upright body.
 BodyMeasuring measure_body(const mesh::SurfaceMesh& upright);
+
+// The joint a skeleton's bone stands for, from its name as rigs spell it
+// (Mixamo "mixamorig:LeftForeArm", SMPL "L_Elbow", MakeHuman "lowerarm01.L",
+// Rigify "forearm.L", 3ds Max "Bip01 L Forearm"): "elbow", "wrist", "knee",
+// "ankle", or "" for any other bone.
+std::string skeleton_joint_kind(std::string_view bone_name);
+
+// Takes from a file's skeleton (joints in the body's upright frame, m) what
+// the surface cannot show: the elbows (on the arm found, within 8 cm of its
+// axis) and the knees (between ankle and crotch). Says in `notes` what it took
+// and what it refused. Returns how many joints it took.
+int landmarks_from_skeleton(BodyLandmarks& landmarks, const std::vector<ModelJoint>& joints,
+                            std::vector<std::string>& notes);
 
 // The arm segments (left-arm, right-arm) of an upright body from its
 // landmarks and slices: the axis from shoulder to wrist, rings from the

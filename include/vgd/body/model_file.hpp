@@ -26,6 +26,13 @@ struct ModelMesh {
   bool skinned = false;   // it has bones
 };
 
+// A joint of the file's skeleton: a bone of a skinned mesh, at its bind-pose
+// origin (the inverse of its offset matrix), in the frame of `surface`.
+struct ModelJoint {
+  std::string name;  // as the file names it ("mixamorig:LeftForeArm", "L_Elbow", "lowerarm01.L")
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+};
+
 struct ModelFile {
   // Every triangle mesh of the node tree merged into one surface (vertices
   // not welded), each vertex moved by its node's accumulated transform, except
@@ -34,6 +41,7 @@ struct ModelFile {
   // vertices are the bind pose).
   mesh::SurfaceMesh surface;
   std::vector<ModelMesh> meshes;  // those that gave triangles, in surface order
+  std::vector<ModelJoint> joints;  // the skinned meshes' bones, each once (first mesh that has it)
   int dropped = 0;                // faces that were points or lines
   // The file's numeric metadata (FBX's UnitScaleFactor, UpAxis, UpAxisSign, ...).
   std::map<std::string, double> metadata;

@@ -26,6 +26,18 @@ void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
       const aiVector3D p = mt * m->mVertices[v];
       out.surface.vertices.emplace_back(p.x, p.y, p.z);
     }
+    // The bones' bind-pose origins, moved as the vertices are.
+    for (unsigned b = 0; b < m->mNumBones; ++b) {
+      const aiBone* bone = m->mBones[b];
+      const std::string name = bone->mName.C_Str();
+      bool seen = false;
+      for (const auto& j : out.joints) seen = seen || j.name == name;
+      if (seen) continue;
+      aiMatrix4x4 bind = bone->mOffsetMatrix;  // mesh space -> bone space
+      bind.Inverse();
+      const aiVector3D p = mt * (bind * aiVector3D(0, 0, 0));
+      out.joints.push_back({name, Eigen::Vector3d(p.x, p.y, p.z)});
+    }
     bool any = false;
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];

@@ -11,7 +11,7 @@
 
 namespace vgd::body::assimp_module {
 
-inline constexpr int kApiVersion = 2;
+inline constexpr int kApiVersion = 3;
 
 struct Api {
   int version = kApiVersion;
