@@ -224,6 +224,11 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", garment_names.c_str(), c.stop_message.c_str());
       return vgd::cli::kFailed;
     }
+    if (!common.quiet) {
+      for (const auto& f : c.failures())
+        std::fprintf(stderr, "vgd: check failed: %s: %s\n", f.kind.c_str(), f.detail.c_str());
+      for (const auto& w : c.warnings()) std::fprintf(stderr, "vgd: warning: %s: %s\n", w.kind.c_str(), w.detail.c_str());
+    }
     return c.passed() ? vgd::cli::kOk : vgd::cli::kCheckFailed;
   }};
 }};

@@ -109,6 +109,18 @@ std::vector<Failure> Certificate::failures() const {
   return out;
 }
 
+std::vector<Failure> Certificate::warnings() const {
+  std::vector<Failure> out;
+  if (body_through_cloth > 0) {
+    std::string where;
+    for (const auto& [piece, n] : body_through_by_piece) where += (where.empty() ? "" : ", ") + piece + " " + std::to_string(n);
+    out.push_back({"body through cloth", "the body passes through " + std::to_string(body_through_cloth) +
+                                             " cloth triangles, up to " + format_fixed(1000 * max_body_through, 2) +
+                                             " mm inside it between their particles (" + where + ")"});
+  }
+  return out;
+}
+
 bool Certificate::passed() const { return failures().empty(); }
 
 void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_distance, double contact_distance,
@@ -160,8 +172,30 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
       if (pb < pa) std::swap(pa, pb);
       ++out.crossings_by_pieces[pa + " / " + pb];
     }
+    // The body through the cloth: a triangle whose centre or edge midpoints
+    // lie inside the body deeper than the particles may (a body ridge poking
+    // between particles that are all outside it).
+    out.body_through_by_piece.clear();
+    out.body_through_cloth = 0;
+    out.max_body_through = 0;
+    if (scene.avatar) {
+      std::vector<Vec3> probes;
+      probes.reserve(4 * sewn.size());
+      for (const auto& t : sewn) {
+        const Vec3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+        probes.push_back((a + b + c) / 3.0);
+        probes.push_back(0.5 * (a + b)), probes.push_back(0.5 * (b + c)), probes.push_back(0.5 * (c + a));
+      }
+      const std::vector<double> depth = mesh::penetration_depths(scene.avatar->surface, probes);
+      for (std::size_t t = 0; t < sewn.size(); ++t) {
+        const double d = std::max({depth[4 * t], depth[4 * t + 1], depth[4 * t + 2], depth[4 * t + 3]});
+        out.max_body_through = std::max(out.max_body_through, d);
+        if (d > out.penetration_limit) ++out.body_through_cloth, ++out.body_through_by_piece[piece_of(original[t])];
+      }
+    }
   } else {
     out.triangle_intersections = -1;
+    out.body_through_cloth = -1;
   }
 
   // Seams: a pair is closed when its two particles are one (merged) or as close.
@@ -265,6 +299,11 @@ std::string to_json(const Certificate& c) {
   j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
                       {"deepest_at_m", json::array({c.deepest_at.x(), c.deepest_at.y(), c.deepest_at.z()})},
                       {"limit_m", c.penetration_limit}};
+  if (c.body_through_cloth >= 0) {
+    j["body_through_cloth"] = c.body_through_cloth;
+    j["body_through_cloth_max_m"] = c.max_body_through;
+    if (!c.body_through_by_piece.empty()) j["body_through_cloth_by_piece"] = c.body_through_by_piece;
+  }
   if (c.triangle_intersections >= 0) {
     j["triangle_intersections"] = c.triangle_intersections;
     if (!c.crossings_by_pieces.empty()) j["triangle_intersections_by_pieces"] = c.crossings_by_pieces;
@@ -291,6 +330,9 @@ std::string to_json(const Certificate& c) {
   json failures = json::array();
   for (const auto& f : c.failures()) failures.push_back({{"class", f.kind}, {"detail", f.detail}});
   j["failures"] = failures;
+  json warnings = json::array();
+  for (const auto& f : c.warnings()) warnings.push_back({{"class", f.kind}, {"detail", f.detail}});
+  j["warnings"] = warnings;
   j["contact"] = {{"particles", c.contact.particles}, {"area_m2", c.contact.area}, {"force_n", c.contact.force},
                   {"pressure_pa", to_json(c.contact.pressure)}};
   j["kinetic_energy"] = {{"unit", "J per particle"}, {"times_s", c.times}, {"values", c.kinetic_energy}};

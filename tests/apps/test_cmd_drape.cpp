@@ -423,6 +423,36 @@ TEST(CliDrape, ATooSmallSkirtIsNotPassed) {
   EXPECT_TRUE(named) << c["failures"].dump();
 }
 
+// A T-shirt two sizes too small (42 on the size-46 mannequin): the fit check
+// says so before the run, and the certificate measures where the body shows
+// through the stretched cloth between its particles, per piece, as a warning.
+// The skirt on the mannequin of its size leaves nothing of the body showing.
+TEST(CliDrape, ATightTShirtShowsTheBodyThroughItsCloth) {
+  const auto dir = scratch_dir("drape-tight-tshirt");
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "46", "-o", (dir / "m46.obj").string(), "-q"}).code, 0);
+  const auto out = dir / "drape";
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--size", "42", "--avatar",
+                          (dir / "m46.obj").string(), "-o", out.string(), "--time-limit", "8"});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  EXPECT_NE(r.err.find("too small for the body: size 42 is cut for a bust of 96 cm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning: body through cloth"), std::string::npos) << r.err;
+  const json c = read_json(out / "certificate.json");
+  EXPECT_GT(c["body_through_cloth"].get<int>(), 10);
+  EXPECT_GT(c["body_through_cloth_max_m"].get<double>(), 1e-3);
+  EXPECT_GT(c["body_through_cloth_by_piece"]["FRONT_42"].get<int>(), 0) << c["body_through_cloth_by_piece"].dump();
+  ASSERT_EQ(c["warnings"].size(), 1u);
+  EXPECT_EQ(c["warnings"][0]["class"], "body through cloth");
+
+  const auto skirt = dir / "skirt";
+  ASSERT_EQ(run_vgd({"drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "-o", skirt.string(),
+                     "--time-limit", "8", "-q"})
+                .code,
+            0);
+  const json k = read_json(skirt / "certificate.json");
+  EXPECT_EQ(k["body_through_cloth"].get<int>(), 0);
+  EXPECT_TRUE(k["warnings"].empty());
+}
+
 // The smallest size: the armpit's corner pair (four pieces meet there) hung
 // 2.7 cm open with every other pair sewn, each particle held on its own side
 // of the crease, and the drape never came to rest; the seam's last stalled

@@ -70,6 +70,24 @@ TEST(Certificate, EachFailureIsNamedWithItsFigures) {
   EXPECT_EQ(classes(c), "error|");
 }
 
+// The body showing through between particles is measured and named, per
+// piece, as a warning: it does not fail the drape.
+TEST(Certificate, TheBodyThroughTheClothIsAWarning) {
+  Certificate c = good();
+  c.body_through_cloth = 0;
+  EXPECT_TRUE(c.warnings().empty());
+  c.body_through_cloth = 12;
+  c.max_body_through = 0.0061;
+  c.body_through_by_piece["FRONT_38"] = 9;
+  c.body_through_by_piece["LEFT_SLEEVE_38"] = 3;
+  const auto w = c.warnings();
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].kind, "body through cloth");
+  EXPECT_NE(w[0].detail.find("12 cloth triangles, up to 6.10 mm"), std::string::npos) << w[0].detail;
+  EXPECT_NE(w[0].detail.find("FRONT_38 9, LEFT_SLEEVE_38 3"), std::string::npos) << w[0].detail;
+  EXPECT_TRUE(c.passed());
+}
+
 // The limits are the certificate's own: just within passes, just beyond fails.
 TEST(Certificate, LimitsAreInclusive) {
   Certificate c = good();
