@@ -265,23 +265,21 @@ TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
     }
 }
 
-// A body brought from elsewhere: the size-38 mannequin written the way
-// Blender stores it (centimetres, Z up, front towards −Y), read back with
-// every decision automatic. The importer finds its unit, up axis, facing,
-// landmarks and arms; the T-shirt's sleeves go on the arms it found, and the
-// drape passes every check, as on the mannequin itself.
-TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
-  const auto dir = scratch_dir("drape-imported-body");
-  ASSERT_EQ(run_vgd({"mannequin", "--size", "38", "-o", (dir / "m38.obj").string(), "-q"}).code, 0);
-  std::ifstream in(dir / "m38.obj");
-  std::ofstream out(dir / "blender.obj");
+// `in` (OBJ, metres, +Y up, facing +Z) rewritten scaled by `scale` with up
+// `up` (z or y) and facing `facing` (+z or +x, once up is turned to +Y).
+void rewrite_obj(const std::filesystem::path& in_path, const std::filesystem::path& out_path, double scale,
+                 const std::string& up, const std::string& facing) {
+  std::ifstream in(in_path);
+  std::ofstream out(out_path);
   std::string line;
   while (std::getline(in, line)) {
     if (line.rfind("v ", 0) == 0) {
       std::istringstream v(line.substr(2));
       double x, y, z;
       v >> x >> y >> z;
-      out << "v " << 100 * x << ' ' << -100 * z << ' ' << 100 * y << '\n';  // (x, y, z) m -> (x, -z, y) cm
+      if (facing == "+x") std::tie(x, z) = std::pair{z, -x};  // +Z turned to +X about +Y
+      if (up == "z") std::tie(y, z) = std::pair{-z, y};        // +Y turned to +Z about +X
+      out << "v " << scale * x << ' ' << scale * y << ' ' << scale * z << '\n';
     } else if (line.rfind("f ", 0) == 0) {
       std::istringstream f(line.substr(2));
       std::string a;
@@ -290,7 +288,17 @@ TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
       out << '\n';
     }
   }
-  out.close();
+}
+
+// A body brought from elsewhere: the size-38 mannequin written the way
+// Blender stores it (centimetres, Z up, front towards −Y), read back with
+// every decision automatic. The importer finds its unit, up axis, facing,
+// landmarks and arms; the T-shirt's sleeves go on the arms it found, and the
+// drape passes every check, as on the mannequin itself.
+TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
+  const auto dir = scratch_dir("drape-imported-body");
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "38", "-o", (dir / "m38.obj").string(), "-q"}).code, 0);
+  rewrite_obj(dir / "m38.obj", dir / "blender.obj", 100.0, "z", "+z");  // (x, y, z) m -> (x, -z, y) cm
   const auto report = run_vgd({"avatar", "report", (dir / "blender.obj").string(), "--json"});
   ASSERT_EQ(report.code, 0) << report.err;
   const json j = json::parse(report.out);
@@ -327,31 +335,6 @@ struct PosedBody {
 };
 
 void PrintTo(const PosedBody& b, std::ostream* os) { *os << b.name << " + " << b.garment; }
-
-// `in` (OBJ, metres, +Y up, facing +Z) rewritten scaled by `scale` with up
-// `up` (z or y) and facing `facing` (+z or +x, once up is turned to +Y).
-void rewrite_obj(const std::filesystem::path& in_path, const std::filesystem::path& out_path, double scale,
-                 const std::string& up, const std::string& facing) {
-  std::ifstream in(in_path);
-  std::ofstream out(out_path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) == 0) {
-      std::istringstream v(line.substr(2));
-      double x, y, z;
-      v >> x >> y >> z;
-      if (facing == "+x") std::tie(x, z) = std::pair{z, -x};  // +Z turned to +X about +Y
-      if (up == "z") std::tie(y, z) = std::pair{-z, y};        // +Y turned to +Z about +X
-      out << "v " << scale * x << ' ' << scale * y << ' ' << scale * z << '\n';
-    } else if (line.rfind("f ", 0) == 0) {
-      std::istringstream f(line.substr(2));
-      std::string a;
-      out << 'f';
-      while (f >> a) out << ' ' << a.substr(0, a.find('/'));
-      out << '\n';
-    }
-  }
-}
 
 class CliDrapePosed : public ::testing::TestWithParam<PosedBody> {};
 

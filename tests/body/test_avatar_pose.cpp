@@ -197,30 +197,17 @@ TEST(ImportedBodyWithHelpers, HelpersAndLoosePartsAreLeftOut) {
   EXPECT_NE(notes.find("loose part"), std::string::npos) << notes;
 }
 
-// A skinned glTF whose skeleton holds Mixamo's joints: the elbows and knees
-// come from it (the surface shows neither), moved with the body into vgd's
-// frame; fingers, hips and shoulders are not taken. The rig's elbows sit at
-// half the arm, not at the 56 % the surface rule would give.
-TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
-  const Avatar& body = mannequin('A');
-  const auto& s = body.surface;
-  const auto dir = test::scratch_dir("avatar_skeleton");
-  struct Joint {
-    std::string name;
-    Vec3 p;
-  };
-  const BodySegment* la = body.segment("left-arm");
-  const BodySegment* ra = body.segment("right-arm");
-  ASSERT_TRUE(la && ra);
-  const double knee_y = mannequin_landmarks(BodyMeasurements{}).knee;
-  const std::vector<Joint> joints = {
-      {"mixamorig:Hips", Vec3(0, 0.9, 0)},
-      {"mixamorig:LeftForeArm", la->start + 0.5 * la->length * la->axis},
-      {"mixamorig:RightForeArm", ra->start + 0.5 * ra->length * ra->axis},
-      {"mixamorig:LeftHandIndex1", la->start + 1.05 * la->length * la->axis},
-      {"mixamorig:LeftLeg", Vec3(0.09, knee_y, 0.0)},
-      {"mixamorig:RightLeg", Vec3(-0.09, knee_y, 0.0)},
-  };
+struct GltfJoint {
+  std::string name;
+  Vec3 p;  // m, in the mesh's bind pose
+};
+
+// `path` (.gltf, with its .bin beside it): `s` as one skinned mesh "Body" under
+// a node "Armature" with the JSON transform members `armature`, skinned to
+// `joints` (children of the armature at their positions; inverse bind
+// matrices the translations to them), every vertex weighted to the first.
+void write_skinned_gltf(const std::filesystem::path& path, const mesh::SurfaceMesh& s,
+                        const std::vector<GltfJoint>& joints, const std::string& armature) {
   std::string bin;
   auto put = [&](const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); };
   for (const auto& v : s.vertices) {
@@ -229,12 +216,12 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
   }
   const std::size_t joints_at = bin.size();
   for (int i = 0; i < s.num_vertices(); ++i) {
-    const unsigned char j[4] = {0, 1, 2, 4};  // every joint carries some weight: each becomes a bone
+    const unsigned char j[4] = {0, 0, 0, 0};
     put(j, sizeof j);
   }
   const std::size_t weights_at = bin.size();
   for (int i = 0; i < s.num_vertices(); ++i) {
-    const float w[4] = {0.7f, 0.1f, 0.1f, 0.1f};
+    const float w[4] = {1, 0, 0, 0};
     put(w, sizeof w);
   }
   const std::size_t index_at = bin.size();
@@ -243,20 +230,21 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
                                 static_cast<std::uint32_t>(t[2])};
     put(q, sizeof q);
   }
-  const std::size_t ibm_at = bin.size();  // inverse bind matrices: translations to each joint's origin
+  const std::size_t ibm_at = bin.size();
   for (const auto& j : joints)
     for (int k = 0; k < 16; ++k) {
       float f = k % 5 == 0 ? 1.0f : 0.0f;
-      if (k >= 12 && k < 15) f = static_cast<float>(-j.p[k - 12]);
+      if (k >= 12 && k < 15) f = static_cast<float>(-j.p[k - 12]);  // column-major: the translation
       put(&f, sizeof f);
     }
-  write_file_atomic(dir / "rigged.bin", bin);
+  const std::string bin_name = path.stem().string() + ".bin";
+  write_file_atomic(path.parent_path() / bin_name, bin);
   std::string nodes = R"({"name": "Armature", "children": [1)";
   for (std::size_t k = 0; k < joints.size(); ++k) nodes += ", " + std::to_string(k + 2);
-  nodes += R"(], "scale": [0.01, 0.01, 0.01]}, {"name": "Body", "mesh": 0, "skin": 0})";
+  nodes += "], " + armature + R"(}, {"name": "Body", "mesh": 0, "skin": 0})";
   std::string skin = "[";
   for (std::size_t k = 0; k < joints.size(); ++k) {
-    char t[160];
+    char t[200];
     std::snprintf(t, sizeof t, R"(, {"name": "%s", "translation": [%g, %g, %g]})", joints[k].name.c_str(), joints[k].p.x(),
                   joints[k].p.y(), joints[k].p.z());
     nodes += t;
@@ -272,7 +260,7 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
   "nodes": [%s],
   "skins": [{"joints": %s, "inverseBindMatrices": 4}],
   "meshes": [{"name": "Body", "primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}, "indices": 3}]}],
-  "buffers": [{"uri": "rigged.bin", "byteLength": %zu}],
+  "buffers": [{"uri": "%s", "byteLength": %zu}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": %zu},
     {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
@@ -288,11 +276,35 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
     {"bufferView": 4, "componentType": 5126, "count": %zu, "type": "MAT4"}
   ]
 })",
-                nodes.c_str(), skin.c_str(), bin.size(), joints_at, joints_at, weights_at - joints_at, weights_at,
-                index_at - weights_at, index_at, ibm_at - index_at, ibm_at, bin.size() - ibm_at, s.num_vertices(),
-                b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z(), s.num_vertices(), s.num_vertices(),
-                3 * s.num_triangles(), joints.size());
-  write_file_atomic(dir / "rigged.gltf", gltf);
+                nodes.c_str(), skin.c_str(), bin_name.c_str(), bin.size(), joints_at, joints_at, weights_at - joints_at,
+                weights_at, index_at - weights_at, index_at, ibm_at - index_at, ibm_at, bin.size() - ibm_at,
+                s.num_vertices(), b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z(), s.num_vertices(),
+                s.num_vertices(), 3 * s.num_triangles(), joints.size());
+  write_file_atomic(path, gltf);
+}
+
+// A skinned glTF whose skeleton holds Mixamo's joints: the elbows and knees
+// come from it (the surface shows neither), moved with the body into vgd's
+// frame; fingers, hips and shoulders are not taken. The rig's elbows sit at
+// half the arm, not at the 56 % the surface rule would give.
+TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
+  const Avatar& body = mannequin('A');
+  const auto& s = body.surface;
+  const auto dir = test::scratch_dir("avatar_skeleton");
+  const BodySegment* la = body.segment("left-arm");
+  const BodySegment* ra = body.segment("right-arm");
+  ASSERT_TRUE(la && ra);
+  const double knee_y = mannequin_landmarks(BodyMeasurements{}).knee;
+  const std::vector<GltfJoint> joints = {
+      {"mixamorig:Hips", Vec3(0, 0.9, 0)},
+      {"mixamorig:LeftForeArm", la->start + 0.5 * la->length * la->axis},
+      {"mixamorig:RightForeArm", ra->start + 0.5 * ra->length * ra->axis},
+      {"mixamorig:LeftHandIndex1", la->start + 1.05 * la->length * la->axis},
+      {"mixamorig:LeftLeg", Vec3(0.09, knee_y, 0.0)},
+      {"mixamorig:RightLeg", Vec3(-0.09, knee_y, 0.0)},
+  };
+  write_skinned_gltf(dir / "rigged.gltf", s, joints, R"("scale": [0.01, 0.01, 0.01])");
+  const mesh::Box3 b = mesh::bounding_box(s);
   AvatarReport r;
   const Avatar got = import_avatar(dir / "rigged.gltf", {}, &r);
   ASSERT_TRUE(got.landmarks);
@@ -347,67 +359,9 @@ TEST(ImportedBodySkinned, AnArmatureTransformIsIgnored) {
   const Avatar& body = mannequin('A');
   const auto& s = body.surface;
   const auto dir = test::scratch_dir("avatar_skinned");
-  std::string bin;
-  auto put = [&](const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); };
-  for (const auto& v : s.vertices) {
-    const float f[3] = {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
-    put(f, sizeof f);
-  }
-  const std::size_t joints_at = bin.size();
-  for (int i = 0; i < s.num_vertices(); ++i) {
-    const unsigned char j[4] = {0, 0, 0, 0};
-    put(j, sizeof j);
-  }
-  const std::size_t weights_at = bin.size();
-  for (int i = 0; i < s.num_vertices(); ++i) {
-    const float w[4] = {1, 0, 0, 0};
-    put(w, sizeof w);
-  }
-  const std::size_t index_at = bin.size();
-  for (const auto& t : s.triangles) {
-    const std::uint32_t q[3] = {static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
-                                static_cast<std::uint32_t>(t[2])};
-    put(q, sizeof q);
-  }
-  const std::size_t ibm_at = bin.size();  // the joint's inverse bind matrix: identity
-  for (int k = 0; k < 16; ++k) {
-    const float f = k % 5 == 0 ? 1.0f : 0.0f;
-    put(&f, sizeof f);
-  }
-  write_file_atomic(dir / "skinned.bin", bin);
+  write_skinned_gltf(dir / "skinned.gltf", s, {{"Hips", Vec3::Zero()}},
+                     R"("scale": [0.01, 0.01, 0.01], "rotation": [-0.7071068, 0, 0, 0.7071068])");
   const mesh::Box3 b = mesh::bounding_box(s);
-  char gltf[4096];
-  std::snprintf(gltf, sizeof gltf, R"({
-  "asset": {"version": "2.0"},
-  "scene": 0,
-  "scenes": [{"nodes": [0]}],
-  "nodes": [
-    {"name": "Armature", "children": [1, 2], "scale": [0.01, 0.01, 0.01], "rotation": [-0.7071068, 0, 0, 0.7071068]},
-    {"name": "Body", "mesh": 0, "skin": 0},
-    {"name": "Hips"}
-  ],
-  "skins": [{"joints": [2], "inverseBindMatrices": 4}],
-  "meshes": [{"name": "Body", "primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}, "indices": 3}]}],
-  "buffers": [{"uri": "skinned.bin", "byteLength": %zu}],
-  "bufferViews": [
-    {"buffer": 0, "byteOffset": 0, "byteLength": %zu},
-    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
-    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
-    {"buffer": 0, "byteOffset": %zu, "byteLength": %zu},
-    {"buffer": 0, "byteOffset": %zu, "byteLength": 64}
-  ],
-  "accessors": [
-    {"bufferView": 0, "componentType": 5126, "count": %d, "type": "VEC3", "min": [%g, %g, %g], "max": [%g, %g, %g]},
-    {"bufferView": 1, "componentType": 5121, "count": %d, "type": "VEC4"},
-    {"bufferView": 2, "componentType": 5126, "count": %d, "type": "VEC4"},
-    {"bufferView": 3, "componentType": 5125, "count": %d, "type": "SCALAR"},
-    {"bufferView": 4, "componentType": 5126, "count": 1, "type": "MAT4"}
-  ]
-})",
-                bin.size(), joints_at, joints_at, weights_at - joints_at, weights_at, index_at - weights_at, index_at,
-                ibm_at - index_at, ibm_at, s.num_vertices(), b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(),
-                b.max.z(), s.num_vertices(), s.num_vertices(), 3 * s.num_triangles());
-  write_file_atomic(dir / "skinned.gltf", gltf);
   AvatarReport r;
   const Avatar got = import_avatar(dir / "skinned.gltf", {}, &r);
   EXPECT_EQ(r.unit, "m") << r.unit_reason;
