@@ -668,9 +668,18 @@ struct Studio::Impl {
       const auto& c = *cert;
       int pairs = 0, closed = 0;
       for (const auto& st : c.seams) pairs += st.pairs, closed += st.closed;
-      ImGui::Text("%s after %.2f s (%.1f s wall), %s; seams %d/%d; %d crossings; penetration %.2f mm",
+      const auto warnings = c.warnings();
+      ImGui::Text("%s after %.2f s (%.1f s wall), %s%s; seams %d/%d; %d crossings; penetration %.2f mm",
                   c.stop_reason.c_str(), c.simulated_s, c.wall_s, c.passed() ? "checks passed" : "a check failed",
-                  closed, pairs, c.triangle_intersections, c.max_penetration * 1000);
+                  warnings.empty() ? "" : (", " + std::to_string(warnings.size()) + " warning").c_str(), closed, pairs,
+                  c.triangle_intersections, c.max_penetration * 1000);
+      track("certificate");
+      if (ImGui::IsItemHovered()) {
+        std::string all;
+        for (const auto& f : c.failures()) all += "failed: " + f.kind + ": " + f.detail + "\n";
+        for (const auto& w : warnings) all += "warning: " + w.kind + ": " + w.detail + "\n";
+        if (!all.empty()) ImGui::SetTooltip("%s", all.c_str());
+      }
     }
   }
 
