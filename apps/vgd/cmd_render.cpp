@@ -37,6 +37,7 @@ namespace render = vgd::render;
 struct Options {
   std::string input, avatar, output = "previews", views = "front,back,left,right,three-quarter", size = "1024x1024";
   std::string colour, body_colour, fit = "body", look;
+  std::string unit = "auto", up = "auto", facing = "auto";  // --avatar's, as vgd drape takes them
   bool piece_colours = false, no_floor = false, no_shadow = false, no_texture = false;
   int supersample = 3, frame = -1;
 };
@@ -139,8 +140,12 @@ std::vector<render::Mesh> meshes_of_trj(const fs::path& file, int frame, const v
 
 // An avatar file through the same import as `vgd drape --avatar` (normalised to
 // vgd's frame), so a garment draped on it lands where it was draped.
-render::Mesh body_mesh(const fs::path& file) {
-  const auto avatar = vgd::body::import_avatar(file);
+// The importer's decisions and notes are printed, as vgd drape prints them.
+render::Mesh body_mesh(const fs::path& file, const Options& o, const vgd::cli::Common& common) {
+  vgd::body::AvatarImportOptions io;
+  io.unit = o.unit, io.up = o.up, io.facing = o.facing;
+  const auto avatar = vgd::body::import_avatar(file, io);
+  for (const auto& n : avatar.notes) vgd::cli::say(common, "vgd: " + file.string() + ": " + n);
   render::Mesh m;
   m.name = "body";
   m.kind = render::MeshKind::body;
@@ -267,7 +272,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   }
   const render::Colour body = o.body_colour.empty() ? render::kBody : parse_colour_option("--body-colour", o.body_colour);
   if (!o.avatar.empty()) {
-    scene.meshes.push_back(body_mesh(o.avatar));
+    scene.meshes.push_back(body_mesh(o.avatar, o, common));
   } else if (!avatar_obj.empty()) {
     for (auto& m : meshes_of_obj(avatar_obj, render::MeshKind::body)) scene.meshes.push_back(std::move(m));
   }
@@ -286,6 +291,11 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada), normalised as vgd "
                                          "drape --avatar does; default: INPUT/avatar.obj when INPUT is a folder");
+  sub->add_option("--unit", o->unit, "--avatar's unit: auto (from the file, else the body's height), m, dm, cm, mm, in")
+      ->capture_default_str();
+  sub->add_option("--up", o->up, "--avatar's up axis: auto (from the body), x, y, z, -x, -y, -z")->capture_default_str();
+  sub->add_option("--facing", o->facing, "Where --avatar faces once up is +Y: auto (from the feet), +z, -z, +x, -x")
+      ->capture_default_str();
   sub->add_option("--views", o->views, "Comma-separated views: front, back, left, right, three-quarter, or all")
       ->capture_default_str();
   sub->add_option("--size", o->size, "Image size, WIDTHxHEIGHT pixels (or one number, square)")->capture_default_str();

@@ -70,6 +70,25 @@ TEST(CmdRender, AGarmentObjWithAnAvatarAndAColour) {
   EXPECT_GT(p[1], p[0] + 40) << "green expected";
 }
 
+// --avatar goes through the importer as vgd drape's does: its decisions are
+// printed, --unit/--up/--facing override them, and a unit that makes no
+// human of the body is refused with the file named.
+TEST(CmdRender, AnAvatarsImportIsSaidAndCanBeOverridden) {
+  const auto dir = drape_folder("cmd_render_avatar_notes");
+  const auto avatar = (dir / "avatar.obj").string();
+  const auto r = test::run_vgd({"render", (dir / "garment.obj").string(), "--avatar", avatar, "--unit", "m", "--up",
+                                "y", "--views", "front", "--size", "48", "-o", (dir / "out").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("avatar.obj: unit m (given)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("avatar.obj: up y (given)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("avatar.obj: facing +z ("), std::string::npos) << r.err;
+  const auto bad = test::run_vgd({"render", (dir / "garment.obj").string(), "--avatar", avatar, "--unit", "mm",
+                                  "--views", "front", "--size", "48", "-o", (dir / "out2").string()});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("avatar.obj"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("not a human body"), std::string::npos) << bad.err;
+}
+
 TEST(CmdRender, BadViewsSizesColoursAndInputsAreRefused) {
   const auto dir = drape_folder("cmd_render_bad");
   const auto out = (dir / "o").string();
