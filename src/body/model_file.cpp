@@ -3,6 +3,13 @@
 #include "vgd/body/model_file.hpp"
 
 #include <dlfcn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
 
 #include <cstdlib>
 #include <mutex>
@@ -61,12 +68,153 @@ const assimp_module::Api& api(const std::string& file) {
   return *found;
 }
 
+// The child's answer: assimp's reason (empty on success), then the model.
+// Native byte order: the two processes are the same program.
+struct Writer {
+  std::string out;
+  template <class T>
+  void pod(const T& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  void str(const std::string& s) { pod(static_cast<std::uint64_t>(s.size())), out += s; }
+};
+struct Reader {
+  const std::string& in;
+  std::size_t at = 0;
+  bool ok = true;
+  template <class T>
+  T pod() {
+    T v{};
+    if (!ok || in.size() - at < sizeof v) return ok = false, v;
+    std::memcpy(&v, in.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
+  }
+  std::string str() {
+    const auto n = pod<std::uint64_t>();
+    if (!ok || in.size() - at < n) return ok = false, std::string();
+    std::string s = in.substr(at, n);
+    at += n;
+    return s;
+  }
+  // A count of items of at least `each` bytes that the rest can hold.
+  std::uint64_t count(std::size_t each) {
+    const auto n = pod<std::uint64_t>();
+    if (ok && n > (in.size() - at) / std::max<std::size_t>(each, 1)) ok = false;
+    return ok ? n : 0;
+  }
+};
+
+std::string encode(const std::string& why, const ModelFile& m) {
+  Writer w;
+  w.str(why);
+  w.pod(static_cast<std::uint64_t>(m.surface.vertices.size()));
+  for (const auto& v : m.surface.vertices) w.pod(v.x()), w.pod(v.y()), w.pod(v.z());
+  w.pod(static_cast<std::uint64_t>(m.surface.triangles.size()));
+  for (const auto& t : m.surface.triangles) w.pod(t[0]), w.pod(t[1]), w.pod(t[2]);
+  w.pod(static_cast<std::uint64_t>(m.meshes.size()));
+  for (const auto& mm : m.meshes) {
+    w.str(mm.name), w.str(mm.node);
+    w.pod(mm.first_vertex), w.pod(mm.vertices), w.pod(mm.first_triangle), w.pod(mm.triangles), w.pod(mm.skinned);
+  }
+  w.pod(static_cast<std::uint64_t>(m.joints.size()));
+  for (const auto& j : m.joints) w.str(j.name), w.pod(j.position.x()), w.pod(j.position.y()), w.pod(j.position.z());
+  w.pod(m.dropped);
+  w.pod(static_cast<std::uint64_t>(m.metadata.size()));
+  for (const auto& [k, v] : m.metadata) w.str(k), w.pod(v);
+  return std::move(w.out);
+}
+
+bool decode(const std::string& bytes, std::string& why, ModelFile& m) {
+  Reader r{bytes};
+  why = r.str();
+  m.surface.vertices.resize(r.count(3 * sizeof(double)));
+  for (auto& v : m.surface.vertices) {
+    const double x = r.pod<double>(), y = r.pod<double>(), z = r.pod<double>();
+    v = Eigen::Vector3d(x, y, z);
+  }
+  m.surface.triangles.resize(r.count(3 * sizeof(int)));
+  for (auto& t : m.surface.triangles) t[0] = r.pod<int>(), t[1] = r.pod<int>(), t[2] = r.pod<int>();
+  m.meshes.resize(r.count(2 * sizeof(std::uint64_t)));
+  for (auto& mm : m.meshes) {
+    mm.name = r.str(), mm.node = r.str();
+    mm.first_vertex = r.pod<int>(), mm.vertices = r.pod<int>(), mm.first_triangle = r.pod<int>();
+    mm.triangles = r.pod<int>(), mm.skinned = r.pod<bool>();
+  }
+  m.joints.resize(r.count(sizeof(std::uint64_t)));
+  for (auto& j : m.joints) {
+    j.name = r.str();
+    const double x = r.pod<double>(), y = r.pod<double>(), z = r.pod<double>();
+    j.position = Eigen::Vector3d(x, y, z);
+  }
+  m.dropped = r.pod<int>();
+  const auto n = r.count(sizeof(std::uint64_t));
+  for (std::uint64_t i = 0; i < n && r.ok; ++i) {
+    std::string k = r.str();
+    m.metadata[k] = r.pod<double>();
+  }
+  return r.ok && r.at == bytes.size();
+}
+
+bool write_all(int fd, const std::string& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
 }  // namespace
 
 ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options) {
   const std::string file = path.string();
+  const assimp_module::Api& a = api(file);
+  // assimp runs in a child process: some damaged files make it abort or
+  // crash (an assertion in its post-processing on a mangled PLY, found by
+  // fuzzing), which must not take the studio or a batch run down with it.
+  // The child sends back the model (or assimp's reason) through a pipe.
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error(file, "", std::string("cannot read it: pipe: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]), ::close(fds[1]);
+    throw Error(file, "", std::string("cannot read it: fork: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    int code = 0;
+    try {
+      ModelFile out;
+      const std::string why = a.read(path, options, out);
+      const std::string bytes = encode(why, out);
+      code = write_all(fds[1], bytes) ? 0 : 3;
+    } catch (...) {
+      code = 4;
+    }
+    ::_exit(code);
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n > 0) bytes.append(buf, static_cast<std::size_t>(n));
+    else if (n == 0 || errno != EINTR) break;
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw Error(file, "", "not a 3-D model vgd can read: assimp crashed reading it (signal " +
+                              std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status)) +
+                              "): the file is damaged or uses what assimp cannot read");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Error(file, "", "cannot read it: the reading process failed (exit " + std::to_string(WEXITSTATUS(status)) + ")");
   ModelFile out;
-  const std::string why = api(file).read(path, options, out);
+  std::string why;
+  if (!decode(bytes, why, out)) throw Error(file, "", "cannot read it: the reading process sent back an incomplete model");
   if (!why.empty())
     throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + why);
   return out;
