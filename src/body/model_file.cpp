@@ -3,10 +3,13 @@
 #include "vgd/body/model_file.hpp"
 
 #include <dlfcn.h>
+#include <poll.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
@@ -14,9 +17,11 @@
 #include <cstdlib>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "assimp/module_api.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
 
 namespace vgd::body {
 
@@ -183,12 +188,18 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
   }
   if (pid == 0) {
     ::close(fds[0]);
+    // The parent's crash handlers (a fuzzer's, a debugger's) are not the
+    // child's: a crash in assimp ends the child, and the parent reports it.
+    for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGILL, SIGFPE}) std::signal(sig, SIG_DFL);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // no reader left spinning when the caller is gone
+    if (::getppid() == 1) ::_exit(5);    // the caller died before the line above
     int code = 0;
     try {
       ModelFile out;
       const std::string why = a.read(path, options, out);
       const std::string bytes = encode(why, out);
       code = write_all(fds[1], bytes) ? 0 : 3;
+      ::close(fds[1]);  // the caller goes on at once; this process's teardown is not its wait
     } catch (...) {
       code = 4;
     }
@@ -197,27 +208,51 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
   ::close(fds[1]);
   std::string bytes;
   char buf[1 << 16];
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(options.time_limit_s);
+  bool late = false;
   for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      late = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
     const ssize_t n = ::read(fds[0], buf, sizeof buf);
     if (n > 0) bytes.append(buf, static_cast<std::size_t>(n));
     else if (n == 0 || errno != EINTR) break;
   }
   ::close(fds[0]);
+  if (late) ::kill(pid, SIGKILL);
+  ModelFile out;
+  std::string why;
+  if (!late && decode(bytes, why, out)) {
+    // A whole answer: the child is done but for its exit, which can take tens
+    // of milliseconds (unmapping what assimp allocated); it is reaped aside.
+    std::thread([pid] {
+      int st = 0;
+      while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+      }
+    }).detach();
+    if (!why.empty())
+      throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + why);
+    return out;
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  if (late)
+    throw Error(file, "", "not read: assimp had not finished reading it after " +
+                              format_double(options.time_limit_s) + " s (a damaged file it loops on, or a huge one)");
   if (WIFSIGNALED(status))
     throw Error(file, "", "not a 3-D model vgd can read: assimp crashed reading it (signal " +
                               std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status)) +
                               "): the file is damaged or uses what assimp cannot read");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw Error(file, "", "cannot read it: the reading process failed (exit " + std::to_string(WEXITSTATUS(status)) + ")");
-  ModelFile out;
-  std::string why;
-  if (!decode(bytes, why, out)) throw Error(file, "", "cannot read it: the reading process sent back an incomplete model");
-  if (!why.empty())
-    throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + why);
-  return out;
+  throw Error(file, "", "cannot read it: the reading process sent back an incomplete model");
 }
 
 void write_model_file(const mesh::SurfaceMesh& surface, const std::vector<Eigen::Vector3d>& normals,

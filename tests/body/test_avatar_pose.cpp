@@ -5,6 +5,7 @@
 // files that are no body at all get an error that says what is wrong.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/body/landmarks.hpp"
 #include "vgd/body/mannequin.hpp"
+#include "vgd/body/model_file.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/units.hpp"
@@ -428,6 +430,20 @@ TEST(ImportedBodyErrors, AFileThatCrashesAssimpIsAnErrorNotACrash) {
   write_file_atomic(dir / "body.obj", obj_group(mannequin('A').surface, "body", 1.0, Eigen::Matrix3d::Identity(),
                                                 Vec3::Zero(), 1));
   EXPECT_NO_THROW(import_avatar(dir / "body.obj"));
+}
+
+// A damaged PLY that assimp loops on (found by the fuzz target): the reading
+// process is killed at the time limit and the file refused, saying so.
+TEST(ImportedBodyErrors, AFileAssimpLoopsOnIsRefusedAtTheTimeLimit) {
+  ModelReadOptions o;
+  o.time_limit_s = 1.5;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string e =
+      test::error_of([&] { read_model_file(test::source_dir() / "tests/data/bodies/assimp-loops.ply", o); }).format();
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_NE(e.find("assimp-loops.ply"), std::string::npos) << e;
+  EXPECT_NE(e.find("had not finished reading it after 1.5 s"), std::string::npos) << e;
+  EXPECT_LT(s, 10.0) << "the reader is killed at the limit";
 }
 
 }  // namespace

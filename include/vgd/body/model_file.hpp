@@ -49,10 +49,16 @@ struct ModelFile {
 
 struct ModelReadOptions {
   bool bind_pose = false;  // skinned meshes without their node transform (glTF's rule)
+  // s: assimp reads in a child process; one still reading after this long is
+  // killed and the file refused (assimp loops on some damaged files).
+  double time_limit_s = 30.0;
 };
 
 // Reads `path`; assimp validates the scene it builds before vgd reads it (a
-// file whose scene is inconsistent is refused, not followed). Throws
+// file whose scene is inconsistent is refused, not followed). assimp runs in
+// a child process (fork), which sends the model back through a pipe: a file
+// on which assimp crashes, aborts or hangs past the time limit is refused
+// with what happened, and the caller goes on. Throws
 // vgd::Error naming the file when it cannot be read or understood, with the
 // reason.
 ModelFile read_model_file(const std::filesystem::path& path, const ModelReadOptions& options = {});
