@@ -192,19 +192,13 @@ mesh::SurfaceCheck fill_check(AvatarReport& r, const mesh::SurfaceMesh& s) {
   return c;
 }
 
-double loop_area(const std::vector<mesh::Vec2d>& l) {
-  double a = 0;
-  for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++) a += l[j].x() * l[i].y() - l[i].x() * l[j].y();
-  return std::abs(0.5 * a);
-}
-
 // The outermost loop around p (a model's inner shells may enclose it too), or -1.
 int loop_around(const std::vector<std::vector<mesh::Vec2d>>& loops, const mesh::Vec2d& p) {
   int best = -1;
   double best_area = 0;
   for (std::size_t i = 0; i < loops.size(); ++i)
     if (loops[i].size() > 2 && mesh::point_in_polygon(loops[i], p))
-      if (const double a = loop_area(loops[i]); a > best_area) best_area = a, best = static_cast<int>(i);
+      if (const double a = mesh::loop_area(loops[i]); a > best_area) best_area = a, best = static_cast<int>(i);
   return best;
 }
 
@@ -285,7 +279,7 @@ std::vector<BodySegment> segments_from_slices(const mesh::SurfaceMesh& surface, 
         for (const auto& q : loops[k]) cx += q.x();
         cx /= std::max<std::size_t>(loops[k].size(), 1);
         if ((side == 0) != (cx > centre.x())) continue;
-        if (const double a = loop_area(loops[k]); a > best_area) best_area = a, best = static_cast<int>(k);
+        if (const double a = mesh::loop_area(loops[k]); a > best_area) best_area = a, best = static_cast<int>(k);
       }
       if (best < 0) break;
       s.rings.push_back(ring_of(loops[best], y, 0));
@@ -562,7 +556,7 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
       BodyMeasuring measured = measure_body(av.surface);
       landmarks_from_skeleton(measured.landmarks, joints, measured.notes);
       av.segments = segments_from_slices(av.surface, &measured.landmarks);
-      for (auto& arm : arm_segments(av.surface, measured.landmarks)) av.segments.push_back(std::move(arm));
+      for (const auto& arm : measured.arms) av.segments.push_back(arm);
       av.landmarks = measured.landmarks;
       av.measured = measured.measurements;
       for (const auto& n : measured.notes) r.notes.push_back(n), av.notes.push_back(n);

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <Eigen/Geometry>
 
@@ -24,30 +25,23 @@ Vec2d loop_centroid(const Loop& l) {
   return c / static_cast<double>(std::max<std::size_t>(l.size(), 1));
 }
 
-// The area enclosed by a loop, m² (either orientation).
-double loop_area(const Loop& l) {
-  double a = 0;
-  for (std::size_t i = 0; i < l.size(); ++i) {
-    const auto& p = l[i];
-    const auto& q = l[(i + 1) % l.size()];
-    a += p.x() * q.y() - q.x() * p.y();
-  }
-  return 0.5 * std::abs(a);
-}
+using mesh::loop_area;
 
 // The loop of the slice at y that encloses the trunk's centre line (x, z) =
-// centre, or nullptr.
+// centre, or nullptr. Slices are kept by height (to 1 µm): the chest's
+// passes look at the same heights.
 struct Slices {
   const mesh::SurfaceMesh& m;
   Vec2d centre;
-  std::vector<Loop> loops;
+  std::map<long long, std::vector<Loop>> cache;
   const Loop* central(double y) {
+    auto [it, fresh] = cache.try_emplace(std::llround(y * 1e6));
+    if (fresh) it->second = mesh::slice_horizontal(m, y);
     // The outermost such loop: a model's inner shells (a mouth, a proxy
     // under the skin) may enclose the centre line too.
-    loops = mesh::slice_horizontal(m, y);
     const Loop* best = nullptr;
     double best_area = 0;
-    for (const auto& l : loops)
+    for (const auto& l : it->second)
       if (l.size() > 2 && mesh::point_in_polygon(l, centre))
         if (const double a = loop_area(l); a > best_area) best_area = a, best = &l;
     return best;
@@ -360,8 +354,9 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
     // The chest again, the arms cut out by their tubes: where an arm rests
     // against the flank without a notch between them, the loop's lobes are
     // not cut at the bust and the slices there were skipped (above).
+    out.arms = arm_segments(m, lm);
     std::vector<ArmTube> tubes;
-    for (const auto& seg : arm_segments(m, lm)) {
+    for (const auto& seg : out.arms) {
       double r = 0;
       for (const auto& ring : seg.rings) r = std::max(r, ring.half_width);
       tubes.push_back({seg.start, seg.start + seg.length * seg.axis, r + 0.005});

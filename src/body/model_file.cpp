@@ -179,6 +179,7 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
   // crash (an assertion in its post-processing on a mangled PLY, found by
   // fuzzing), which must not take the studio or a batch run down with it.
   // The child sends back the model (or assimp's reason) through a pipe.
+  const pid_t parent = ::getpid();
   int fds[2];
   if (::pipe(fds) != 0) throw Error(file, "", std::string("cannot read it: pipe: ") + std::strerror(errno));
   const pid_t pid = ::fork();
@@ -192,7 +193,7 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
     // child's: a crash in assimp ends the child, and the parent reports it.
     for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGILL, SIGFPE}) std::signal(sig, SIG_DFL);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // no reader left spinning when the caller is gone
-    if (::getppid() == 1) ::_exit(5);    // the caller died before the line above
+    if (::getppid() != parent) ::_exit(5);  // the caller died before the line above
     int code = 0;
     try {
       ModelFile out;

@@ -269,6 +269,12 @@ std::vector<Vec2d> convex_hull(std::vector<Vec2d> p) {
   return h;
 }
 
+double loop_area(const std::vector<Vec2d>& l) {
+  double a = 0;
+  for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++) a += l[j].x() * l[i].y() - l[i].x() * l[j].y();
+  return std::abs(0.5 * a);
+}
+
 double convex_hull_perimeter(const std::vector<Vec2d>& points) {
   const auto h = convex_hull(points);
   if (h.size() < 2) return 0.0;

@@ -676,7 +676,7 @@ struct Studio::Impl {
       track("certificate");
       if (ImGui::IsItemHovered()) {
         std::string all;
-        for (const auto& f : c.failures()) all += "failed: " + f.kind + ": " + f.detail + "\n";
+        for (const auto& fail : c.failures()) all += "failed: " + fail.kind + ": " + fail.detail + "\n";
         for (const auto& w : warnings) all += "warning: " + w.kind + ": " + w.detail + "\n";
         if (!all.empty()) ImGui::SetTooltip("%s", all.c_str());
       }

@@ -25,6 +25,9 @@ struct BodyMeasuring {
   // not found are 0.
   BodyMeasurements measurements;
   std::vector<std::string> notes;  // what was not found, and why
+  // The arm segments (arm_segments() of these landmarks), empty where no arm
+  // was found. They run shoulder to wrist: a skeleton's elbow does not move them.
+  std::vector<BodySegment> arms;
 };
 
 // The trunk's centre line (x, z), m: the bounding box's x (bodies are

@@ -97,6 +97,8 @@ std::vector<std::vector<Vec2d>> slice_horizontal(const SurfaceMesh& m, double he
 // a tape measure's reading around a slice.
 std::vector<Vec2d> convex_hull(std::vector<Vec2d> points);
 double convex_hull_perimeter(const std::vector<Vec2d>& points);
+// The area a closed polygon encloses, m² (either orientation).
+double loop_area(const std::vector<Vec2d>& loop);
 // Whether p lies inside the closed polygon (even-odd rule).
 bool point_in_polygon(const std::vector<Vec2d>& polygon, const Vec2d& p);
 
