@@ -136,7 +136,21 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     ao.size = gd.size;
     ao.spacing = gd.spacing;
     ao.pieces = gd.pieces;
-    for (const auto& [id, list] : arrangements) ao.copies[id] = static_cast<int>(list.size());
+    for (const auto& [id, list] : arrangements) {
+      ao.copies[id] = static_cast<int>(list.size());
+      for (const auto& a : list) ao.flipped[id].push_back(a.flip);
+    }
+    ao.place = [&](const std::string& pattern_id, int copy, const std::vector<pattern::Vec2>& points) {
+      std::vector<body::Vec3> where;
+      const auto it = arrangements.find(pattern_id);
+      if (it == arrangements.end() || copy >= static_cast<int>(it->second.size())) return where;
+      try {
+        where = place_piece(points, it->second[copy], avatar).points;
+      } catch (const Error&) {
+        where.clear();  // a segment the body lacks: the garment's placement says so later
+      }
+      return where;
+    };
     const Garment g = assemble_garment(doc, ao, out.diagnostics);
     std::vector<Underlayer> under;  // the garments of lower layers placed so far
     for (const auto& [layer, cloth] : layers)

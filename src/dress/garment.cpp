@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -9,6 +10,8 @@
 #include <tuple>
 
 #include "vgd/xvc/arrangement.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
 namespace vgd::dress {
@@ -16,6 +19,7 @@ namespace {
 
 using pattern::ContourPoint;
 using pattern::Vec2;
+using Vec3 = Eigen::Vector3d;
 
 // A HEM resolved on its piece: boundary vertices [a, b] in contour order
 // (cyclic; the edge runs from a on to b), sewn forward (a -> b) or reverse.
@@ -95,17 +99,75 @@ bool strictly_inside(int v, int a, int b, int n) {
 
 }  // namespace
 
-Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& options, Diagnostics& diag) {
-  const std::string file = doc.name();
+namespace {
+
+// The size of each SEAM's patterns (that of its first HEM's PATTERN), in
+// document order.
+std::vector<std::string> seam_sizes(const xvc::Document& doc) {
+  std::vector<std::string> out;
+  for (const auto& s : xvc::list_seams(doc))
+    if (!s.hems.empty())
+      if (const auto* p = doc.find(s.hems.front().pattern)) out.emplace_back(p->attribute("size"));
+  return out;
+}
+
+// A document whose SEAMs are all of other sizes than `size` gets those of
+// the size that has them (the sample size first) sewn at the same stretches
+// of `size`'s patterns: graded sizes correspond stretch for stretch (the DXF
+// importer carries the sample's turn points to them). Said as a warning;
+// an error when they do not fit.
+std::optional<xvc::Document> with_seams_of_another_size(const xvc::Document& doc, const std::string& size,
+                                                        const std::string& sample, Diagnostics& diag) {
+  const auto sizes = seam_sizes(doc);
+  if (sizes.empty() || std::find(sizes.begin(), sizes.end(), size) != sizes.end()) return std::nullopt;
+  const std::string from = std::find(sizes.begin(), sizes.end(), sample) != sizes.end() ? sample : sizes.front();
+  const auto plans = xvc::seams_as_plans(doc, from);
+  std::vector<xvc::Node> nodes;
+  try {
+    // Stretch k must be the same stretch in both sizes: as many of them.
+    auto stretches = [&](const std::string& piece, const std::string& at) -> int {
+      for (const auto* p : doc.patterns())
+        if (p->attribute("piece") == piece && p->attribute("size") == at)
+          return static_cast<int>(xvc::boundary_stretches(*p).size());
+      return -1;
+    };
+    for (const auto& plan : plans)
+      for (const auto& h : plan.hems)
+        if (const int a = stretches(h.piece, from), b = stretches(h.piece, size); b >= 0 && a != b)
+          throw Error(doc.name(), h.piece,
+                      "piece " + h.piece + " has " + std::to_string(b) + " boundary stretches in size " + size +
+                          " and " + std::to_string(a) + " in size " + from);
+    nodes = xvc::plan_seam_nodes(doc, plans, size);
+  } catch (const Error& e) {
+    throw Error(doc.name(), "size " + size,
+                "the document has no SEAM for size " + size + ", and the " + std::to_string(plans.size()) +
+                    " of size " + from + " do not fit its patterns (" + e.diagnostic().message +
+                    "); suggest seams for it with 'vgd seams suggest --apply --size " + size + "'");
+  }
+  xvc::Document out = doc;
+  xvc::execute(out, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
+  diag.warn(doc.name(), "size " + size,
+            "no SEAM sews this size: the " + std::to_string(plans.size()) + " seams of size " +
+                from + " are sewn at the same stretches of its patterns");
+  return out;
+}
+
+}  // namespace
+
+Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& options, Diagnostics& diag) {
+  const std::string file = document.name();
   Garment g;
-  g.name = std::string(doc.root().attribute("name"));
+  g.name = std::string(document.root().attribute("name"));
 
   // The size.
   std::string sample;
-  if (const auto* grads = doc.container("GRADATIONS")) sample = std::string(grads->attribute("sample_size"));
-  const auto patterns = doc.patterns();
+  if (const auto* grads = document.container("GRADATIONS")) sample = std::string(grads->attribute("sample_size"));
+  const auto all_patterns = document.patterns();
   g.size = !options.size.empty() ? options.size : sample;
-  if (g.size.empty() && !patterns.empty()) g.size = std::string(patterns.front()->attribute("size"));
+  if (g.size.empty() && !all_patterns.empty()) g.size = std::string(all_patterns.front()->attribute("size"));
+  const std::optional<xvc::Document> carried = with_seams_of_another_size(document, g.size, sample, diag);
+  const xvc::Document& doc = carried ? *carried : document;
+  const auto patterns = doc.patterns();
 
   // Meshing settings.
   double spacing = options.spacing;
@@ -150,18 +212,23 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
   std::map<std::string, std::pair<int, int>> stretch_at;
   for (int pi = 0; pi < static_cast<int>(stretches.size()); ++pi)
     for (int s = 0; s < static_cast<int>(stretches[pi].size()); ++s) stretch_at[stretches[pi][s].id] = {pi, s};
-  // A hem sewn again goes to the pattern's next copy: (pattern, from, to) -> uses so far.
-  std::map<std::tuple<int, int, int>, int> uses;
 
-  // Seams and their hems, resolved to boundary vertex ranges.
-  std::vector<Hem> hems;
-  std::vector<Seam> seams;
+  // The SEAMs of this size, their HEMs by pattern kept and stretch range.
+  struct RawHem {
+    std::string id;
+    int pat = -1, from = 0, to = 0;  // pattern kept; stretch indices
+    bool forward = true;
+  };
+  struct RawSeam {
+    std::string id, name;
+    std::vector<RawHem> hems;
+  };
+  std::vector<RawSeam> raw;
   if (const auto* container = doc.container("SEAMS")) {
     for (const auto& s : container->children) {
       if (s.tag != "SEAM") continue;
-      Seam seam{std::string(s.id()), std::string(s.attribute("name")), {}};
+      RawSeam seam{std::string(s.id()), std::string(s.attribute("name")), {}};
       bool kept = true, other_size = false;
-      std::vector<Hem> mine;
       for (const auto& h : s.children) {
         if (h.tag != "HEM") continue;
         const std::string from(h.attribute("from")), to(h.attribute("to"));
@@ -173,40 +240,147 @@ Garment assemble_garment(const xvc::Document& doc, const AssemblyOptions& option
         }
         if (f->second.first != t->second.first)
           throw Error(file, std::string(h.id()), "from and to name stretches of different patterns");
-        const int pat = f->second.first;
-        const auto& st = stretches[pat];
-        const int use = uses[{pat, f->second.second, t->second.second}]++;
-        if (use >= static_cast<int>(copies[pat].size()))
-          throw Error(file, std::string(h.id()),
-                      "sews stretches " + from + ".." + to + " of " + g.pieces[copies[pat][0]].name + " " +
-                          std::to_string(use + 1) + " times, but the piece is placed " +
-                          std::to_string(copies[pat].size()) +
-                          " time(s); give it one arrangement per copy (vgd place)");
-        const int pi = copies[pat][use];
-        const int n = static_cast<int>(g.pieces[pi].piece.boundary.size());
-        Hem hem;
-        hem.id = std::string(h.id());
-        hem.piece = pi;
-        hem.a = static_cast<int>(st[f->second.second].first);
-        hem.b = static_cast<int>(st[(t->second.second + 1) % st.size()].first);
-        hem.forward = h.attribute("direction") != "reverse";
-        if (hem.a == hem.b || n < 3)
-          throw Error(file, hem.id, "the hem covers the whole outline of " + g.pieces[pi].name +
-                                        "; a seam needs two ends");
-        mine.push_back(std::move(hem));
+        seam.hems.push_back({std::string(h.id()), f->second.first, f->second.second, t->second.second,
+                             h.attribute("direction") != "reverse"});
       }
       if (other_size) continue;  // the seam of another size
-      if (!kept || mine.size() < 2) {
+      if (!kept || seam.hems.size() < 2) {
         diag.warn(file, seam.id, "seam '" + seam.name + "' is not sewn: one of its pieces is left out");
         continue;
       }
-      for (auto& h : mine) {
-        seam.hems.push_back(static_cast<int>(hems.size()));
-        hems.push_back(std::move(h));
-      }
-      seams.push_back(std::move(seam));
+      raw.push_back(std::move(seam));
     }
   }
+
+  // Which copy of a piece cut more than once each HEM sews: a hem sewn again
+  // goes to the pattern's next copy, in document order; with `place`, the
+  // seams that sew the same stretches of such a piece to pieces cut once (a
+  // sleeve cap to each armhole) take the copies whose placed hems lie
+  // nearest their partners: a left armhole gets the left sleeve whatever
+  // the order of the SEAMs.
+  std::vector<std::vector<int>> copy_of(raw.size());  // per seam, per hem
+  {
+    std::map<std::tuple<int, int, int>, int> uses;  // (pattern, from, to) -> uses so far
+    for (std::size_t si = 0; si < raw.size(); ++si)
+      for (const auto& h : raw[si].hems) copy_of[si].push_back(uses[{h.pat, h.from, h.to}]++);
+    for (std::size_t si = 0; si < raw.size(); ++si)
+      for (std::size_t hi = 0; hi < raw[si].hems.size(); ++hi) {
+        const RawHem& h = raw[si].hems[hi];
+        if (copy_of[si][hi] >= static_cast<int>(copies[h.pat].size()))
+          throw Error(file, h.id,
+                      "sews stretches " + stretches[h.pat][h.from].id + ".." + stretches[h.pat][h.to].id + " of " +
+                          g.pieces[copies[h.pat][0]].name + " " + std::to_string(copy_of[si][hi] + 1) +
+                          " times, but the piece is placed " + std::to_string(copies[h.pat].size()) +
+                          " time(s); give it one arrangement per copy (vgd place)");
+      }
+    if (options.place) {
+      // Each copy's boundary vertices placed round the body, once.
+      std::map<std::pair<int, int>, std::vector<Vec3>> placed;
+      auto boundary_3d = [&](int pat, int copy) -> const std::vector<Vec3>& {
+        auto it = placed.find({pat, copy});
+        if (it != placed.end()) return it->second;
+        const GarmentPiece& gp = g.pieces[copies[pat][copy]];
+        std::vector<Vec2> pts;
+        for (const auto& c : gp.piece.boundary) pts.push_back(c.p);
+        std::vector<Vec3> out = options.place(gp.pattern_id, copy, pts);
+        if (out.size() != pts.size()) out.clear();
+        return placed.emplace(std::pair{pat, copy}, std::move(out)).first->second;
+      };
+      // The mean of a hem's boundary vertices, placed; nullopt when unplaced.
+      auto middle = [&](const RawHem& h, int copy) -> std::optional<Vec3> {
+        const auto& pts = boundary_3d(h.pat, copy);
+        if (pts.empty()) return std::nullopt;
+        const auto& st = stretches[h.pat];
+        const int n = static_cast<int>(pts.size());
+        const int a = static_cast<int>(st[h.from].first), b = static_cast<int>(st[(h.to + 1) % st.size()].first);
+        Vec3 sum = Vec3::Zero();
+        int k = 0;
+        for (int v = a;; v = (v + 1) % n) {
+          sum += pts[v];
+          ++k;
+          if (v == b) break;
+        }
+        return sum / k;
+      };
+      std::map<std::tuple<int, int, int>, std::vector<std::pair<int, int>>> users;  // key -> (seam, hem)
+      for (std::size_t si = 0; si < raw.size(); ++si)
+        for (std::size_t hi = 0; hi < raw[si].hems.size(); ++hi) {
+          const RawHem& h = raw[si].hems[hi];
+          if (copies[h.pat].size() > 1) users[{h.pat, h.from, h.to}].push_back({static_cast<int>(si), static_cast<int>(hi)});
+        }
+      for (const auto& [key, list] : users) {
+        const int pat = std::get<0>(key);
+        const int nc = static_cast<int>(copies[pat].size());
+        if (list.size() < 2 || static_cast<int>(list.size()) > nc || nc > 6) continue;
+        // cost[u][c]: summed distance from the hem on copy c to its seam's hems on pieces cut once.
+        std::vector<std::vector<double>> cost(list.size(), std::vector<double>(nc, 0.0));
+        bool usable = true;
+        for (std::size_t u = 0; u < list.size() && usable; ++u) {
+          const RawSeam& seam = raw[list[u].first];
+          int partners = 0;
+          for (int c = 0; c < nc && usable; ++c) {
+            const auto mine = middle(seam.hems[list[u].second], c);
+            if (!mine) usable = false;
+            for (const auto& other : seam.hems) {
+              if (other.pat == pat || copies[other.pat].size() != 1 || !usable) continue;
+              const auto theirs = middle(other, 0);
+              if (!theirs) {
+                usable = false;
+                break;
+              }
+              cost[u][c] += (*mine - *theirs).norm();
+              partners += c == 0;
+            }
+          }
+          usable = usable && partners > 0;
+        }
+        if (!usable) continue;
+        // The cheapest assignment of distinct copies (nc ≤ 6: every permutation).
+        std::vector<int> perm(nc), best;
+        for (int c = 0; c < nc; ++c) perm[c] = c;
+        double best_cost = std::numeric_limits<double>::infinity();
+        do {
+          double sum = 0;
+          for (std::size_t u = 0; u < list.size(); ++u) sum += cost[u][perm[u]];
+          if (sum < best_cost - 1e-12) best_cost = sum, best = perm;
+        } while (std::next_permutation(perm.begin(), perm.end()));
+        for (std::size_t u = 0; u < list.size(); ++u) copy_of[list[u].first][list[u].second] = best[u];
+      }
+    }
+  }
+
+  // Seams and their hems, resolved to boundary vertex ranges.
+  std::vector<Hem> hems;
+  std::vector<Seam> seams;
+  for (std::size_t si = 0; si < raw.size(); ++si) {
+    Seam seam{raw[si].id, raw[si].name, {}};
+    for (std::size_t hi = 0; hi < raw[si].hems.size(); ++hi) {
+      const RawHem& r = raw[si].hems[hi];
+      const auto& st = stretches[r.pat];
+      const int pi = copies[r.pat][copy_of[si][hi]];
+      const int n = static_cast<int>(g.pieces[pi].piece.boundary.size());
+      Hem hem;
+      hem.id = r.id;
+      hem.piece = pi;
+      hem.a = static_cast<int>(st[r.from].first);
+      hem.b = static_cast<int>(st[(r.to + 1) % st.size()].first);
+      const auto fl = options.flipped.find(g.pieces[pi].pattern_id);
+      const bool flipped = fl != options.flipped.end() && copy_of[si][hi] < static_cast<int>(fl->second.size()) &&
+                           fl->second[copy_of[si][hi]];
+      hem.forward = r.forward != flipped;
+      if (hem.a == hem.b || n < 3)
+        throw Error(file, hem.id, "the hem covers the whole outline of " + g.pieces[pi].name + "; a seam needs two ends");
+      seam.hems.push_back(static_cast<int>(hems.size()));
+      hems.push_back(std::move(hem));
+    }
+    seams.push_back(std::move(seam));
+  }
+
+  if (seams.empty() && g.pieces.size() > 1)
+    diag.warn(file, "size " + g.size,
+              "no SEAM sews the " + std::to_string(g.pieces.size()) +
+                  " pieces of this size: each drapes as a loose piece of cloth (suggest seams with "
+                  "'vgd seams suggest --apply')");
 
   // Hems on one piece must not overlap.
   for (std::size_t i = 0; i < hems.size(); ++i)

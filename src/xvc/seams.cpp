@@ -254,6 +254,8 @@ void score_notches(const std::vector<Part>& parts, SeamSuggestion& s, double& fa
   factor = want == 0 ? 1.0 : 0.6 + 0.4 * std::min(1.0, static_cast<double>(matched) / want);
 }
 
+constexpr double kSewingSlack = 0.002;  // m
+
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
                     const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
   SeamSuggestion s;
@@ -263,8 +265,12 @@ SeamSuggestion make(const std::string& name, const std::string& size, const std:
   s.length_a = s.hems[0].length;
   for (std::size_t i = 1; i < s.hems.size(); ++i) s.length_b += s.hems[i].length;
   s.ease = s.length_a - s.length_b;
-  // Length: 1 inside [ease_lo, ease_hi], falling off as a Gaussian of the relative excess.
-  const double excess = s.ease < ease_lo ? ease_lo - s.ease : (s.ease > ease_hi ? s.ease - ease_hi : 0.0);
+  // Length: 1 inside [ease_lo, ease_hi] widened by what a sewer eases in
+  // without a mark (2 mm, at most 5 % of the hem: a graded strap 1 mm longer
+  // than its partner still sews), falling off as a Gaussian of the relative
+  // excess beyond.
+  const double slack = std::min(kSewingSlack, 0.05 * std::min(s.length_a, s.length_b));
+  const double excess = std::max(0.0, (s.ease < ease_lo ? ease_lo - s.ease : (s.ease > ease_hi ? s.ease - ease_hi : 0.0)) - slack);
   const double rel = excess / std::max(s.length_a, s.length_b);
   double notch = 1;
   score_notches(parts, s, notch);

@@ -220,6 +220,38 @@ TEST(CliDrape, ImportedMenClassicTeeBodySews) {
   EXPECT_GT(c["contact"]["force_n"].get<double>(), 0.0);
 }
 
+// A polo cut with one sleeve pattern twice (drill-holes.DXF, Gerber): seams
+// suggested at the sample size 50 (the left armhole first: suggestions go by
+// score), the front, back and both sleeves draped on the men's mannequin.
+// Each armhole gets the sleeve placed on its own side, the mirrored copy
+// sews as well as the other, and a graded size (44) sews with the sample's
+// seams at its own stretches.
+class CliDrapePolo : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CliDrapePolo, BothSleevesAreSewnToTheirOwnArmholes) {
+  VGD_REQUIRE_SHARED();
+  const std::string size = GetParam();
+  const auto out = scratch_dir("drape-polo-" + size);
+  const auto xvc = out / "polo.xvc", sewn = out / "polo-sewn.xvc";
+  ASSERT_EQ(run_vgd({"import", shared_dxf("drill-holes.DXF").string(), "--unfold-mirrored", "-o", xvc.string(), "-q"}).code, 0);
+  const auto suggested = run_vgd({"seams", "suggest", xvc.string(), "--size", "50", "--apply", "-o", sewn.string()});
+  ASSERT_EQ(suggested.code, 0) << suggested.err;
+  ASSERT_LT(suggested.out.find("left armhole"), suggested.out.find("right armhole")) << suggested.out;
+  const auto r = run_vgd({"drape", sewn.string(), "--size", size, "--size-table", "en13402-men", "--pieces",
+                          "SS17_M POLO REG FR", "SS17_M POLO REG BK", "SS17_M POLO REG SL1", "--time-limit", "8", "-o",
+                          (out / "drape").string()});
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  EXPECT_EQ(r.err.find("no SEAM sews this size") == std::string::npos, size == "50") << r.err;
+  const json c = read_json(out / "drape" / "certificate.json");
+  ASSERT_EQ(c["seams"].size(), 8u) << c["seams"].dump();
+  for (const auto& sm : c["seams"]) EXPECT_EQ(sm["closed"], sm["pairs"]) << sm.dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+}
+
+INSTANTIATE_TEST_SUITE_P(SampleAndGradedSize, CliDrapePolo, ::testing::Values("50", "44"));
+
 // Two threads give the one-thread drape bit for bit, self-collision on:
 // forces summed in fixed chunks, detection's threads on fixed triangle ranges
 // joined in order (docs/accuracy-vs-time.md, "Reproducibility"). 0.4 s of

@@ -136,3 +136,144 @@ TEST(Garment, OverlappingHemsAreRefusedNamingTheHem) {
 
 }  // namespace
 }  // namespace vgd::dress
+
+namespace vgd::dress {
+namespace {
+
+// FRONT and BACK in sizes 38 and 40 (each 2 cm wider and taller); the side
+// seam is written for size 38 only, as a seam file applied at the sample
+// size leaves a graded document.
+xvc::Document graded_panels(bool back_40_has_a_fifth_corner) {
+  pattern::Style s;
+  s.name = "graded panels";
+  s.sample_size = "38";
+  s.sizes = {"38", "40"};
+  s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("BACK", 1.0, 0.34, 0.53)};
+  for (auto p : {rectangle("FRONT", 0.0, 0.32, 0.52), rectangle("BACK", 1.0, 0.36, 0.55)}) {
+    p.size = "40";
+    p.block = p.name + "_40";
+    if (back_40_has_a_fifth_corner && p.name == "BACK")
+      p.boundary.insert(p.boundary.begin() + 1, ContourPoint{Vec2(1.18, 0), PointKind::turn});
+    s.pieces.push_back(p);
+  }
+  xvc::Document doc = xvc::from_style(s);
+  const auto f = stretch_ids(doc, 0), b = stretch_ids(doc, 1);
+  xvc::Node root = doc.root();
+  for (auto& c : root.children)
+    if (c.tag == "SEAMS")
+      c.children = {xvc::Node{"SEAM", {{"id", "seam1"}, {"name", "side"}, {"type", "plain"}},
+                              {hem("hem1", f[1], f[1], "forward"), hem("hem2", b[3], b[3], "reverse")}}};
+  return xvc::Document(std::move(root), "graded.xvc");
+}
+
+}  // namespace
+
+TEST(Garment, ASizeWithoutSeamsIsSewnAsTheSizeThatHasThem) {
+  const xvc::Document doc = graded_panels(false);
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  opt.size = "40";
+  const Garment g = assemble_garment(doc, opt, diag);
+  ASSERT_EQ(g.seams.size(), 1u);
+  EXPECT_EQ(g.seams[0].name, "side");
+  EXPECT_NEAR(g.seams[0].length_a, 0.52, 1e-12) << "sewn on size 40's own front";
+  EXPECT_NEAR(g.seams[0].length_b, 0.55, 1e-12);
+  bool said = false;
+  for (const auto& d : diag.items())
+    said = said || (d.severity == Severity::warning && d.entity == "size 40" &&
+                    d.message.find("the 1 seams of size 38 are sewn at the same stretches") != std::string::npos);
+  EXPECT_TRUE(said) << "the choice is said";
+
+  // Size 38 is sewn as written, with nothing to say.
+  Diagnostics quiet;
+  opt.size = "38";
+  EXPECT_EQ(assemble_garment(doc, opt, quiet).seams.size(), 1u);
+  EXPECT_EQ(quiet.count(Severity::warning), 0u);
+}
+
+TEST(Garment, SeamsThatDoNotFitAnotherSizeAreAnErrorNamingTheSize) {
+  const xvc::Document doc = graded_panels(true);
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  opt.size = "40";
+  try {
+    assemble_garment(doc, opt, diag);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.diagnostic().entity, "size 40");
+    EXPECT_NE(std::string(e.what()).find("vgd seams suggest --apply --size 40"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Garment, PiecesWithNoSeamAtAllAreSaid) {
+  const xvc::Document doc = two_panels({});
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  const Garment g = assemble_garment(doc, opt, diag);
+  EXPECT_TRUE(g.seams.empty());
+  bool said = false;
+  for (const auto& d : diag.items()) said = said || d.message.find("no SEAM sews the 2 pieces") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+}  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// A piece cut twice (a sleeve) sewn to each side of a piece cut once: the
+// SEAM sewing the body's x = 0.4 side comes first in the document, and the
+// copy placed beside that side is copy 1. Copies in document order give it
+// copy 0; placed, each seam takes the copy beside its own side.
+TEST(Garment, EachSeamSewsTheCopyPlacedNearItsOtherPieces) {
+  pattern::Style s;
+  s.name = "cut twice";
+  s.sample_size = "38";
+  s.sizes = {"38"};
+  s.pieces = {rectangle("BODY", 0.0, 0.40, 0.50), rectangle("SLEEVE", 1.0, 0.20, 0.50)};
+  s.pieces[1].quantity = 2;
+  xvc::Document probe = xvc::from_style(s);
+  const auto body = stretch_ids(probe, 0), sleeve = stretch_ids(probe, 1);
+  xvc::Node root = probe.root();
+  for (auto& c : root.children)
+    if (c.tag == "SEAMS")
+      c.children = {
+          xvc::Node{"SEAM", {{"id", "seam1"}, {"name", "at x = 0.4"}, {"type", "plain"}},
+                    {hem("hem1", sleeve[3], sleeve[3], "forward"), hem("hem2", body[1], body[1], "reverse")}},
+          xvc::Node{"SEAM", {{"id", "seam2"}, {"name", "at x = 0"}, {"type", "plain"}},
+                    {hem("hem3", sleeve[3], sleeve[3], "forward"), hem("hem4", body[3], body[3], "reverse")}}};
+  const xvc::Document doc(std::move(root), "cut-twice.xvc");
+  const std::string sleeve_id(doc.patterns()[1]->id());
+  AssemblyOptions opt;
+  opt.spacing = 0.05;
+  opt.copies[sleeve_id] = 2;
+  auto sleeve_piece_of = [](const Garment& g, const GarmentSeam& seam) {
+    const int p = seam.pairs.front()[0].piece;
+    return g.pieces[p].copy;
+  };
+  Diagnostics d1;
+  const Garment in_order = assemble_garment(doc, opt, d1);
+  ASSERT_EQ(in_order.seams.size(), 2u);
+  EXPECT_EQ(sleeve_piece_of(in_order, in_order.seams[0]), 0);
+  EXPECT_EQ(sleeve_piece_of(in_order, in_order.seams[1]), 1);
+
+  // Copy 0 of the sleeve lies left of the body (its left edge at x = -0.5),
+  // copy 1 right of it (at x = 0.6); the body where it is.
+  opt.place = [&](const std::string& id, int copy, const std::vector<pattern::Vec2>& pts) {
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& p : pts) {
+      const double x = id == sleeve_id ? p.x() - 1.0 + (copy == 0 ? -0.5 : 0.6) : p.x();
+      out.emplace_back(x, p.y(), 0.0);
+    }
+    return out;
+  };
+  Diagnostics d2;
+  const Garment placed = assemble_garment(doc, opt, d2);
+  ASSERT_EQ(placed.seams.size(), 2u);
+  EXPECT_EQ(sleeve_piece_of(placed, placed.seams[0]), 1) << "the x = 0.4 side takes the copy beside it";
+  EXPECT_EQ(sleeve_piece_of(placed, placed.seams[1]), 0);
+}
+
+}  // namespace vgd::dress

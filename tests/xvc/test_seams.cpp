@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -209,6 +211,55 @@ TEST(SeamSuggestions, MenClassicTeeFindsSideSeamsAndShoulders) {
   Document applied = doc;
   execute(applied, *std::make_unique<AddSeams>(plan_seam_nodes(applied, plans, opts.size)));
   EXPECT_EQ(list_seams(applied).size(), plans.size());
+}
+
+// Graded sizes of a real file carry no turn points or notches; the importer
+// gives them the sample size's, so every size has the sample's stretches and
+// the suggester finds the same seams, at each size's own lengths, in every size.
+TEST(SeamSuggestions, EverySizeOfAGradedFileSewsAsTheSampleSize) {
+  VGD_REQUIRE_SHARED();
+  for (const std::string file : {"MEN_CLASSIC_TEE.DXF", "WM_SLIM_TANK.DXF", "GMH1006F18_AAMA.DXF", "drill-holes.DXF"}) {
+    SCOPED_TRACE(file);
+    dxf::ImportOptions unfold;
+    unfold.unfold_mirrored = true;
+    const auto imported = dxf::import_file(vgd::test::shared_dxf(file), unfold);
+    // Every block of a piece has as many turn points and notches as its sample block.
+    for (const auto& p : imported.style.pieces) {
+      const pattern::Piece* sample = nullptr;
+      for (const auto& q : imported.style.pieces)
+        if (q.name == p.name && q.size == imported.style.sample_size) sample = &q;
+      ASSERT_NE(sample, nullptr) << p.block;
+      auto turns = [](const pattern::Piece& x) {
+        return std::count_if(x.boundary.begin(), x.boundary.end(),
+                             [](const pattern::ContourPoint& c) { return c.kind == pattern::PointKind::turn; });
+      };
+      EXPECT_EQ(turns(p), turns(*sample)) << p.block;
+      EXPECT_EQ(p.notches.size(), sample->notches.size()) << p.block;
+    }
+    const Document doc = from_style(imported.style);
+    SeamOptions at_sample;
+    at_sample.size = imported.style.sample_size;
+    std::multiset<SeamKey> want;
+    std::map<std::string, double> sample_length;
+    for (const auto& x : suggest_seams(doc, at_sample)) {
+      want.insert(key(doc, x.hems));
+      sample_length[x.name] = x.length_a;
+    }
+    ASSERT_GE(want.size(), 4u);
+    for (const std::string& size : {imported.style.sizes.front(), imported.style.sizes.back()}) {
+      SeamOptions o;
+      o.size = size;
+      std::multiset<SeamKey> got;
+      for (const auto& x : suggest_seams(doc, o)) {
+        got.insert(key(doc, x.hems));
+        // Graded lengths differ from the sample's: the seam is measured on this size.
+        if (sample_length.count(x.name) && x.name.find("shoulder") == std::string::npos) {
+          EXPECT_NE(x.length_a, sample_length[x.name]) << size << " " << x.name;
+        }
+      }
+      EXPECT_EQ(got, want) << "size " << size;
+    }
+  }
 }
 
 // data/garments/t-shirt.dxf is what `vgd draft tshirt -o data/garments/t-shirt.dxf` writes

@@ -22,7 +22,9 @@
 // A SEAM with more than two HEMs sews its first HEM to the others taken in
 // document order one after the other (a sleeve cap to the front and back
 // armholes). Units: metres.
+#include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,6 +43,19 @@ struct AssemblyOptions {
   // PATTERN id -> pieces to make of it; a pattern not listed gets one per
   // arrangement it stores, at least one.
   std::map<std::string, int> copies;
+  // PATTERN id -> per copy: placed flipped (cut face down). A HEM's direction
+  // runs along the pattern's contour laid face up; on a flipped copy that
+  // contour runs the other way round the body, so its hems are sewn in the
+  // opposite direction (docs/xvc.md, "SEAM suggestions").
+  std::map<std::string, std::vector<bool>> flipped;
+  // Where copy `copy` of PATTERN `pattern_id` puts 2-D pattern points round
+  // the body (m, one per point; empty when it cannot say). Given, it decides
+  // which copy of a piece cut more than once each seam sews (the one whose
+  // hem lies nearest the seam's other pieces); unset, copies are taken in
+  // the order of the SEAMs.
+  std::function<std::vector<Eigen::Vector3d>(const std::string& pattern_id, int copy,
+                                             const std::vector<pattern::Vec2>& points)>
+      place;
 };
 
 struct GarmentPiece {

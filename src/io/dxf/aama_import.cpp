@@ -13,6 +13,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/contour.hpp"
+#include "vgd/pattern/grading.hpp"
 
 namespace vgd::dxf {
 
@@ -615,6 +616,19 @@ ImportResult Interpreter::run() {
       }
   }
   if (res_.style.name.empty()) res_.style.name = std::filesystem::path(name_).stem().string();
+
+  // Graded blocks carry no turn points or notches: they take the sample size's.
+  {
+    int carried = 0;
+    for (const auto& [block, c] : pattern::carry_sample_marks(res_.style)) {
+      if (c.carried) ++carried;
+      else warn("block " + block, "the sample size's turn points and notches could not be carried to it: " + c.why +
+                                      "; its outline is one stretch, and seams found at the sample size do not reach it");
+    }
+    if (carried > 0)
+      res_.diagnostics.info(name_, "sizes", "turn points and notches of the sample size " + res_.style.sample_size +
+                                                " carried to " + std::to_string(carried) + " graded blocks");
+  }
 
   auto& s = res_.summary;
   s.producer = res_.style.producer;
