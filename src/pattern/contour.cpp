@@ -293,3 +293,57 @@ int remove_small_self_loops(std::vector<ContourPoint>& o, double max_loop_fracti
 }
 
 }  // namespace vgd::pattern
+
+namespace vgd::pattern {
+
+int mark_corners(std::vector<ContourPoint>& outline, double min_angle_deg, double window_m) {
+  const int n = static_cast<int>(outline.size());
+  if (n < 3) return 0;
+  // The unit direction from the point `window_m` of arc before vertex i to
+  // vertex i (way = -1), or from vertex i to the point that far after it (+1).
+  auto direction = [&](int i, int way) -> Vec2 {
+    double left = window_m;
+    Vec2 at = outline[i].p;
+    for (int step = 0, k = i; step < n; ++step) {
+      const int next = (k + way + n) % n;
+      const Vec2 e = outline[next].p - at;
+      const double len = e.norm();
+      if (len >= left) {
+        at += e * (left / len);
+        break;
+      }
+      left -= len;
+      at = outline[next].p;
+      k = next;
+    }
+    const Vec2 d = way > 0 ? Vec2(at - outline[i].p) : Vec2(outline[i].p - at);
+    const double len = d.norm();
+    return len > 0 ? Vec2(d / len) : Vec2::Zero();
+  };
+  std::vector<double> turn(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const Vec2 a = direction(i, -1), b = direction(i, +1);
+    turn[i] = std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b))) * 180.0 / M_PI;
+  }
+  // Arc distance between vertices, to keep one corner per window.
+  std::vector<double> s(n + 1, 0.0);
+  for (int i = 0; i < n; ++i) s[i + 1] = s[i] + (outline[(i + 1) % n].p - outline[i].p).norm();
+  const double total = s[n];
+  auto apart = [&](int i, int j) {
+    const double d = std::abs(s[i] - s[j]);
+    return std::min(d, total - d);
+  };
+  int marked = 0;
+  for (int i = 0; i < n; ++i) {
+    if (turn[i] < min_angle_deg) continue;
+    bool peak = true;
+    for (int j = 0; j < n && peak; ++j)
+      if (j != i && apart(i, j) <= window_m && (turn[j] > turn[i] || (turn[j] == turn[i] && j < i))) peak = false;
+    if (!peak) continue;
+    if (outline[i].kind != PointKind::turn) ++marked;
+    outline[i].kind = PointKind::turn;
+  }
+  return marked;
+}
+
+}  // namespace vgd::pattern

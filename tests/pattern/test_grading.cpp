@@ -138,3 +138,32 @@ TEST(CarryMarks, SizesTakeTheirMarksFromTheNeighbourOutwardsFromTheSample) {
   }
 }
 
+// Corners of an outline that marks none (Valentina, CLO): a 30 x 40 cm
+// panel drawn every 2 mm, three square corners and the fourth rounded with a
+// 3 cm radius in 2-degree steps. The square corners are found, one turn point
+// each; the rounded one, turning 2 degrees per vertex, is a curve.
+TEST(MarkCorners, SquareCornersAreTurnsAndARoundedCornerIsNot) {
+  std::vector<ContourPoint> o;
+  auto line = [&](Vec2 a, Vec2 b) {
+    const int n = static_cast<int>(std::ceil((b - a).norm() / 0.002));
+    for (int k = 0; k < n; ++k) o.push_back({a + (b - a) * (static_cast<double>(k) / n), PointKind::plain});
+  };
+  const double r = 0.03;
+  line({0, 0}, {0.30, 0});
+  line({0.30, 0}, {0.30, 0.40 - r});
+  for (int deg = 0; deg < 90; deg += 2)
+    o.push_back({Vec2(0.30 - r, 0.40 - r) + r * Vec2(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180)), PointKind::plain});
+  line({0.30 - r, 0.40}, {0, 0.40});
+  line({0, 0.40}, {0, 0});
+  EXPECT_EQ(mark_corners(o), 3);
+  std::vector<Vec2> corners;
+  for (const auto& c : o)
+    if (c.kind == PointKind::turn) corners.push_back(c.p);
+  ASSERT_EQ(corners.size(), 3u);
+  for (const Vec2& want : {Vec2(0, 0), Vec2(0.30, 0), Vec2(0, 0.40)}) {
+    bool found = false;
+    for (const auto& c : corners) found = found || (c - want).norm() < 1e-9;
+    EXPECT_TRUE(found) << want.transpose();
+  }
+  EXPECT_EQ(mark_corners(o), 0) << "marked once";
+}

@@ -42,6 +42,15 @@ int remove_duplicate_vertices(std::vector<ContourPoint>& outline, double tol_m =
 // back (a slit drawn into the boundary) cannot be meshed. Returns the number removed.
 int remove_spikes(std::vector<ContourPoint>& outline, double tol_m = 1e-6);
 
+// Marks the outline's corners as turn points, for files that mark none
+// (Valentina): a vertex where the direction over the `window` of arc
+// before it and that after it differ by `min_angle_deg` or more, and by more
+// than at any vertex within `window` of it (one corner per sharp turn, not
+// every vertex of a tight curve). Polylines' vertices of real files are
+// 1–20 mm apart on curves; a 30° turn within 5 mm each way is a corner a
+// pattern maker drew. Returns the number of turn points set.
+int mark_corners(std::vector<ContourPoint>& outline, double min_angle_deg = 30.0, double window_m = 0.005);
+
 // Reverses the outline if it winds clockwise. Returns true when it reversed.
 bool make_counter_clockwise(std::vector<ContourPoint>& outline);
 

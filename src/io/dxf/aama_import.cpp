@@ -649,6 +649,16 @@ ImportResult Interpreter::run() {
         for (auto& n : p.notches) n.boundary_index = pattern::nearest_vertex(p.boundary, n.position).index;
     }
   }
+  // Files that mark no turn points (Valentina) get their corners from
+  // the outline, so that a piece has stretches to sew.
+  for (auto& p : pieces) {
+    if (std::any_of(p.boundary.begin(), p.boundary.end(), [](const pattern::ContourPoint& c) { return c.kind == PointKind::turn; }))
+      continue;
+    const int corners = pattern::mark_corners(p.boundary);
+    res_.diagnostics.info(name_, "block " + p.block,
+                          "no turn points in the file: " + std::to_string(corners) +
+                              " corners found from the outline (turns of 30 degrees or more within 5 mm)");
+  }
   return std::move(res_);
 }
 

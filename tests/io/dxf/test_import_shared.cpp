@@ -130,3 +130,40 @@ TEST(SharedDxf, MirroredFileUnfoldsEveryHalfPiece) {
   }
   EXPECT_EQ(halves, 195);  // 13 half pieces x 15 sizes (195 layer-6 lines)
 }
+
+// Valentina marks no turn points: corners come from the outline. Every
+// piece gets at least three, at least 5 mm of arc apart (one per corner), and
+// a polygon drawn with few vertices (a collar, a pocket flap: 4 to 7) has a
+// corner at every vertex where it turns by 30 degrees or more.
+TEST(SharedDxf, FilesWithoutTurnPointsGetTheirCornersFromTheOutline) {
+  VGD_REQUIRE_SHARED();
+  for (const std::string file : {"Valentina_MaleShirt_AAMA_R12.dxf", "Valentina_Trousers_ASTM_R12.dxf"}) {
+    SCOPED_TRACE(file);
+    const auto r = vgd::dxf::import_file(vgd::test::shared_dxf(file));
+    int said = 0;
+    for (const auto& d : r.diagnostics.items()) said += d.message.find("corners found from the outline") != std::string::npos;
+    EXPECT_EQ(said, static_cast<int>(r.style.pieces.size()));
+    for (const auto& p : r.style.pieces) {
+      const auto& b = p.boundary;
+      const int n = static_cast<int>(b.size());
+      std::vector<int> turns;
+      for (int i = 0; i < n; ++i)
+        if (b[i].kind == vgd::pattern::PointKind::turn) turns.push_back(i);
+      EXPECT_GE(turns.size(), 3u) << p.block;
+      for (std::size_t k = 0; k < turns.size(); ++k) {
+        const auto& a = b[turns[k]].p;
+        const auto& c = b[turns[(k + 1) % turns.size()]].p;
+        EXPECT_GT((a - c).norm(), 0.005) << p.block << " vertex " << turns[k];
+      }
+      if (n <= 7) {
+        for (int i = 0; i < n; ++i) {
+          const auto u = b[i].p - b[(i + n - 1) % n].p, v = b[(i + 1) % n].p - b[i].p;
+          const double turn = std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v))) * 180 / M_PI;
+          if (turn >= 30 && u.norm() > 0.005 && v.norm() > 0.005) {
+            EXPECT_EQ(b[i].kind, vgd::pattern::PointKind::turn) << p.block << " vertex " << i << ", " << turn << " deg";
+          }
+        }
+      }
+    }
+  }
+}
