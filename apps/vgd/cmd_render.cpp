@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "previews.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
@@ -34,13 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace render = vgd::render;
 
-struct Options {
-  std::string input, avatar, output = "previews", views = "front,back,left,right,three-quarter", size = "1024x1024";
-  std::string colour, body_colour, fit = "body", look;
-  std::string unit = "auto", up = "auto", facing = "auto";  // --avatar's, as vgd drape takes them
-  bool piece_colours = false, no_floor = false, no_shadow = false, no_texture = false;
-  int supersample = 3, frame = -1;
-};
+using Options = vgd::cli::RenderOptions;
 
 // "1024x1024", "800x600" or "512" (square).
 std::pair<int, int> parse_size(const std::string& text) {
@@ -318,10 +313,17 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
               "from the front-left. Pieces take the document's colours and textures (PNG) unless --colour or "
               "--piece-colours is given. Same input, same bytes (docs/render.md).\n"
               "Exit codes: 0 written, 1 bad input or rendering failed, 2 usage.");
-  return vgd::cli::Command{sub, [o, &common]() -> int {
+  return vgd::cli::Command{sub, [o, &common]() -> int { return vgd::cli::write_previews(*o, common); }};
+}};
+
+}  // namespace
+
+namespace vgd::cli {
+
+int write_previews(const RenderOptions& o, const Common& common) {
     // Views and size first: a typo should not wait for the files to load.
     std::vector<render::ViewPreset> views;
-    for (const auto& name : vgd::split(o->views, ',')) {
+    for (const auto& name : vgd::split(o.views, ',')) {
       if (vgd::trim(name).empty()) continue;
       if (vgd::iequals(vgd::trim(name), "all")) {
         views = render::view_presets();
@@ -341,39 +343,39 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
     }
     std::pair<int, int> size;
     try {
-      size = parse_size(o->size);
-      if (!o->colour.empty()) parse_colour_option("--colour", o->colour);
-      if (!o->body_colour.empty()) parse_colour_option("--body-colour", o->body_colour);
+      size = parse_size(o.size);
+      if (!o.colour.empty()) parse_colour_option("--colour", o.colour);
+      if (!o.body_colour.empty()) parse_colour_option("--body-colour", o.body_colour);
     } catch (const CLI::ValidationError& e) {
       std::fprintf(stderr, "vgd render: %s\n", e.what());
       return vgd::cli::kUsage;
     }
 
     const auto t0 = std::chrono::steady_clock::now();
-    const render::Scene scene = load_scene(*o, common);
+    const render::Scene scene = load_scene(o, common);
     render::OffscreenOptions opts;
-    opts.supersample = o->supersample;
-    opts.frame_on_garment = o->fit == "garment";
-    opts.look.floor = !o->no_floor;
-    opts.look.shadow = !o->no_shadow;
+    opts.supersample = o.supersample;
+    opts.frame_on_garment = o.fit == "garment";
+    opts.look.floor = !o.no_floor;
+    opts.look.shadow = !o.no_shadow;
     render::OffscreenRenderer renderer;
     renderer.set_scene(scene);
     if (common.verbose) vgd::cli::say(common, "vgd: " + renderer.gl_description());
 
     // One PNG per view.
-    const fs::path out = o->output;
+    const fs::path out = o.output;
     for (const auto& v : views) {
       const render::Image image = renderer.render(v, size.first, size.second, opts);
       const fs::path file = out / (v.name + ".png");
       render::write_png(image, file);
-      std::printf("wrote %s (%d x %d, %s view)\n", file.string().c_str(), image.width, image.height, v.name.c_str());
+      if (o.list_files)
+        std::printf("wrote %s (%d x %d, %s view)\n", file.string().c_str(), image.width, image.height, v.name.c_str());
     }
     std::fflush(stdout);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     vgd::cli::say(common, "vgd: rendered " + std::to_string(views.size()) + " view(s) of " +
                               std::to_string(scene.meshes.size()) + " meshes in " + vgd::format_fixed(s, 2) + " s");
     return vgd::cli::kOk;
-  }};
-}};
+}
 
-}  // namespace
+}  // namespace vgd::cli

@@ -17,7 +17,7 @@ using body::Avatar;
 using body::BodySegment;
 
 std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
-                                                                         const Avatar& avatar, Diagnostics& diag) {
+                                                                         const Avatar& avatar) {
   // Heights for the suggestions: the mannequin's landmarks, else those measured
   // on an imported body, else the torso's top (neck) and a waist at the usual
   // 62 % of the height.
@@ -46,10 +46,6 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
     }
     for (const auto& [pid, list] : suggested)
       if (pid == id && !list.empty()) out[id] = list;
-    if (!out.count(id))
-      diag.warn(doc.name(), id, "piece " + std::string(p->attribute("piece")) +
-                                    " has no arrangement and vgd cannot suggest one from its name; "
-                                    "give it one with vgd place");
   }
   return out;
 }
@@ -84,14 +80,14 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
 }
 
 void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
-               const Avatar& avatar, Diagnostics& diag) {
+               const Avatar& avatar, Diagnostics& diag, const std::string& table) {
   auto covers = [&](const char* s) { return std::find(segments.begin(), segments.end(), s) != segments.end(); };
   const bool torso = covers("torso"), hips = covers("hips");
   const std::optional<body::BodyMeasurements>& body = avatar.measurements ? avatar.measurements : avatar.measured;
   if (!body || size.empty()) return;
   body::BodyMeasurements made_for;
   try {
-    made_for = body::find_size(size);
+    made_for = body::find_size(size, table);
   } catch (const Error&) {
     return;  // a size label no table has: nothing to compare
   }
@@ -131,7 +127,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
       throw Error(def.source.string(), path + ".file", "cannot read the XVC document " + file.string() + " (no such file)");
     const xvc::Document doc = xvc::load_file(file);
     scene::MadeCloth& out = made[ci];
-    const auto arrangements = garment_arrangements(doc, avatar, out.diagnostics);
+    const auto arrangements = garment_arrangements(doc, avatar);
     AssemblyOptions ao;
     ao.size = gd.size;
     ao.spacing = gd.spacing;
@@ -159,7 +155,9 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     {
       std::vector<std::string> segments;
       for (const auto& p : placed) segments.push_back(p.segment);
-      check_fit(file.string(), g.size, segments, avatar, out.diagnostics);
+      // The garment's size is read in the mannequin's table when the drape names one.
+      const std::string table = def.avatar && def.avatar->kind == scene::AvatarDef::Kind::mannequin ? def.avatar->table : "";
+      check_fit(file.string(), g.size, segments, avatar, out.diagnostics, table);
     }
     auto& mine = layers.emplace_back(gd.layer, std::vector<Underlayer>{}).second;
     std::vector<int> first(g.pieces.size(), 0);  // each piece's first particle within the cloth

@@ -33,9 +33,10 @@ struct PlacedPiece {
 // Every PATTERN's arrangements: those stored in the document, else vgd's
 // suggestions from the piece's name, with heights taken from the avatar (its
 // landmarks for a mannequin; its torso for another body). Patterns for which
-// no rule fits are missing from the map.
+// no rule fits are missing from the map (place_garment then refuses a piece
+// of theirs that is draped, naming it and saying how to place it).
 std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
-                                                                         const body::Avatar& avatar, Diagnostics& diag);
+                                                                         const body::Avatar& avatar);
 
 // One PlacedPiece per garment piece, in order: piece k of a pattern takes the
 // pattern's k-th arrangement. Throws vgd::Error naming the document and the
@@ -60,9 +61,10 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const body::Avatar&
 // mannequin's, or those measured on an imported body). A warning per girth
 // the garment covers (its pieces on the torso: bust and waist; on the hips:
 // waist and hip) that its size is more than 4 cm too small or 12 cm too
-// large for, with both figures, named after the document.
+// large for, with both figures, named after the document. `table`: the size
+// table the garment's size is read in (the mannequin's); "" = the default order.
 void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
-               const body::Avatar& avatar, Diagnostics& diag);
+               const body::Avatar& avatar, Diagnostics& diag, const std::string& table = "");
 
 // scene::build for any scene: the body built once, the garments dressed on
 // it, then the scene built with them.

@@ -1,0 +1,115 @@
+// vgd dress: a pattern file to a draped garment in one command (docs/drape.md,
+// "vgd dress").
+//
+//   vgd dress polo.DXF --size 44 -o out/polo
+//   vgd dress garment.xvc --avatar body.glb -o out/
+//
+// Imports the DXF (half pieces unfolded) or reads the XVC, decides what the
+// file does not say (dress::prepare_garment: seams, the pieces to drape, the
+// body's size table), says each decision, writes the document it drapes as
+// OUT/garment.xvc (correct it and run vgd dress or vgd drape on it again),
+// drapes it as vgd drape does and writes previews in OUT/previews/.
+#include <cstdio>
+
+#include "cli.hpp"
+#include "drape_report.hpp"
+#include "previews.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/dress/prepare.hpp"
+#include "vgd/io/dxf/import.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
+
+namespace {
+
+struct Options {
+  std::string input, size, body_table, avatar, output = "out", views = "front,back,three-quarter";
+  std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
+  double time_limit = 8.0;
+  bool previews = true, json = false;
+};
+
+vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common) {
+  auto* sub = app.add_subcommand("dress", "A pattern file (DXF or XVC) to a draped garment in one command: seams, "
+                                          "pieces, body, drape, certificate, previews");
+  auto o = std::make_shared<Options>();
+  sub->add_option("PATTERN", o->input, "AAMA/ASTM DXF (Gerber, Lectra, CLO, Valentina, ...) or XVC document")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--size", o->size, "The garment's size (default: the sample size); the mannequin is of this size");
+  sub->add_option("--body-table", o->body_table,
+                  "Size table of the mannequin (vgd mannequin --list-sizes; default: men's or women's from the "
+                  "style's name, else the default search order)");
+  sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--unit", o->avatar_unit, "--avatar's unit: auto, m, dm, cm, mm, in")->capture_default_str();
+  sub->add_option("--up", o->avatar_up, "--avatar's up axis: auto, x, y, z, -x, -y, -z")->capture_default_str();
+  sub->add_option("--facing", o->avatar_facing, "Where --avatar faces once up is +Y: auto, +z, -z, +x, -x")
+      ->capture_default_str();
+  sub->add_option("-o,--output", o->output, "Output folder (default: out)");
+  sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
+  sub->add_option("--views", o->views, "Preview views (vgd render --views)")->capture_default_str();
+  sub->add_flag("!--no-previews", o->previews, "Write no previews");
+  sub->add_flag("--json", o->json, "Print the certificate on stdout");
+  sub->footer("Writes OUTPUT/garment.xvc (the document draped, with the seams vgd added), garment.obj, avatar.obj, "
+              "certificate.json and previews/<view>.png.\n"
+              "Exit codes: 0 draped and passed, 1 bad input or nothing to drape, 3 a check failed.");
+  return vgd::cli::Command{sub, [o, &common]() -> int {
+    namespace fs = std::filesystem;
+    const fs::path out = o->output;
+    const std::string ext = vgd::to_lower(fs::path(o->input).extension().string());
+    vgd::xvc::Document doc = [&] {
+      if (ext != ".dxf") return vgd::xvc::load_file(o->input);
+      vgd::dxf::ImportOptions io;
+      io.unfold_mirrored = true;
+      const auto imported = vgd::dxf::import_file(o->input, io);
+      vgd::cli::print_diagnostics(imported.diagnostics, common);
+      const auto& s = imported.summary;
+      vgd::cli::say(common, "vgd: " + o->input + ": " + std::to_string(s.pieces) + " pieces, sizes " +
+                                std::to_string(s.sizes.size()) + " (sample " + s.sample_size + "), " + s.producer);
+      return vgd::xvc::from_style(imported.style);
+    }();
+    vgd::dress::PrepareOptions po;
+    po.size = o->size;
+    po.body_table = o->body_table;
+    const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
+    for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    const fs::path prepared = out / "garment.xvc";
+    vgd::xvc::save_file(doc, prepared);
+    vgd::cli::say(common, "vgd: wrote " + prepared.string() + " (the document draped; correct it and run vgd drape " +
+                              prepared.string() + " again)");
+
+    vgd::cli::DrapeRun run;
+    run.options.garment = fs::absolute(prepared);
+    run.options.size = prep.size;
+    run.options.pieces = prep.pieces;
+    run.options.mannequin_table = prep.body_table;
+    run.options.time_limit = o->time_limit;
+    if (!o->avatar.empty()) {
+      vgd::scene::AvatarDef a;
+      a.kind = vgd::scene::AvatarDef::Kind::file;
+      a.file = fs::absolute(o->avatar);
+      a.unit = o->avatar_unit, a.up = o->avatar_up, a.facing = o->avatar_facing;
+      run.options.avatar = a;
+    }
+    run.names = o->input;
+    run.avatar_label = o->avatar;
+    run.output = out;
+    run.json = o->json;
+    const int code = vgd::cli::drape_and_report(run, common);
+    if (code == vgd::cli::kFailed || !o->previews) return code;
+    vgd::cli::RenderOptions ro;
+    ro.input = out.string();
+    ro.output = (out / "previews").string();
+    ro.views = o->views;
+    ro.size = "768";
+    ro.look = prepared.string();
+    ro.list_files = !o->json && !common.quiet;
+    const int rendered = vgd::cli::write_previews(ro, common);
+    return rendered == vgd::cli::kOk ? code : rendered;
+  }};
+}};
+
+}  // namespace

@@ -1,0 +1,48 @@
+#pragma once
+// Getting a pattern document ready to drape, deciding what the designer did
+// not say (docs/drape.md, "vgd dress"):
+//
+//   seams     none in the document: vgd's suggestions at the sample size are
+//             added (graded sizes sew with them: dress/garment.hpp);
+//   pieces    those of the size that a seam sews, and that a rule can arrange
+//             round the body; the others (collars, plackets, pockets,
+//             interfacings the suggester has no seam for) are left out;
+//   body      the size table of the garment's own sizes: men's when the
+//             style's name says men (MEN, MENS, MAN, MALE, or an M between
+//             separators as in "SS17_M POLO"), women's when it says women,
+//             else the default search order.
+//
+// Every decision is a sentence in Preparation::decisions, and the SEAMs it
+// adds are in the document, so the designer can read, correct and re-run.
+#include <string>
+#include <vector>
+
+#include "vgd/xvc/document.hpp"
+
+namespace vgd::dress {
+
+struct PrepareOptions {
+  std::string size;        // the garment's size; "" = the document's sample size
+  std::string body_table;  // size table of the mannequin; "" = from the style's name
+  double min_score = 0.5;  // seam suggestions below are not added
+};
+
+struct Preparation {
+  std::string size;                    // the size to drape
+  std::vector<std::string> pieces;     // piece names to drape, document order
+  std::vector<std::string> left_out;   // piece names left out (each also in decisions)
+  std::string body_table;              // "" = the default search order
+  int seams_added = 0;
+  std::vector<std::string> decisions;  // one sentence each, in the order taken
+};
+
+// Adds SEAMs to `doc` when it has none. Throws vgd::Error naming the document
+// when nothing can be draped: no pattern of the size, or several pieces and
+// no seam between any of them.
+Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options = {});
+
+// The size table a style's name points to ("en13402-men", "en13402-women"),
+// or "" when it says neither.
+std::string size_table_from_name(const std::string& style_name);
+
+}  // namespace vgd::dress

@@ -1,0 +1,137 @@
+#include "vgd/dress/prepare.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/xvc/arrangement.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/seams.hpp"
+
+namespace vgd::dress {
+
+namespace {
+
+std::vector<std::string> tokens(const std::string& s) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (const char ch : s) {
+    if (std::isalnum(static_cast<unsigned char>(ch))) {
+      cur += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    } else if (!cur.empty()) {
+      out.push_back(cur);
+      cur.clear();
+    }
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
+bool starts(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+}  // namespace
+
+std::string size_table_from_name(const std::string& style_name) {
+  bool men = false, women = false;
+  for (const auto& t : tokens(style_name)) {
+    if (t == "W" || t == "WM" || t == "WMN" || starts(t, "WOMEN") || starts(t, "LADIES") || starts(t, "FEMALE") ||
+        starts(t, "WOMAN"))
+      women = true;
+    else if (t == "M" || t == "MEN" || t == "MENS" || t == "MAN" || starts(t, "MALE"))
+      men = true;
+  }
+  if (men == women) return "";
+  return men ? "en13402-men" : "en13402-women";
+}
+
+Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
+  const std::string file = doc.name();
+  Preparation out;
+  std::string sample;
+  if (const auto* grads = doc.container("GRADATIONS")) sample = std::string(grads->attribute("sample_size"));
+  const auto patterns_of = [&](const std::string& size) {
+    std::vector<const xvc::Node*> v;
+    for (const auto* p : doc.patterns())
+      if (p->attribute("size") == size) v.push_back(p);
+    return v;
+  };
+  out.size = !options.size.empty() ? options.size : sample;
+  if (out.size.empty() && !doc.patterns().empty()) out.size = std::string(doc.patterns().front()->attribute("size"));
+  const auto mine = patterns_of(out.size);
+  if (mine.empty()) throw Error(file, "size " + out.size, "the document has no pattern of size '" + out.size + "'");
+
+  // Seams: vgd's suggestions when the document has none.
+  if (xvc::list_seams(doc).empty()) {
+    xvc::SeamOptions so;
+    so.size = !sample.empty() && !patterns_of(sample).empty() ? sample : out.size;
+    so.min_score = options.min_score;
+    const auto suggested = xvc::suggest_seams(doc, so);
+    std::vector<xvc::Node> nodes;
+    for (const auto& s : suggested) {
+      nodes.push_back(xvc::seam_node(s));
+      std::string hems;
+      for (std::size_t k = 0; k < s.hems.size(); ++k) {
+        const auto* p = doc.find(s.hems[k].pattern);
+        hems += (k == 0 ? "" : k == 1 ? " to " : " + ") + std::string(p ? p->attribute("piece") : s.hems[k].pattern);
+      }
+      out.decisions.push_back("seam '" + s.name + "' suggested at size " + so.size + ": " + hems + ", ease " +
+                              format_fixed(1000 * s.ease, 1) + " mm, score " + format_fixed(s.score, 2));
+    }
+    if (!nodes.empty()) xvc::execute(doc, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
+    out.seams_added = static_cast<int>(suggested.size());
+    if (suggested.empty())
+      out.decisions.push_back("no SEAM in the document and none suggested at size " + so.size);
+  }
+
+  // Pieces: sewn by some seam, and arranged round the body by a rule or the document.
+  std::set<std::string> sewn;
+  for (const auto& s : xvc::list_seams(doc))
+    for (const auto& h : s.hems)
+      if (const auto* p = doc.find(h.pattern)) sewn.insert(std::string(p->attribute("piece")));
+  std::set<std::string> arranged;
+  for (const auto& [id, list] : xvc::suggest_arrangements(doc))
+    if (!list.empty())
+      if (const auto* p = doc.find(id)) arranged.insert(std::string(p->attribute("piece")));
+  for (const auto* p : mine)
+    if (!xvc::arrangements_of(*p).empty()) arranged.insert(std::string(p->attribute("piece")));
+  for (const auto* p : mine) {
+    const std::string name(p->attribute("piece"));
+    if (mine.size() > 1 && !sewn.count(name)) {
+      out.left_out.push_back(name);
+      out.decisions.push_back("piece " + name + " left out: no seam sews it");
+    } else if (!arranged.count(name)) {
+      out.left_out.push_back(name);
+      out.decisions.push_back("piece " + name + " left out: no rule places it round the body (give it an arrangement "
+                              "with 'vgd place --set \"" + name + "=SEGMENT:SIDE:HEIGHT\"')");
+    } else {
+      out.pieces.push_back(name);
+    }
+  }
+  if (out.pieces.empty()) {
+    std::string names;
+    for (const auto* p : mine) names += (names.empty() ? "" : ", ") + std::string(p->attribute("piece"));
+    throw Error(file, "size " + out.size,
+                "nothing to drape: no seam vgd can find sews the pieces of this size together (" + names +
+                    "); add seams with 'vgd seams add' or a seam file with 'vgd seams apply', and arrangements "
+                    "with 'vgd place'");
+  }
+
+  // The body's size table.
+  const std::string style(doc.root().attribute("name"));
+  if (!options.body_table.empty()) {
+    out.body_table = options.body_table;
+  } else {
+    out.body_table = size_table_from_name(style);
+    out.decisions.push_back(out.body_table.empty()
+                                ? "body: the mannequin of size " + out.size +
+                                      " from the first size table that has it (the style's name '" + style +
+                                      "' says neither men nor women; choose with --body-table)"
+                                : "body: the mannequin of size " + out.size + " from " + out.body_table +
+                                      " (the style's name '" + style + "')");
+  }
+  return out;
+}
+
+}  // namespace vgd::dress

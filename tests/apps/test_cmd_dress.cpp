@@ -1,0 +1,67 @@
+// vgd dress: a pattern file to a draped garment in one command.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/run_vgd.hpp"
+#include "support/test_paths.hpp"
+
+namespace vgd::test {
+namespace {
+
+using nlohmann::json;
+
+json read_json(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+}  // namespace
+
+// The Gerber polo straight from its DXF, in a graded size: the importer's
+// marks, the suggested seams (at the sample size, carried to 44), the pieces
+// no seam sews left out and said, the men's table chosen from the style's
+// name, both sleeves on their own armholes, previews written, the document
+// it draped saved beside them.
+TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-polo");
+  const auto r = run_vgd({"dress", shared_dxf("drill-holes.DXF").string(), "--size", "44", "-o", out.string(),
+                          "--views", "front"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("seam 'left armhole' suggested at size 50"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("piece SS17_M POLO REG CO left out: no seam sews it"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("body: the mannequin of size 44 from en13402-men"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no SEAM sews this size: the 8 seams of size 50"), std::string::npos) << r.err;
+  const json c = read_json(out / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  ASSERT_EQ(c["seams"].size(), 8u);
+  for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
+  EXPECT_EQ(c["placement"].size(), 4u) << "front, back and two sleeves";
+  EXPECT_TRUE(std::filesystem::exists(out / "previews" / "front.png"));
+  // The document it draped: its seams are in it, and vgd drape runs it again.
+  const auto again = run_vgd({"seams", "list", (out / "garment.xvc").string()});
+  EXPECT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.out.find("left armhole"), std::string::npos) << again.out;
+}
+
+// The project's own skirt as AAMA DXF (what `vgd draft` writes, every size):
+// the DXF carries no seams, vgd dress suggests them (the waistband to the
+// waist, the side seams) and the skirt drapes on the mannequin of its size.
+TEST(CliDress, ADraftedSkirtDxfDrapesInOneCommand) {
+  const auto out = scratch_dir("dress-skirt");
+  const auto dxf = out / "skirt.dxf";
+  const auto drafted = run_vgd({"draft", "skirt", "-o", dxf.string(), "-q"});
+  ASSERT_EQ(drafted.code, 0) << drafted.err;
+  const auto r = run_vgd({"dress", dxf.string(), "--size", "36", "-o", (out / "d").string(), "--no-previews",
+                          "--time-limit", "6"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("suggested at size 38"), std::string::npos) << r.err;
+  const json c = read_json(out / "d" / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  EXPECT_GE(c["seams"].size(), 3u);
+  EXPECT_FALSE(std::filesystem::exists(out / "d" / "previews"));
+}
+
+}  // namespace vgd::test
