@@ -91,6 +91,13 @@ std::vector<Failure> Certificate::failures() const {
     out.push_back({"penetration", format_fixed(1000 * max_penetration, 2) + " mm inside the body (limit " +
                                       format_fixed(1000 * penetration_limit, 1) + " mm), " +
                                       std::to_string(particles_inside) + " particles inside"});
+  if (body_through_opening > 0) {
+    std::string where;
+    for (const auto& [piece, n] : body_through_opening_by_piece) where += (where.empty() ? "" : ", ") + piece + " " + std::to_string(n);
+    out.push_back({"penetration", "the body passes through the cloth: " + std::to_string(body_through_opening) +
+                                      " triangles with the body deeper inside them than they are long, up to " +
+                                      format_fixed(1000 * max_body_through, 1) + " mm (" + where + ")"});
+  }
   if (triangle_intersections > 0) {
     std::string where;
     for (const auto& [pieces, n] : crossings_by_pieces) where += (where.empty() ? "" : ", ") + pieces + " " + std::to_string(n);
@@ -176,7 +183,9 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     // lie inside the body deeper than the particles may (a body ridge poking
     // between particles that are all outside it).
     out.body_through_by_piece.clear();
+    out.body_through_opening_by_piece.clear();
     out.body_through_cloth = 0;
+    out.body_through_opening = 0;
     out.max_body_through = 0;
     if (scene.avatar) {
       std::vector<Vec3> probes;
@@ -191,11 +200,21 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
         const double d = std::max({depth[4 * t], depth[4 * t + 1], depth[4 * t + 2], depth[4 * t + 3]});
         out.max_body_through = std::max(out.max_body_through, d);
         if (d > out.penetration_limit) ++out.body_through_cloth, ++out.body_through_by_piece[piece_of(original[t])];
+        // Deeper than the triangle is long: not a ridge between particles
+        // but the body through an opening of the cloth (a slit gaping, a
+        // strap or a sleeve with the body beside it instead of inside).
+        if (m.uv.size() == static_cast<std::size_t>(m.num_particles())) {
+          const auto& q = m.triangles[original[t]];
+          double size = 0;
+          for (int e = 0; e < 3; ++e) size = std::max(size, (m.uv[q[e]] - m.uv[q[(e + 1) % 3]]).norm());
+          if (d > size) ++out.body_through_opening, ++out.body_through_opening_by_piece[piece_of(original[t])];
+        }
       }
     }
   } else {
     out.triangle_intersections = -1;
     out.body_through_cloth = -1;
+    out.body_through_opening = -1;
   }
 
   // Seams: a pair is closed when its two particles are one (merged) or as close.
@@ -303,6 +322,8 @@ std::string to_json(const Certificate& c) {
     j["body_through_cloth"] = c.body_through_cloth;
     j["body_through_cloth_max_m"] = c.max_body_through;
     if (!c.body_through_by_piece.empty()) j["body_through_cloth_by_piece"] = c.body_through_by_piece;
+    j["body_through_opening"] = c.body_through_opening;
+    if (!c.body_through_opening_by_piece.empty()) j["body_through_opening_by_piece"] = c.body_through_opening_by_piece;
   }
   if (c.triangle_intersections >= 0) {
     j["triangle_intersections"] = c.triangle_intersections;

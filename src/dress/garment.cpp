@@ -445,6 +445,31 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     std::vector<int> breaks;
     for (int v = 0; v < n; ++v)
       if (brk[v]) breaks.push_back(v);
+    // Break points closer than a fifth of the spacing along the outline (a
+    // real file's two turn points 25 µm apart) would leave a boundary edge
+    // that short and a sliver triangle on it, stiff enough that no step can
+    // follow it: of such a pair the one that ends no hem goes.
+    {
+      std::vector<bool> hem_end(n, false);
+      for (int h : mine) hem_end[hems[h].a] = hem_end[hems[h].b] = true;
+      std::vector<double> arc(n + 1, 0.0);
+      for (int v = 0; v < n; ++v) arc[v + 1] = arc[v] + dist(bd[v].p, bd[(v + 1) % n].p);
+      const double min_side = 0.2 * spacing;
+      std::vector<int> kept;
+      for (const int v : breaks) {
+        if (!kept.empty() && arc[v] - arc[kept.back()] < min_side) {
+          if (hem_end[v] && hem_end[kept.back()]) kept.push_back(v);  // two hems' ends: both stay
+          else if (hem_end[v]) kept.back() = v;                         // a hem's end wins over a corner
+          continue;                                                     // else the corner goes
+        }
+        kept.push_back(v);
+      }
+      if (kept.size() > 1 && arc[n] - arc[kept.back()] + arc[kept.front()] < min_side) {
+        if (!hem_end[kept.back()]) kept.pop_back();
+        else if (!hem_end[kept.front()]) kept.erase(kept.begin());
+      }
+      breaks = std::move(kept);
+    }
     if (breaks.empty()) breaks.push_back(0);
 
     // Walk the sides from break to break.

@@ -102,6 +102,12 @@ struct Certificate {
   int body_through_cloth = -1;
   double max_body_through = 0;  // m, the deepest such point
   std::map<std::string, int> body_through_by_piece;
+  // Of those, triangles with the body deeper inside them than their longest
+  // rest edge: no ridge between particles can reach that far into an intact
+  // cloth; the body is through an opening of it (a gaping slit, a strap
+  // beside the shoulder instead of on it). A failure ("penetration").
+  int body_through_opening = -1;
+  std::map<std::string, int> body_through_opening_by_piece;
   std::map<std::string, int> crossings_by_pieces;  // "A / B" (A ≤ B by name) → crossing pairs between them
   std::vector<SeamState> seams;
   std::vector<PieceStrain> strain;
@@ -120,7 +126,7 @@ struct Certificate {
   double displacement_limit = 0.12;
   // Every check that fails, in a fixed order: error (the engine stopped the
   // run), no rest, seams open, penetration (particles inside the body, or the
-  // body through cloth triangles), self-intersection,
+  // body through an opening of the cloth: body_through_opening), self-intersection,
   // over-stretched, displaced.
   std::vector<Failure> failures() const;
   // What is measured and shown but does not fail the drape yet: "body
