@@ -23,7 +23,7 @@
 namespace {
 
 struct Options {
-  std::string input, size, body_table, avatar, output = "out", views = "front,back,three-quarter";
+  std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter";
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
   bool previews = true, json = false;
@@ -40,6 +40,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--body-table", o->body_table,
                   "Size table of the mannequin (vgd mannequin --list-sizes; default: men's or women's from the "
                   "style's name, else the default search order)");
+  sub->add_option("--body-size", o->body_size,
+                  "The mannequin's size, when it is not the garment's (default: the garment's; a size the table "
+                  "lacks, as Valentina's 'base': its middle size)");
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
       ->check(CLI::ExistingFile);
   sub->add_option("--unit", o->avatar_unit, "--avatar's unit: auto, m, dm, cm, mm, in")->capture_default_str();
@@ -72,6 +75,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     vgd::dress::PrepareOptions po;
     po.size = o->size;
     po.body_table = o->body_table;
+    po.body_size = o->body_size;
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
     std::error_code ec;
@@ -87,6 +91,13 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.pieces = prep.pieces;
     run.options.mannequin_table = prep.body_table;
     run.options.time_limit = o->time_limit;
+    if (o->avatar.empty() && prep.body_size != prep.size) {
+      vgd::scene::AvatarDef a;
+      a.kind = vgd::scene::AvatarDef::Kind::mannequin;
+      a.size = prep.body_size;
+      a.table = prep.body_table;
+      run.options.avatar = a;
+    }
     if (!o->avatar.empty()) {
       vgd::scene::AvatarDef a;
       a.kind = vgd::scene::AvatarDef::Kind::file;

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <set>
 
+#include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/xvc/arrangement.hpp"
@@ -118,19 +119,30 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                     "with 'vgd place'");
   }
 
-  // The body's size table.
+  // The body: the size table from the style's name, the garment's size
+  // when that table has it, else the table's middle size.
   const std::string style(doc.root().attribute("name"));
-  if (!options.body_table.empty()) {
-    out.body_table = options.body_table;
-  } else {
-    out.body_table = size_table_from_name(style);
-    out.decisions.push_back(out.body_table.empty()
-                                ? "body: the mannequin of size " + out.size +
-                                      " from the first size table that has it (the style's name '" + style +
-                                      "' says neither men nor women; choose with --body-table)"
-                                : "body: the mannequin of size " + out.size + " from " + out.body_table +
-                                      " (the style's name '" + style + "')");
+  out.body_table = !options.body_table.empty() ? options.body_table : size_table_from_name(style);
+  std::string why = !options.body_table.empty() ? "as asked"
+                    : out.body_table.empty()    ? "the style's name '" + style + "' says neither men nor women; choose with --body-table"
+                                                : "the style's name '" + style + "'";
+  out.body_size = !options.body_size.empty() ? options.body_size : out.size;
+  if (options.body_size.empty()) {
+    try {
+      body::find_size(out.size, out.body_table);
+    } catch (const Error&) {
+      const std::string table = !out.body_table.empty() ? out.body_table : body::size_table_names().front();
+      const auto rows = body::load_size_table(body::size_table_file(table));
+      if (!rows.empty()) {
+        out.body_size = rows[rows.size() / 2].label;
+        out.body_table = table;
+        why += "; the table has no size '" + out.size + "': its middle size, choose with --body-size";
+      }
+    }
   }
+  out.decisions.push_back("body: the mannequin of size " + out.body_size + " from " +
+                          (out.body_table.empty() ? std::string("the first size table that has it") : out.body_table) +
+                          " (" + why + ")");
   return out;
 }
 

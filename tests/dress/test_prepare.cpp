@@ -52,10 +52,11 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
   EXPECT_EQ(p.left_out, (std::vector<std::string>{"LABEL"}));
   EXPECT_EQ(p.body_table, "en13402-women");
+  EXPECT_EQ(p.body_size, "42") << "a letter size the table lacks: its middle row (32 to 50: the sixth of ten)";
   bool label = false, body = false, seam = false;
   for (const auto& d : p.decisions) {
     label = label || d == "piece LABEL left out: no seam sews it";
-    body = body || d.find("from en13402-women (the style's name 'WM TOP')") != std::string::npos;
+    body = body || d.find("from en13402-women (the style's name 'WM TOP'; the table has no size 'M'") != std::string::npos;
     seam = seam || d.find("suggested at size M: FRONT to BACK") != std::string::npos;
   }
   EXPECT_TRUE(label && body && seam);
@@ -83,6 +84,38 @@ TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
   PrepareOptions wrong;
   wrong.size = "XL";
   EXPECT_THROW(prepare_garment(doc, wrong), Error);
+}
+
+}  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// A style with only a base size (Valentina): the men's table has no size
+// "base", so the mannequin is the table's middle size, and that is said.
+TEST(PrepareGarment, ABaseSizeDrapesOnTheTablesMiddleSize) {
+  pattern::Style s;
+  s.name = "MEN shirt";
+  s.sample_size = "base";
+  s.sizes = {"base"};
+  for (auto p : {std::pair{"FRONT", 0.0}, std::pair{"BACK", 1.0}}) {
+    pattern::Piece q;
+    q.block = q.name = p.first;
+    q.size = "base";
+    for (const auto& v : std::vector<pattern::Vec2>{{p.second, 0}, {p.second + 0.3, 0}, {p.second + 0.3, 0.5}, {p.second, 0.5}})
+      q.boundary.push_back({v, pattern::PointKind::turn});
+    s.pieces.push_back(q);
+  }
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_EQ(p.size, "base");
+  EXPECT_EQ(p.body_table, "en13402-men");
+  EXPECT_EQ(p.body_size, "52") << "en13402-men has 44 to 58: its middle row";
+  bool said = false;
+  for (const auto& d : p.decisions) said = said || d.find("the table has no size 'base': its middle size") != std::string::npos;
+  EXPECT_TRUE(said);
+  PrepareOptions asked;
+  asked.body_size = "48";
+  EXPECT_EQ(prepare_garment(doc, asked).body_size, "48");
 }
 
 }  // namespace vgd::dress

@@ -10,7 +10,8 @@
 //   body      the size table of the garment's own sizes: men's when the
 //             style's name says men (MEN, MENS, MAN, MALE, or an M between
 //             separators as in "SS17_M POLO"), women's when it says women,
-//             else the default search order.
+//             else the default search order; the garment's size, or, when
+//             the table has no such size (Valentina's "base"), its middle one.
 //
 // Every decision is a sentence in Preparation::decisions, and the SEAMs it
 // adds are in the document, so the designer can read, correct and re-run.
@@ -24,6 +25,7 @@ namespace vgd::dress {
 struct PrepareOptions {
   std::string size;        // the garment's size; "" = the document's sample size
   std::string body_table;  // size table of the mannequin; "" = from the style's name
+  std::string body_size;   // the mannequin's size; "" = the garment's, else the table's middle size
   double min_score = 0.5;  // seam suggestions below are not added
 };
 
@@ -32,6 +34,7 @@ struct Preparation {
   std::vector<std::string> pieces;     // piece names to drape, document order
   std::vector<std::string> left_out;   // piece names left out (each also in decisions)
   std::string body_table;              // "" = the default search order
+  std::string body_size;               // the mannequin's size (the garment's unless no table has it)
   int seams_added = 0;
   std::vector<std::string> decisions;  // one sentence each, in the order taken
 };
