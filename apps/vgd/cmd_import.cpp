@@ -12,7 +12,7 @@ namespace {
 
 struct Options {
   std::string input, output, units;
-  bool report = false, json = false, unfold = false, keep_going = false, no_repair = false;
+  bool report = false, json = false, unfold = false, strict = false, no_repair = false;
 };
 
 vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common) {
@@ -25,7 +25,9 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
   sub->add_flag("--json", o->json, "With --report: machine-readable JSON on stdout");
   sub->add_flag("--unfold-mirrored", o->unfold, "Unfold half pieces about their mirror (fold) line");
   sub->add_option("--units", o->units, "Units to read the file in, overriding what it states (mm, cm, in)");
-  sub->add_flag("--keep-going", o->keep_going, "Write the document even when some blocks had to be dropped");
+  sub->add_flag("--strict", o->strict,
+                "Write nothing when a block had to be dropped (default: the other blocks are written, each dropped "
+                "block named on stderr, exit 3)");
   sub->add_flag("--no-repair", o->no_repair, "Do not cut small self-intersection loops out of outlines");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     vgd::dxf::ImportOptions opts;
@@ -58,14 +60,15 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
       }
     }
     if (o->output.empty()) return vgd::cli::kOk;
-    if (result.diagnostics.has_errors() && !o->keep_going)
-      throw vgd::Error(o->input, "", std::to_string(result.diagnostics.count(vgd::Severity::error)) +
-                                         " block(s) could not be imported; nothing written (use --keep-going to "
-                                         "write the other pieces)");
+    const auto dropped = result.diagnostics.count(vgd::Severity::error);
+    if (dropped > 0 && o->strict)
+      throw vgd::Error(o->input, "", std::to_string(dropped) +
+                                         " block(s) could not be imported; nothing written (--strict)");
     vgd::xvc::save_file(vgd::xvc::from_style(result.style), o->output);
     vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(s.pieces) + " pieces, " +
-                              std::to_string(s.blocks) + " blocks");
-    return vgd::cli::kOk;
+                              std::to_string(s.blocks) + " blocks" +
+                              (dropped > 0 ? " (" + std::to_string(dropped) + " dropped: see above)" : ""));
+    return dropped > 0 ? vgd::cli::kCheckFailed : vgd::cli::kOk;
   }};
 }};
 

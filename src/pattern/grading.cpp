@@ -5,6 +5,7 @@
 #include <limits>
 #include <Eigen/Dense>
 #include <map>
+#include <set>
 
 #include "vgd/pattern/contour.hpp"
 
@@ -268,6 +269,10 @@ std::vector<std::pair<std::string, CarriedMarks>> carry_sample_marks(Style& styl
   for (auto& p : style.pieces) by_name[p.name].push_back(&p);
   for (auto& [name, blocks] : by_name) {
     if (blocks.size() < 2) continue;
+    // Two blocks of one size under one name are two pieces, not two grades.
+    std::set<std::string> sizes;
+    for (const Piece* p : blocks) sizes.insert(p->size);
+    if (sizes.size() != blocks.size()) continue;
     Piece* sample = nullptr;
     for (Piece* p : blocks)
       if (p->size == style.sample_size && has_marks(*p)) sample = p;

@@ -14,6 +14,7 @@
 #include <utility>
 #include <nlohmann/json.hpp>
 
+#include "support/json_file.hpp"
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
 
@@ -22,10 +23,6 @@ namespace {
 
 using nlohmann::json;
 
-json read_json(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
 
 int closed_pairs(const json& cert) {
   int n = 0;

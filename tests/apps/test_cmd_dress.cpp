@@ -1,23 +1,15 @@
 // vgd dress: a pattern file to a draped garment in one command.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/json_file.hpp"
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
 
 namespace vgd::test {
-namespace {
 
 using nlohmann::json;
-
-json read_json(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return json::parse(in);
-}
-
-}  // namespace
 
 // The Gerber polo straight from its DXF, in a graded size: the importer's
 // marks, the suggested seams (at the sample size, carried to 44), the pieces

@@ -77,21 +77,45 @@ TEST(CliImport, ImportExportImportKeepsTheGarment) {
   }
 }
 
-TEST(CliImport, DroppedBlockStopsTheWriteUnlessKeepGoing) {
-  const auto dir = vgd::test::scratch_dir("cli_keep_going");
-  // The skirt plus a block with no boundary.
+// A bad block is dropped with its message, and the others are written
+// (exit 3: something was dropped); --strict writes nothing. The bad blocks:
+// one with no boundary, one 293 m wide (garbage, or the wrong units). A
+// small piece placed 1.25 km from the origin is a piece, kept; a second
+// BLOCK with the same name is kept under a name of its own.
+TEST(CliImport, ADroppedBlockLosesOnlyItself) {
+  const auto dir = vgd::test::scratch_dir("cli_dropped_block");
   std::string text = vgd::read_file(kSkirt);
   const auto at = text.find("  0\nENDSEC");  // end of BLOCKS
+  auto square = [](const std::string& name, double x0, double y0, double w) {
+    std::string b = "  0\nBLOCK\n  8\n0\n  2\n" + name + "\n 70\n0\n 10\n0\n 20\n0\n";
+    b += "  0\nPOLYLINE\n  8\n1\n 66\n1\n 70\n1\n";
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + w}, {x0, y0 + w}})
+      b += "  0\nVERTEX\n  8\n1\n 10\n" + std::to_string(x) + "\n 20\n" + std::to_string(y) + "\n";
+    b += "  0\nSEQEND\n  8\n1\n";
+    b += "  0\nTEXT\n  8\n1\n 10\n0\n 20\n0\n 40\n1\n  1\nPiece Name: " + name + "\n  0\nENDBLK\n  8\n0\n";
+    return b;
+  };
+  // The skirt's file is in mm: 293 m is 293 000 units; 1.25 km is 1 250 000.
   text.insert(at, "  0\nBLOCK\n  8\n0\n  2\nEMPTY\n 70\n0\n 10\n0\n 20\n0\n  0\nTEXT\n  8\n1\n 10\n0\n 20\n0\n 40\n1\n  1\n"
-                  "Piece Name: EMPTY\n  0\nENDBLK\n  8\n0\n");
+                  "Piece Name: EMPTY\n  0\nENDBLK\n  8\n0\n" +
+                  square("HUGE", 0, 0, 293000) + square("FAR", 1250000, 0, 79) + square("TWICE", 0, 0, 50) +
+                  square("TWICE", 100, 0, 60));
   vgd::write_file_atomic(dir / "bad.dxf", text);
   auto r = run_vgd("import bad.dxf -o out.xvc", dir);
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("EMPTY"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("block HUGE: the piece is 293.0 m wide and 293.0 m high (limit 20 m)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is kept as 'TWICE #2'"), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(dir / "out.xvc"));
+  const auto doc = vgd::read_file(dir / "out.xvc");
+  EXPECT_NE(doc.find("block=\"FAR\""), std::string::npos);
+  EXPECT_NE(doc.find("block=\"TWICE\""), std::string::npos);
+  EXPECT_NE(doc.find("block=\"TWICE #2\""), std::string::npos);
+  EXPECT_EQ(doc.find("block=\"HUGE\""), std::string::npos);
+  fs::remove(dir / "out.xvc");
+  r = run_vgd("import bad.dxf -o out.xvc --strict", dir);
+  EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out.xvc"));
-  r = run_vgd("import bad.dxf -o out.xvc --keep-going", dir);
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(fs::exists(dir / "out.xvc"));
 }
 
 TEST(CliDraft, DraftedFileImportsCleanly) {

@@ -395,6 +395,19 @@ bool Interpreter::import_block(const raw::Block& b, const Xform& place, Piece& p
     res_.diagnostics.error(name_, entity, "boundary has fewer than 3 distinct vertices; block dropped", parts_line);
     return false;
   }
+  {
+    Vec2 lo = piece.boundary.front().p, hi = lo;
+    for (const auto& c : piece.boundary) lo = lo.cwiseMin(c.p), hi = hi.cwiseMax(c.p);
+    const Vec2 ext = hi - lo;
+    if (ext.maxCoeff() > opts_.max_piece_size_m) {
+      res_.diagnostics.error(name_, entity,
+                             "the piece is " + format_fixed(ext.x(), 1) + " m wide and " + format_fixed(ext.y(), 1) +
+                                 " m high (limit " + format_fixed(opts_.max_piece_size_m, 0) +
+                                 " m): wrong units or a corrupt block; block dropped, the others kept",
+                             parts_line);
+      return false;
+    }
+  }
   pattern::make_counter_clockwise(piece.boundary);
   if (std::abs(pattern::signed_area(piece.boundary)) == 0.0) {
     res_.diagnostics.error(name_, entity, "boundary encloses no area (all points on a line); block dropped",
@@ -520,9 +533,13 @@ bool Interpreter::import_block(const raw::Block& b, const Xform& place, Piece& p
         const double lost = rep.area_m2 - std::abs(pattern::signed_area(repaired));
         piece.boundary = std::move(repaired);
         piece.self_intersecting = false;
-        if (loops > 0)
-          what += "; cut " + std::to_string(loops) + " small loop(s) (" + format_fixed(lost * 1e4, 2) +
-                  " cm² removed)";
+        if (loops > 0) {
+          // The shoelace area of a crossing outline counts its loops with
+          // signs: the difference says how much, not which way.
+          const double mm2 = std::abs(lost) * 1e6;
+          what += "; cut " + std::to_string(loops) + " small loop(s) (" +
+                  (mm2 < 100 ? format_fixed(mm2, 1) + " mm²" : format_fixed(mm2 / 100, 1) + " cm²") + ")";
+        }
         what += ": repaired";
       } else {
         what += "; not repairable automatically (the crossing encloses a large area): fix it in the CAD system";
@@ -537,19 +554,23 @@ ImportResult Interpreter::run() {
   decide_units();
   read_style_texts();
 
-  // Where each block is placed in model space.
-  std::map<std::string, const raw::Insert*> placement;
+  // Where each block is placed in model space. A name defined by several
+  // BLOCKs (Valentina writes that) pairs its k-th BLOCK with its k-th INSERT.
+  std::map<std::string, std::vector<const raw::Insert*>> placement;
+  std::map<std::string, int> definitions;
+  for (const auto& b : d_.blocks) ++definitions[b.name];
   std::set<std::string> nested;
   for (const auto& ins : d_.model.inserts) {
-    if (placement.count(ins.block))
+    auto& list = placement[ins.block];
+    if (!list.empty() && static_cast<int>(list.size()) >= definitions[ins.block])
       warn("block " + ins.block, "inserted more than once; using the first placement", ins.line);
     else
-      placement[ins.block] = &ins;
+      list.push_back(&ins);
   }
   for (const auto& b : d_.blocks)
     for (const auto& ins : b.inserts) nested.insert(ins.block);
 
-  std::set<std::string> seen_blocks;
+  std::map<std::string, int> seen_blocks;
   for (const auto& b : d_.blocks) {
     // Layout blocks and anonymous blocks are not pieces.
     if (b.name.empty() || b.name[0] == '$' || b.name[0] == '*') continue;
@@ -557,17 +578,26 @@ ImportResult Interpreter::run() {
     // A block only used inside other blocks is a symbol, not a piece.
     if (pl == placement.end() && nested.count(b.name)) continue;
     if (pl == placement.end() && b.polylines.empty() && b.lines.empty() && b.texts.empty()) continue;
-    if (!seen_blocks.insert(b.name).second) {
-      res_.diagnostics.error(name_, "block " + b.name, "duplicate block name; the second block was dropped", b.line);
-      continue;
-    }
+    const int occurrence = seen_blocks[b.name]++;
     Xform place;
-    if (pl != placement.end()) place = insert_xform(*pl->second, b);
-    else place.t = -Vec2(b.base_x, b.base_y);
+    if (pl != placement.end())
+      place = insert_xform(*pl->second[std::min<std::size_t>(occurrence, pl->second.size() - 1)], b);
+    else
+      place.t = -Vec2(b.base_x, b.base_y);
     Piece piece;
     BlockReport rep;
     rep.block = b.name;
     if (import_block(b, place, piece, rep)) {
+      // A second BLOCK of the same name is kept under a name of its own.
+      if (occurrence > 0) {
+        const std::string renamed = b.name + " #" + std::to_string(occurrence + 1);
+        warn("block " + b.name, "another BLOCK has this name; this one (line " + std::to_string(b.line) +
+                                    ") is kept as '" + renamed + "'",
+             b.line);
+        if (piece.name == piece.block) piece.name = renamed;
+        piece.block = rep.block = renamed;
+        rep.piece = piece.name;
+      }
       if (place.mirrors()) warn("block " + b.name, "placed mirrored by its INSERT; outline rewound counter-clockwise");
       res_.style.pieces.push_back(std::move(piece));
     } else {

@@ -41,8 +41,14 @@ struct ImportOptions {
   double join_tolerance_m = 1e-6;
   // Gaps up to this are bridged and reported; larger ones leave the outline open (m).
   double repair_gap_m = 1e-3;
-  // Largest coordinate accepted after unit conversion (m): guards against garbage.
-  double max_coordinate_m = 1000.0;
+  // Largest coordinate accepted after unit conversion (m): guards against
+  // overflow and garbage. A piece may sit far from the origin (a 79 x 72 mm
+  // piece placed 1.25 km away is a piece).
+  double max_coordinate_m = 1.0e6;
+  // Largest width or height of one piece (m): a block larger than this is
+  // garbage or in the wrong units, and is dropped with an error; the other
+  // blocks are kept.
+  double max_piece_size_m = 20.0;
 };
 
 // What the file held for one block, as stored (before any unfolding).
