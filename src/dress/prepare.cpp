@@ -110,6 +110,53 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.pieces.push_back(name);
     }
   }
+  // Alternatives: several sleeve patterns (a short and a full sleeve, a
+  // one-piece and a two-piece set) are one sleeve drawn several ways. Those
+  // sewn to the body pieces (an armhole) are the garment's; with none sewn
+  // there, the first in the document is. The others are left out.
+  {
+    auto category = [&](const std::string& name) {
+      for (const auto* p : mine)
+        if (p->attribute("piece") == name) return std::string(p->attribute("category"));
+      return std::string();
+    };
+    // A LEFT and a RIGHT sleeve are a pair, not alternatives.
+    auto sided = [](std::string n) {
+      for (auto& ch : n) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      return n.find("LEFT") != std::string::npos || n.find("RIGHT") != std::string::npos;
+    };
+    std::vector<std::string> sleeves;
+    for (const auto& name : out.pieces)
+      if (xvc::is_sleeve_name(name, category(name)) && !sided(name)) sleeves.push_back(name);
+    if (sleeves.size() > 1) {
+      std::set<std::string> on_body;  // sleeves with a seam to a piece that is not a sleeve
+      for (const auto& s : xvc::list_seams(doc)) {
+        std::set<std::string> names;
+        for (const auto& h : s.hems)
+          if (const auto* p = doc.find(h.pattern)) names.insert(std::string(p->attribute("piece")));
+        const bool body = std::any_of(names.begin(), names.end(), [&](const std::string& n) {
+          return std::find(sleeves.begin(), sleeves.end(), n) == sleeves.end();
+        });
+        if (body)
+          for (const auto& n : names)
+            if (std::find(sleeves.begin(), sleeves.end(), n) != sleeves.end()) on_body.insert(n);
+      }
+      std::vector<std::string> chosen;
+      for (const auto& n : sleeves)
+        if (on_body.count(n)) chosen.push_back(n);
+      if (chosen.empty()) chosen.push_back(sleeves.front());
+      std::string list;
+      for (const auto& n : chosen) list += (list.empty() ? "" : ", ") + n;
+      for (const auto& n : sleeves) {
+        if (std::find(chosen.begin(), chosen.end(), n) != chosen.end()) continue;
+        out.pieces.erase(std::find(out.pieces.begin(), out.pieces.end(), n));
+        out.left_out.push_back(n);
+        out.decisions.push_back("piece " + n + " left out: an alternative to the sleeve " + list +
+                                (on_body.empty() ? " (the first in the document; no sleeve is sewn to an armhole)"
+                                                 : " (sewn to the armholes)"));
+      }
+    }
+  }
   if (out.pieces.empty()) {
     std::string names;
     for (const auto* p : mine) names += (names.empty() ? "" : ", ") + std::string(p->attribute("piece"));

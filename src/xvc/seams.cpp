@@ -209,9 +209,18 @@ std::vector<Edge> edges(const Outline& o, const Frame& f, double merge_angle) {
 
 enum class Role { other, front, back, sleeve, waistband };
 
+}  // namespace
+
+bool is_sleeve_name(const std::string& piece, const std::string& category) {
+  const std::string n = upper(piece) + " " + upper(category);
+  return n.find("SLEEVE") != std::string::npos || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
+}
+
+namespace {
+
 Role role_of(const Outline& o) {
   const std::string n = upper(o.piece) + " " + upper(o.category);
-  if (n.find("SLEEVE") != std::string::npos || std::regex_search(n, std::regex(R"(SL(\d| |$))"))) return Role::sleeve;
+  if (is_sleeve_name(o.piece, o.category)) return Role::sleeve;
   if (n.find("WAISTBAND") != std::string::npos || (n.find("WAIST") != std::string::npos && n.find("BAND") != std::string::npos))
     return Role::waistband;
   if (n.find("FRONT") != std::string::npos || std::regex_search(n, std::regex(R"((FRT?|FT)\d*( |$))"))) return Role::front;

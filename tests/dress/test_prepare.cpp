@@ -119,3 +119,35 @@ TEST(PrepareGarment, ABaseSizeDrapesOnTheTablesMiddleSize) {
 }
 
 }  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// Two sleeve patterns drawn for one sleeve (a short and a full one, as in a
+// Valentina shirt) are alternatives: without an armhole seam the first in
+// the document is draped and the other left out, said.
+TEST(PrepareGarment, AnAlternativeSleeveIsLeftOut) {
+  pattern::Style s;
+  s.name = "MEN shirt";
+  s.sample_size = "50";
+  s.sizes = {"50"};
+  auto rect = [](const std::string& name, double x0, double w, double h) {
+    pattern::Piece q;
+    q.block = q.name = name;
+    q.size = "50";
+    for (const auto& v : std::vector<pattern::Vec2>{{x0, 0}, {x0 + w, 0}, {x0 + w, h}, {x0, h}})
+      q.boundary.push_back({v, pattern::PointKind::turn});
+    return q;
+  };
+  s.pieces = {rect("FRONT", 0, 0.3, 0.6), rect("BACK", 1, 0.3, 0.6), rect("SHORTSLEEVE", 2, 0.4, 0.25),
+              rect("FULLSLEEVE", 3, 0.4, 0.6)};
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "SHORTSLEEVE"), p.pieces.end());
+  EXPECT_EQ(std::find(p.pieces.begin(), p.pieces.end(), "FULLSLEEVE"), p.pieces.end());
+  bool said = false;
+  for (const auto& d : p.decisions)
+    said = said || d.find("piece FULLSLEEVE left out: an alternative to the sleeve SHORTSLEEVE") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+}  // namespace vgd::dress

@@ -73,6 +73,10 @@ struct SeamOptions {
 // quantity 0 are skipped. See docs/xvc.md for the rules.
 std::vector<SeamSuggestion> suggest_seams(const Document& doc, const SeamOptions& opts = {});
 
+// The suggester's sleeve rule: SLEEVE in the piece's name or category, or
+// Gerber's SL, SL1, SL FR.
+bool is_sleeve_name(const std::string& piece, const std::string& category);
+
 // A SEAM element (no ids: AddNode gives them) for a suggestion.
 Node seam_node(const SeamSuggestion& s);
 Node seam_node(const std::string& name, const std::vector<HemRef>& hems);
