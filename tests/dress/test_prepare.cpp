@@ -13,11 +13,11 @@ namespace {
 using pattern::PointKind;
 using pattern::Vec2;
 
-pattern::Piece panel(const std::string& name, double x0, double w, double h) {
+pattern::Piece panel(const std::string& name, double x0, double w, double h, const std::string& size = "M") {
   pattern::Piece p;
-  p.block = name + "_M";
+  p.block = name + "_" + size;
   p.name = name;
-  p.size = "M";
+  p.size = size;
   for (const auto& q : std::vector<Vec2>{{x0, 0}, {x0 + w, 0}, {x0 + w, h}, {x0, h}}) p.boundary.push_back({q, PointKind::turn});
   p.grain_line = pattern::Segment{Vec2(x0 + w / 2, 0.1), Vec2(x0 + w / 2, h - 0.1)};
   return p;
@@ -97,14 +97,7 @@ TEST(PrepareGarment, ABaseSizeDrapesOnTheTablesMiddleSize) {
   s.name = "MEN shirt";
   s.sample_size = "base";
   s.sizes = {"base"};
-  for (auto p : {std::pair{"FRONT", 0.0}, std::pair{"BACK", 1.0}}) {
-    pattern::Piece q;
-    q.block = q.name = p.first;
-    q.size = "base";
-    for (const auto& v : std::vector<pattern::Vec2>{{p.second, 0}, {p.second + 0.3, 0}, {p.second + 0.3, 0.5}, {p.second, 0.5}})
-      q.boundary.push_back({v, pattern::PointKind::turn});
-    s.pieces.push_back(q);
-  }
+  s.pieces = {panel("FRONT", 0.0, 0.3, 0.5, "base"), panel("BACK", 1.0, 0.3, 0.5, "base")};
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_EQ(p.size, "base");
@@ -130,16 +123,8 @@ TEST(PrepareGarment, AnAlternativeSleeveIsLeftOut) {
   s.name = "MEN shirt";
   s.sample_size = "50";
   s.sizes = {"50"};
-  auto rect = [](const std::string& name, double x0, double w, double h) {
-    pattern::Piece q;
-    q.block = q.name = name;
-    q.size = "50";
-    for (const auto& v : std::vector<pattern::Vec2>{{x0, 0}, {x0 + w, 0}, {x0 + w, h}, {x0, h}})
-      q.boundary.push_back({v, pattern::PointKind::turn});
-    return q;
-  };
-  s.pieces = {rect("FRONT", 0, 0.3, 0.6), rect("BACK", 1, 0.3, 0.6), rect("SHORTSLEEVE", 2, 0.4, 0.25),
-              rect("FULLSLEEVE", 3, 0.4, 0.6)};
+  s.pieces = {panel("FRONT", 0, 0.3, 0.6, "50"), panel("BACK", 1, 0.3, 0.6, "50"), panel("SHORTSLEEVE", 2, 0.4, 0.25, "50"),
+              panel("FULLSLEEVE", 3, 0.4, 0.6, "50")};
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "SHORTSLEEVE"), p.pieces.end());
