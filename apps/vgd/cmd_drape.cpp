@@ -94,11 +94,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     const bool told = sub->get_option("--self-collision")->count() > 0;
     d.self_collision = told ? o->self_collision : d.quality != scene::Quality::preview;
     if (!o->avatar.empty()) {
-      scene::AvatarDef a;
-      a.kind = scene::AvatarDef::Kind::file;
-      a.file = fs::absolute(o->avatar);
-      a.unit = o->avatar_unit, a.up = o->avatar_up, a.facing = o->avatar_facing;
-      d.avatar = a;
+      d.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);
     }
     vgd::cli::DrapeRun run;
     run.options = std::move(d);

@@ -81,6 +81,17 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     std::error_code ec;
     fs::create_directories(out, ec);
     const fs::path prepared = out / "garment.xvc";
+    // A garment.xvc there already (a document corrected after an earlier run)
+    // is kept beside the new one, unless it is the input itself.
+    if (fs::exists(prepared, ec) && !fs::equivalent(prepared, o->input, ec)) {
+      const fs::path kept = out / "garment.previous.xvc";
+      fs::rename(prepared, kept, ec);
+      if (ec)
+        throw vgd::Error(prepared.string(), "",
+                         "cannot keep the document already there as " + kept.string() + ": " + ec.message() +
+                             "; nothing written");
+      vgd::cli::say(common, "vgd: the document already in " + prepared.string() + " is kept as " + kept.string());
+    }
     vgd::xvc::save_file(doc, prepared);
     vgd::cli::say(common, "vgd: wrote " + prepared.string() + " (the document draped; correct it and run vgd drape " +
                               prepared.string() + " again)");
@@ -98,13 +109,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       a.table = prep.body_table;
       run.options.avatar = a;
     }
-    if (!o->avatar.empty()) {
-      vgd::scene::AvatarDef a;
-      a.kind = vgd::scene::AvatarDef::Kind::file;
-      a.file = fs::absolute(o->avatar);
-      a.unit = o->avatar_unit, a.up = o->avatar_up, a.facing = o->avatar_facing;
-      run.options.avatar = a;
-    }
+    if (!o->avatar.empty())
+      run.options.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);
     run.names = o->input;
     run.avatar_label = o->avatar;
     run.output = out;

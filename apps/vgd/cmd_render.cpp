@@ -321,61 +321,61 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
 namespace vgd::cli {
 
 int write_previews(const RenderOptions& o, const Common& common) {
-    // Views and size first: a typo should not wait for the files to load.
-    std::vector<render::ViewPreset> views;
-    for (const auto& name : vgd::split(o.views, ',')) {
-      if (vgd::trim(name).empty()) continue;
-      if (vgd::iequals(vgd::trim(name), "all")) {
-        views = render::view_presets();
-        break;
-      }
-      const auto v = render::find_view(name);
-      if (!v) {
-        std::fprintf(stderr, "vgd render: --views: unknown view '%s' (front, back, left, right, three-quarter, all)\n",
-                     std::string(vgd::trim(name)).c_str());
-        return vgd::cli::kUsage;
-      }
-      views.push_back(*v);
+  // Views and size first: a typo should not wait for the files to load.
+  std::vector<render::ViewPreset> views;
+  for (const auto& name : vgd::split(o.views, ',')) {
+    if (vgd::trim(name).empty()) continue;
+    if (vgd::iequals(vgd::trim(name), "all")) {
+      views = render::view_presets();
+      break;
     }
-    if (views.empty()) {
-      std::fprintf(stderr, "vgd render: --views: no view given\n");
+    const auto v = render::find_view(name);
+    if (!v) {
+      std::fprintf(stderr, "vgd render: --views: unknown view '%s' (front, back, left, right, three-quarter, all)\n",
+                   std::string(vgd::trim(name)).c_str());
       return vgd::cli::kUsage;
     }
-    std::pair<int, int> size;
-    try {
-      size = parse_size(o.size);
-      if (!o.colour.empty()) parse_colour_option("--colour", o.colour);
-      if (!o.body_colour.empty()) parse_colour_option("--body-colour", o.body_colour);
-    } catch (const CLI::ValidationError& e) {
-      std::fprintf(stderr, "vgd render: %s\n", e.what());
-      return vgd::cli::kUsage;
-    }
+    views.push_back(*v);
+  }
+  if (views.empty()) {
+    std::fprintf(stderr, "vgd render: --views: no view given\n");
+    return vgd::cli::kUsage;
+  }
+  std::pair<int, int> size;
+  try {
+    size = parse_size(o.size);
+    if (!o.colour.empty()) parse_colour_option("--colour", o.colour);
+    if (!o.body_colour.empty()) parse_colour_option("--body-colour", o.body_colour);
+  } catch (const CLI::ValidationError& e) {
+    std::fprintf(stderr, "vgd render: %s\n", e.what());
+    return vgd::cli::kUsage;
+  }
 
-    const auto t0 = std::chrono::steady_clock::now();
-    const render::Scene scene = load_scene(o, common);
-    render::OffscreenOptions opts;
-    opts.supersample = o.supersample;
-    opts.frame_on_garment = o.fit == "garment";
-    opts.look.floor = !o.no_floor;
-    opts.look.shadow = !o.no_shadow;
-    render::OffscreenRenderer renderer;
-    renderer.set_scene(scene);
-    if (common.verbose) vgd::cli::say(common, "vgd: " + renderer.gl_description());
+  const auto t0 = std::chrono::steady_clock::now();
+  const render::Scene scene = load_scene(o, common);
+  render::OffscreenOptions opts;
+  opts.supersample = o.supersample;
+  opts.frame_on_garment = o.fit == "garment";
+  opts.look.floor = !o.no_floor;
+  opts.look.shadow = !o.no_shadow;
+  render::OffscreenRenderer renderer;
+  renderer.set_scene(scene);
+  if (common.verbose) vgd::cli::say(common, "vgd: " + renderer.gl_description());
 
-    // One PNG per view.
-    const fs::path out = o.output;
-    for (const auto& v : views) {
-      const render::Image image = renderer.render(v, size.first, size.second, opts);
-      const fs::path file = out / (v.name + ".png");
-      render::write_png(image, file);
-      if (o.list_files)
-        std::printf("wrote %s (%d x %d, %s view)\n", file.string().c_str(), image.width, image.height, v.name.c_str());
-    }
-    std::fflush(stdout);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    vgd::cli::say(common, "vgd: rendered " + std::to_string(views.size()) + " view(s) of " +
-                              std::to_string(scene.meshes.size()) + " meshes in " + vgd::format_fixed(s, 2) + " s");
-    return vgd::cli::kOk;
+  // One PNG per view.
+  const fs::path out = o.output;
+  for (const auto& v : views) {
+    const render::Image image = renderer.render(v, size.first, size.second, opts);
+    const fs::path file = out / (v.name + ".png");
+    render::write_png(image, file);
+    if (o.list_files)
+      std::printf("wrote %s (%d x %d, %s view)\n", file.string().c_str(), image.width, image.height, v.name.c_str());
+  }
+  std::fflush(stdout);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  vgd::cli::say(common, "vgd: rendered " + std::to_string(views.size()) + " view(s) of " +
+                            std::to_string(scene.meshes.size()) + " meshes in " + vgd::format_fixed(s, 2) + " s");
+  return vgd::cli::kOk;
 }
 
 }  // namespace vgd::cli

@@ -76,78 +76,91 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
   namespace body = vgd::body;
   namespace dress = vgd::dress;
   namespace fs = std::filesystem;
-    const scene::SceneDef def = dress::drape_scene(run.options);
+  const scene::SceneDef def = dress::drape_scene(run.options);
 
-    const fs::path out = run.output;
-    std::vector<std::unique_ptr<vgd::sim::FrameSink>> owned;
-    std::vector<vgd::sim::FrameSink*> sinks;
-    auto last = std::make_unique<LastFrame>();
-    sinks.push_back(last.get());
-    if (run.frames) {
-      owned.push_back(std::make_unique<vgd::io::obj::ObjSequenceSink>(out / "frames"));
-      sinks.push_back(owned.back().get());
+  const fs::path out = run.output;
+  std::vector<std::unique_ptr<vgd::sim::FrameSink>> owned;
+  std::vector<vgd::sim::FrameSink*> sinks;
+  auto last = std::make_unique<LastFrame>();
+  sinks.push_back(last.get());
+  if (run.frames) {
+    owned.push_back(std::make_unique<vgd::io::obj::ObjSequenceSink>(out / "frames"));
+    sinks.push_back(owned.back().get());
+  }
+  if (!run.trj.empty()) {
+    owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(run.trj));
+    sinks.push_back(owned.back().get());
+  }
+  StageBar bar(!common.quiet && !run.json);
+  // What the build found is said before the run: the body's import notes,
+  // a garment too small or too large for it, meshing warnings.
+  auto progress = [&](const dress::DrapeStageProgress& p) {
+    if (p.scene) {
+      if (p.scene->avatar)
+        for (const auto& note : p.scene->avatar->notes)
+          vgd::cli::say(common, "vgd: " + run.avatar_label + ": " + note);
+      vgd::cli::print_diagnostics(p.scene->diagnostics, common);
     }
-    if (!run.trj.empty()) {
-      owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(run.trj));
-      sinks.push_back(owned.back().get());
-    }
-    StageBar bar(!common.quiet && !run.json);
-    // What the build found is said before the run: the body's import notes,
-    // a garment too small or too large for it, meshing warnings.
-    auto progress = [&](const dress::DrapeStageProgress& p) {
-      if (p.scene) {
-        if (p.scene->avatar)
-          for (const auto& note : p.scene->avatar->notes) vgd::cli::say(common, "vgd: " + run.avatar_label + ": " + note);
-        vgd::cli::print_diagnostics(p.scene->diagnostics, common);
-      }
-      bar(p);
-    };
-    dress::DrapeResult r = dress::run_drape(def, sinks, progress);
-    bar.finish();
+    bar(p);
+  };
+  dress::DrapeResult r = dress::run_drape(def, sinks, progress);
+  bar.finish();
 
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    const auto& model = r.scene.system->model();
-    vgd::write_file_atomic(out / "garment.obj", vgd::io::obj::frame_text(model, r.state.t, r.positions));
-    if (r.scene.avatar) body::export_avatar(*r.scene.avatar, out / "avatar.obj");
-    const std::string cert = dress::to_json(r.certificate);
-    vgd::write_file_atomic(out / "certificate.json", cert);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  const auto& model = r.scene.system->model();
+  vgd::write_file_atomic(out / "garment.obj", vgd::io::obj::frame_text(model, r.state.t, r.positions));
+  if (r.scene.avatar) body::export_avatar(*r.scene.avatar, out / "avatar.obj");
+  const std::string cert = dress::to_json(r.certificate);
+  vgd::write_file_atomic(out / "certificate.json", cert);
 
-    const auto& c = r.certificate;
-    if (run.json) {
-      std::fputs(cert.c_str(), stdout);
-    } else if (!common.quiet) {
-      int pairs = 0, closed = 0;
-      for (const auto& s : c.seams) pairs += s.pairs, closed += s.closed;
-      std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", run.names.c_str(), c.stop_reason.c_str(),
-                  fixed(c.simulated_s, 2).c_str(), fixed(c.wall_s, 2).c_str());
-      for (const auto& st : c.stages)
-        std::printf("  %-9s %7s s wall %7s s simulated\n", st.name.c_str(), fixed(st.wall_s, 2).c_str(),
-                    fixed(st.simulated_s, 2).c_str());
-      std::string prof;
-      for (const auto& [name, sec] : c.effect_seconds) prof += " " + name + " " + fixed(sec, 2) + " s,";
-      if (!prof.empty()) prof.pop_back();
-      std::printf("  %ld steps, %ld force evaluations, %ld CG iterations; per effect:%s\n", c.steps,
-                  c.force_evaluations, c.linear_iterations, prof.c_str());
-      std::printf("  %d particles, %d triangles; seams %d/%d pairs closed; max penetration %s mm; "
-                  "%d crossing triangle pairs\n",
-                  c.particles, c.triangles, closed, pairs, fixed(c.max_penetration * 1000, 2).c_str(),
-                  c.triangle_intersections);
-      std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s\n", out.string().c_str(),
-                  run.frames ? ", frames/" : "");
-      if (!run.trj.empty()) std::printf("  trajectory: %s\n", run.trj.c_str());
-      std::fflush(stdout);
-    }
-    if (c.stop_reason == "error") {
-      std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", run.names.c_str(), c.stop_message.c_str());
-      return vgd::cli::kFailed;
-    }
-    if (!common.quiet) {
-      for (const auto& f : c.failures())
-        std::fprintf(stderr, "vgd: check failed: %s: %s\n", f.kind.c_str(), f.detail.c_str());
-      for (const auto& w : c.warnings()) std::fprintf(stderr, "vgd: warning: %s: %s\n", w.kind.c_str(), w.detail.c_str());
-    }
-    return c.passed() ? vgd::cli::kOk : vgd::cli::kCheckFailed;
+  const auto& c = r.certificate;
+  if (run.json) {
+    std::fputs(cert.c_str(), stdout);
+  } else if (!common.quiet) {
+    int pairs = 0, closed = 0;
+    for (const auto& s : c.seams) pairs += s.pairs, closed += s.closed;
+    std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", run.names.c_str(),
+                c.stop_reason.c_str(), fixed(c.simulated_s, 2).c_str(), fixed(c.wall_s, 2).c_str());
+    for (const auto& st : c.stages)
+      std::printf("  %-9s %7s s wall %7s s simulated\n", st.name.c_str(), fixed(st.wall_s, 2).c_str(),
+                  fixed(st.simulated_s, 2).c_str());
+    std::string prof;
+    for (const auto& [name, sec] : c.effect_seconds) prof += " " + name + " " + fixed(sec, 2) + " s,";
+    if (!prof.empty()) prof.pop_back();
+    std::printf("  %ld steps, %ld force evaluations, %ld CG iterations; per effect:%s\n", c.steps,
+                c.force_evaluations, c.linear_iterations, prof.c_str());
+    std::printf(
+        "  %d particles, %d triangles; seams %d/%d pairs closed; max penetration %s mm; "
+        "%d crossing triangle pairs\n",
+        c.particles, c.triangles, closed, pairs, fixed(c.max_penetration * 1000, 2).c_str(),
+        c.triangle_intersections);
+    std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s\n", out.string().c_str(),
+                run.frames ? ", frames/" : "");
+    if (!run.trj.empty()) std::printf("  trajectory: %s\n", run.trj.c_str());
+    std::fflush(stdout);
+  }
+  if (c.stop_reason == "error") {
+    std::fprintf(stderr, "vgd: error: %s: the drape stopped: %s\n", run.names.c_str(),
+                 c.stop_message.c_str());
+    return vgd::cli::kFailed;
+  }
+  if (!common.quiet) {
+    for (const auto& f : c.failures())
+      std::fprintf(stderr, "vgd: check failed: %s: %s\n", f.kind.c_str(), f.detail.c_str());
+    for (const auto& w : c.warnings())
+      std::fprintf(stderr, "vgd: warning: %s: %s\n", w.kind.c_str(), w.detail.c_str());
+  }
+  return c.passed() ? vgd::cli::kOk : vgd::cli::kCheckFailed;
+}
+
+scene::AvatarDef avatar_file(const std::string& file, const std::string& unit, const std::string& up,
+                             const std::string& facing) {
+  scene::AvatarDef a;
+  a.kind = scene::AvatarDef::Kind::file;
+  a.file = std::filesystem::absolute(file);
+  a.unit = unit, a.up = up, a.facing = facing;
+  return a;
 }
 
 }  // namespace vgd::cli

@@ -25,4 +25,8 @@ struct DrapeRun {
 
 int drape_and_report(const DrapeRun& run, const Common& common);
 
+// The body of --avatar FILE with its --unit, --up and --facing, as a drape's avatar.
+scene::AvatarDef avatar_file(const std::string& file, const std::string& unit, const std::string& up,
+                             const std::string& facing);
+
 }  // namespace vgd::cli

@@ -97,10 +97,6 @@ bool strictly_inside(int v, int a, int b, int n) {
   return dv > 0 && dv < db;
 }
 
-}  // namespace
-
-namespace {
-
 // The size of each SEAM's patterns (that of its first HEM's PATTERN), in
 // document order.
 std::vector<std::string> seam_sizes(const xvc::Document& doc) {

@@ -121,8 +121,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       return std::string();
     };
     // A LEFT and a RIGHT sleeve are a pair, not alternatives.
-    auto sided = [](std::string n) {
-      for (auto& ch : n) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    auto sided = [](const std::string& name) {
+      const std::string n = to_upper(name);
       return n.find("LEFT") != std::string::npos || n.find("RIGHT") != std::string::npos;
     };
     std::vector<std::string> sleeves;

@@ -132,7 +132,6 @@ CarriedMarks carry_marks(const Piece& from, Piece& to, double max_rms_fraction) 
     return out;
   }
   const double area_from = std::abs(signed_area(from.boundary)), area_to = std::abs(signed_area(to.boundary));
-  (void)area_to;
   if (!(area_from > 0) || !(area_to > 0)) {
     out.why = "an outline encloses no area";
     return out;

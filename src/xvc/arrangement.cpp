@@ -13,11 +13,6 @@ namespace vgd::xvc {
 
 namespace {
 
-std::string upper(std::string_view s) {
-  std::string o(s);
-  for (auto& c : o) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return o;
-}
 bool has(const std::string& s, std::string_view w) { return s.find(w) != std::string::npos; }
 
 pattern::Vec2 rotate(const pattern::Vec2& p, double deg) {
@@ -90,7 +85,7 @@ pattern::Vec2 reference_point(const pattern::Piece& piece, double angle_deg) {
 
 std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body, const ArrangementOptions& opts) {
   if (piece.quantity == 0) return {};  // not cut (a reference piece): nothing to place
-  const std::string n = upper(piece.name) + " " + upper(piece.category);
+  const std::string n = to_upper(piece.name) + " " + to_upper(piece.category);
   Arrangement a;
   a.clearance = opts.clearance;
   const bool band = has(n, "WAISTBAND") || (has(n, "WAIST") && has(n, "BAND"));
@@ -146,10 +141,10 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(const Document& doc,
                                                                                    const ArrangementOptions& opts) {
   bool lower = false;
-  const std::string gname = upper(doc.root().attribute("name"));
+  const std::string gname = to_upper(doc.root().attribute("name"));
   if (has(gname, "SKIRT") || has(gname, "TROUSER") || has(gname, "PANT")) lower = true;
   for (const Node* p : doc.patterns()) {
-    const std::string n = upper(p->attribute("piece"));
+    const std::string n = to_upper(p->attribute("piece"));
     if (has(n, "WAISTBAND") || has(n, "SKIRT")) lower = true;
   }
   std::vector<std::pair<std::string, std::vector<Arrangement>>> out;

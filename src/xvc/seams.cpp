@@ -19,11 +19,6 @@ namespace {
 
 using pattern::Vec2;
 
-std::string upper(std::string_view s) {
-  std::string o(s);
-  for (auto& c : o) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return o;
-}
 
 // ---- one pattern's outline, stretches and notch marks ---------------------------------
 
@@ -212,14 +207,14 @@ enum class Role { other, front, back, sleeve, waistband };
 }  // namespace
 
 bool is_sleeve_name(const std::string& piece, const std::string& category) {
-  const std::string n = upper(piece) + " " + upper(category);
+  const std::string n = to_upper(piece) + " " + to_upper(category);
   return n.find("SLEEVE") != std::string::npos || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
 }
 
 namespace {
 
 Role role_of(const Outline& o) {
-  const std::string n = upper(o.piece) + " " + upper(o.category);
+  const std::string n = to_upper(o.piece) + " " + to_upper(o.category);
   if (is_sleeve_name(o.piece, o.category)) return Role::sleeve;
   if (n.find("WAISTBAND") != std::string::npos || (n.find("WAIST") != std::string::npos && n.find("BAND") != std::string::npos))
     return Role::waistband;
@@ -313,7 +308,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
   for (const auto& sl : ps) {
     if (sl.role != Role::sleeve || sl.edges.size() < 3) continue;
-    const std::string n = upper(sl.o->piece);
+    const std::string n = to_upper(sl.o->piece);
     std::vector<int> sides;
     if (n.find("LEFT") != std::string::npos) sides = {1};
     else if (n.find("RIGHT") != std::string::npos) sides = {-1};

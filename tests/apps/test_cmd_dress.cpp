@@ -1,11 +1,13 @@
 // vgd dress: a pattern file to a draped garment in one command.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "support/json_file.hpp"
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
+#include "vgd/core/file.hpp"
 
 namespace vgd::test {
 
@@ -54,6 +56,19 @@ TEST(CliDress, ADraftedSkirtDxfDrapesInOneCommand) {
   EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
   EXPECT_GE(c["seams"].size(), 3u);
   EXPECT_FALSE(std::filesystem::exists(out / "d" / "previews"));
+
+  // Run again into the same folder after correcting its document: the
+  // corrected one is kept beside the new one, not lost.
+  {
+    std::ofstream corrected(out / "d" / "garment.xvc", std::ios::app);
+    corrected << "<!-- corrected by hand -->\n";
+  }
+  const auto again = run_vgd({"dress", dxf.string(), "--size", "36", "-o", (out / "d").string(), "--no-previews",
+                              "--time-limit", "0.05"});
+  EXPECT_TRUE(again.code == 0 || again.code == 3) << again.err;
+  EXPECT_NE(again.err.find("is kept as"), std::string::npos) << again.err;
+  EXPECT_NE(vgd::read_file(out / "d" / "garment.previous.xvc").find("corrected by hand"), std::string::npos);
+  EXPECT_EQ(vgd::read_file(out / "d" / "garment.xvc").find("corrected by hand"), std::string::npos);
 }
 
 }  // namespace vgd::test

@@ -653,7 +653,7 @@ ImportResult Interpreter::run() {
     for (const auto& [block, c] : pattern::carry_sample_marks(res_.style)) {
       if (c.carried) ++carried;
       else warn("block " + block, "the sample size's turn points and notches could not be carried to it: " + c.why +
-                                      "; its outline is one stretch, and seams found at the sample size do not reach it");
+                                      "; seams found at the sample size may not fit it");
     }
     if (carried > 0)
       res_.diagnostics.info(name_, "sizes", "turn points and notches of the sample size " + res_.style.sample_size +
