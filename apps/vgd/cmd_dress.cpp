@@ -23,7 +23,7 @@
 namespace {
 
 struct Options {
-  std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter";
+  std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter", trj;
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
   bool previews = true, json = false;
@@ -53,6 +53,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
   sub->add_option("--views", o->views, "Preview views (vgd render --views)")->capture_default_str();
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
+  sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
+                                   "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
   sub->footer("Writes OUTPUT/garment.xvc (the document draped, with the seams vgd added), garment.obj, avatar.obj, "
               "certificate.json and previews/<view>.png.\n"
@@ -78,6 +80,12 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     po.body_size = o->body_size;
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
+    if (!prep.missing.empty()) {
+      std::string list;
+      for (const auto& m : prep.missing) list += (list.empty() ? "" : ", ") + m;
+      vgd::cli::say(common, "vgd: warning: the garment is draped without " + list +
+                                ": what passes below is the rest of it");
+    }
     std::error_code ec;
     fs::create_directories(out, ec);
     const fs::path prepared = out / "garment.xvc";
@@ -115,6 +123,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.avatar_label = o->avatar;
     run.output = out;
     run.json = o->json;
+    run.trj = o->trj;
     const int code = vgd::cli::drape_and_report(run, common);
     if (code == vgd::cli::kFailed || !o->previews) return code;
     vgd::cli::RenderOptions ro;

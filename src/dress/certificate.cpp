@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 
+#include "vgd/body/mannequin.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/surface_checks.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
@@ -76,6 +77,80 @@ nlohmann::json to_json(const Percentiles& p) {
   return {{"min", p.min}, {"p5", p.p5}, {"p50", p.p50}, {"p95", p.p95}, {"max", p.max}};
 }
 
+// The trunk cloth's sides left open (Certificate::open_sides).
+std::vector<OpenSide> open_sides(const scene::Scene& scene, const std::vector<Vec3>& points, double limit_deg) {
+  std::vector<OpenSide> out;
+  if (!scene.avatar) return out;
+  const body::Avatar& av = *scene.avatar;
+  const sim::Model& m = scene.system->model();
+  std::vector<char> trunk(points.size(), 0);
+  double ymin = 1e300, ymax = -1e300;
+  for (const auto& p : scene.pieces) {
+    if (p.segment != "torso" && p.segment != "hips") continue;
+    for (int i = p.first; i < p.first + p.count; ++i) {
+      trunk[i] = 1;
+      ymin = std::min(ymin, points[i].y());
+      ymax = std::max(ymax, points[i].y());
+    }
+  }
+  if (ymax <= ymin) return out;
+  double top = ymax - 0.3 * (ymax - ymin);
+  if (av.measurements) top = std::min(top, body::mannequin_landmarks(*av.measurements).bust);
+  else if (av.landmarks && av.landmarks->bust > 0) top = std::min(top, av.landmarks->bust);
+  const double bottom = ymin + 0.08;
+  OpenSide sides[2] = {{"left", 0, 0, 0}, {"right", 0, 0, 0}};
+  for (double h = top; h >= bottom; h -= 0.02) {
+    // The body's axis at this height: the trunk segment (torso, then hips) spanning it.
+    const body::BodySegment* seg = nullptr;
+    double s = 0;
+    for (const char* name : {"torso", "hips"}) {
+      const body::BodySegment* b = av.segment(name);
+      if (!b || std::abs(b->axis.y()) < 0.5) continue;
+      const double t = (h - b->start.y()) / b->axis.y();
+      if (t >= 0 && t <= b->length) {
+        seg = b;
+        s = t;
+        break;
+      }
+    }
+    if (!seg) continue;
+    const Vec3 c = body::ring_at(*seg, s).centre, front = seg->front, left = seg->side();
+    // Where the trunk cloth's triangle edges cross the height, as angles round the
+    // body from its front (+90° its left).
+    std::vector<double> angles;
+    for (const auto& t : m.triangles) {
+      if (!trunk[t[0]] || !trunk[t[1]] || !trunk[t[2]]) continue;
+      for (int e = 0; e < 3; ++e) {
+        const Vec3 &a = points[t[e]], &b = points[t[(e + 1) % 3]];
+        if ((a.y() - h) * (b.y() - h) >= 0) continue;
+        const Vec3 q = a + (h - a.y()) / (b.y() - a.y()) * (b - a) - c;
+        angles.push_back(std::atan2(q.dot(left), q.dot(front)) * 180.0 / std::numbers::pi);
+      }
+    }
+    if (angles.size() < 3) continue;
+    std::sort(angles.begin(), angles.end());
+    double widest[2] = {0, 0};  // left, right
+    for (std::size_t k = 0; k < angles.size(); ++k) {
+      const double a0 = angles[k], a1 = k + 1 < angles.size() ? angles[k + 1] : angles[0] + 360.0;
+      double mid = 0.5 * (a0 + a1);
+      if (mid > 180) mid -= 360;
+      for (int side = 0; side < 2; ++side)
+        if (std::abs(mid - (side == 0 ? 90.0 : -90.0)) <= 60) widest[side] = std::max(widest[side], a1 - a0);
+    }
+    for (int side = 0; side < 2; ++side) {
+      OpenSide& o = sides[side];
+      if (widest[side] > limit_deg) {
+        if (o.top == 0) o.top = h;
+        o.bottom = h;
+      }
+      o.widest_deg = std::max(o.widest_deg, widest[side]);
+    }
+  }
+  for (const OpenSide& o : sides)
+    if (o.widest_deg > 0) out.push_back(o);  // top and bottom 0: no slice wider than the limit
+  return out;
+}
+
 }  // namespace
 
 std::vector<Failure> Certificate::failures() const {
@@ -87,6 +162,12 @@ std::vector<Failure> Certificate::failures() const {
     if (s.closed != s.pairs)
       out.push_back({"seams open", s.name + ": " + std::to_string(s.closed) + "/" + std::to_string(s.pairs) +
                                        " pairs closed, widest gap " + format_fixed(1000 * s.max_gap, 1) + " mm"});
+  for (const auto& o : open_sides)
+    if (o.widest_deg > open_limit_deg)
+      out.push_back({"open side", "the garment is open at the wearer's " + o.side + " side from " + format_fixed(o.top, 2) +
+                                 " m down to " + format_fixed(o.bottom, 2) + " m high: up to " +
+                                 format_fixed(o.widest_deg, 0) + "° round the body without cloth (limit " +
+                                 format_fixed(open_limit_deg, 0) + "°); its front and back are not sewn there"});
   if (max_penetration > penetration_limit)
     out.push_back({"penetration", format_fixed(1000 * max_penetration, 2) + " mm inside the body (limit " +
                                       format_fixed(1000 * penetration_limit, 1) + " mm), " +
@@ -250,6 +331,8 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     out.placement.push_back({p.name, p.segment, (now - then) / p.count});
   }
 
+  out.open_sides = open_sides(scene, points, out.open_limit_deg);
+
   // Contact pressure: at rest the body carries what pushes each touching
   // particle into it, the inward normal part of every force but the contact's.
   out.contact = ContactState{};
@@ -346,8 +429,12 @@ std::string to_json(const Certificate& c) {
     where.push_back({{"piece", w.piece}, {"segment", w.segment},
                      {"moved_m", json::array({w.moved.x(), w.moved.y(), w.moved.z()})}});
   j["placement"] = where;
+  json open = json::array();
+  for (const auto& o : c.open_sides)
+    open.push_back({{"side", o.side}, {"top_m", o.top}, {"bottom_m", o.bottom}, {"widest_deg", o.widest_deg}});
+  j["open_sides"] = open;
   j["limits"] = {{"penetration_m", c.penetration_limit}, {"strain_p95", c.strain_limit},
-                 {"displacement_m", c.displacement_limit}};
+                 {"displacement_m", c.displacement_limit}, {"open_side_deg", c.open_limit_deg}};
   json failures = json::array();
   for (const auto& f : c.failures()) failures.push_back({{"class", f.kind}, {"detail", f.detail}});
   j["failures"] = failures;

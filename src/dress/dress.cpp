@@ -35,6 +35,9 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
     ao.neck_point_height = (torso->start + torso->length * torso->axis).y();
     ao.waist_height = 0.62 * (ao.neck_point_height / 0.845);
   }
+  // Legs: the piece's top at the waist, above the hip joint.
+  if (const BodySegment* leg = avatar.segment("right-leg"); leg && ao.waist_height > 0 && leg->axis.y() < -0.5)
+    ao.leg_top = -(ao.waist_height - leg->start.y()) / -leg->axis.y();
   std::map<std::string, std::vector<xvc::Arrangement>> out;
   const auto suggested = xvc::suggest_arrangements(doc, ao);
   for (const auto* p : doc.patterns()) {

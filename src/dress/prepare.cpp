@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <set>
 
 #include "vgd/body/sizes.hpp"
@@ -10,6 +11,8 @@
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/seams.hpp"
+#include "vgd/xvc/style.hpp"
+#include "vgd/pattern/roles.hpp"
 
 namespace vgd::dress {
 
@@ -32,6 +35,44 @@ std::vector<std::string> tokens(const std::string& s) {
 
 bool starts(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
+
+// Ease of a garment over the body at the girth vgd matches it by (m): a
+// regular top's chest over the bust, a skirt's or trousers' hip over the hip.
+constexpr double kBustEase = 0.10, kHipEase = 0.05;
+
+// The pattern's girth (m): over the front and back pieces given, each piece's
+// widest extent across its grain line between 25 % and 75 % of its length
+// along it, times the times it is cut. 0 without a front or back.
+double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node*>& patterns) {
+  double girth = 0;
+  for (const auto* node : patterns) {
+    const pattern::RoleGuess g = xvc::piece_role(doc, *node);
+    if (g.role != pattern::Role::front && g.role != pattern::Role::back) continue;
+    const pattern::Piece p = xvc::to_piece(doc, node->id());
+    if (p.boundary.size() < 3) continue;
+    pattern::Vec2 up = pattern::Vec2::UnitY();
+    if (p.grain_line && (p.grain_line->b - p.grain_line->a).norm() > 0) up = (p.grain_line->b - p.grain_line->a).normalized();
+    const pattern::Vec2 across(up.y(), -up.x());
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : p.boundary) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
+    double widest = 0;
+    for (int k = 0; k <= 20; ++k) {
+      const double v = lo + (0.25 + 0.5 * k / 20.0) * (hi - lo);
+      double u0 = 1e300, u1 = -1e300;
+      const std::size_t n = p.boundary.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const pattern::Vec2 &a = p.boundary[i].p, &b = p.boundary[(i + 1) % n].p;
+        const double va = a.dot(up), vb = b.dot(up);
+        if ((va - v) * (vb - v) > 0 || va == vb) continue;
+        const double u = (a + (v - va) / (vb - va) * (b - a)).dot(across);
+        u0 = std::min(u0, u), u1 = std::max(u1, u);
+      }
+      if (u1 > u0) widest = std::max(widest, u1 - u0);
+    }
+    girth += std::max(1, p.quantity) * widest;
+  }
+  return girth;
+}
 }  // namespace
 
 std::string size_table_from_name(const std::string& style_name) {
@@ -63,6 +104,36 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   const auto mine = patterns_of(out.size);
   if (mine.empty()) throw Error(file, "size " + out.size, "the document has no pattern of size '" + out.size + "'");
 
+  // Quantities: a document where every pattern says 0 states none (a file
+  // written with the field left at its default: mirrored.DXF): each piece is
+  // cut as often as its annotation's cutting instruction says ("2XFABRIC
+  // 2XINTERLINI": twice), else once. Written in the document.
+  if (const auto all = doc.patterns();
+      !all.empty() && std::all_of(all.begin(), all.end(), [](const xvc::Node* p) { return p->attribute("quantity") == "0"; })) {
+    std::vector<std::unique_ptr<xvc::Command>> set;
+    std::map<std::string, int> said;  // piece -> quantity
+    for (const auto* p : doc.patterns()) {
+      const std::string a = to_upper(trim(p->attribute("annotation")));
+      std::size_t digits = 0;
+      while (digits < a.size() && std::isdigit(static_cast<unsigned char>(a[digits]))) ++digits;
+      std::size_t x = digits;
+      while (x < a.size() && a[x] == ' ') ++x;
+      int q = 1;
+      if (digits > 0 && digits <= 2 && x < a.size() && a[x] == 'X')
+        if (const auto n = parse_int(a.substr(0, digits)); n && *n >= 1) q = static_cast<int>(*n);
+      said[std::string(p->attribute("piece"))] = q;
+      set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "quantity", std::to_string(q)));
+    }
+    if (!set.empty()) {
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("quantities from the annotations", std::move(set)));
+      std::string list;
+      for (const auto& [piece, q] : said)
+        if (q != 1) list += (list.empty() ? "" : ", ") + piece + " " + std::to_string(q);
+      out.decisions.push_back("every piece says it is cut 0 times, which states nothing: each is cut as often as its "
+                              "annotation says, else once (" + (list.empty() ? std::string("all once") : "twice or more: " + list) + ")");
+    }
+  }
+
   // Seams: vgd's suggestions when the document has none.
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
@@ -86,6 +157,22 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.decisions.push_back("no SEAM in the document and none suggested at size " + so.size);
   }
 
+  // Roles, as the names say.
+  std::map<std::string, pattern::RoleGuess> roles;  // by piece name
+  {
+    std::string said;
+    for (const auto* p : mine) {
+      const std::string name(p->attribute("piece"));
+      const pattern::RoleGuess g = xvc::piece_role(doc, *p);
+      roles[name] = g;
+      said += (said.empty() ? "" : ", ") + name + " " +
+              (g.role == pattern::Role::unknown ? std::string("?")
+                                                : std::string(pattern::role_name(g.role)) +
+                                                      (g.side != pattern::Side::none ? " (" + std::string(pattern::side_name(g.side)) + ")" : ""));
+    }
+    out.decisions.push_back("roles from the pieces' names: " + said);
+  }
+
   // Pieces: sewn by some seam, and arranged round the body by a rule or the document.
   std::set<std::string> sewn;
   for (const auto& s : xvc::list_seams(doc))
@@ -99,67 +186,85 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     if (!xvc::arrangements_of(*p).empty()) arranged.insert(std::string(p->attribute("piece")));
   for (const auto* p : mine) {
     const std::string name(p->attribute("piece"));
+    const pattern::Role role = roles[name].role;
+    const std::string what = role == pattern::Role::unknown ? "" : " (" + std::string(pattern::role_name(role)) + ")";
+    auto leave = [&](const std::string& why) {
+      out.left_out.push_back(name);
+      out.decisions.push_back("piece " + name + what + " left out: " + why);
+      if (p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
+        out.missing.push_back(name + (what.empty() ? " (role unknown)" : what));
+    };
     if (mine.size() > 1 && !sewn.count(name)) {
-      out.left_out.push_back(name);
-      out.decisions.push_back("piece " + name + " left out: no seam sews it");
+      if (p->attribute("quantity") == "0")
+        leave("the file cuts it 0 times (a reference or an alternative)");
+      else if (!pattern::drapes_as_cloth(role))
+        leave(role == pattern::Role::lining ? "a lining hangs inside the garment as a garment of its own; drape it as one"
+                                            : "it is bonded to its host and does not hang as cloth of its own");
+      else if (pattern::sewn_on_host(role))
+        leave("it is sewn onto the face of its host piece, which vgd does not drape yet");
+      else if (role == pattern::Role::unknown)
+        leave("its name says nothing vgd reads as a role and no seam sews it (add seams with 'vgd seams add')");
+      else
+        leave("no seam sews it");
     } else if (!arranged.count(name)) {
-      out.left_out.push_back(name);
-      out.decisions.push_back("piece " + name + " left out: no rule places it round the body (give it an arrangement "
-                              "with 'vgd place --set \"" + name + "=SEGMENT:SIDE:HEIGHT\"')");
+      leave("no rule places it round the body (give it an arrangement with 'vgd place --set \"" + name +
+            "=SEGMENT:SIDE:HEIGHT\"')");
     } else {
       out.pieces.push_back(name);
     }
   }
   // Alternatives: several sleeve patterns (a short and a full sleeve, a
-  // one-piece and a two-piece set) are one sleeve drawn several ways. Those
-  // sewn to the body pieces (an armhole) are the garment's; with none sewn
-  // there, the first in the document is. The others are left out.
-  {
-    auto category = [&](const std::string& name) {
-      for (const auto* p : mine)
-        if (p->attribute("piece") == name) return std::string(p->attribute("category"));
-      return std::string();
-    };
-    // A LEFT and a RIGHT sleeve are a pair, not alternatives.
-    auto sided = [](const std::string& name) {
-      const std::string n = to_upper(name);
-      return n.find("LEFT") != std::string::npos || n.find("RIGHT") != std::string::npos;
-    };
-    std::vector<std::string> sleeves;
+  // one-piece and a two-piece set), several leg patterns (short and long
+  // tights) are one sleeve or leg drawn several ways. Those sewn to pieces of
+  // another role (a sleeve to the armholes) are the garment's; with none
+  // sewn there, the one with the most seams, the first in the document of
+  // those. The others are left out.
+  for (const pattern::Role role : {pattern::Role::sleeve, pattern::Role::leg}) {
+    const std::string what(pattern::role_name(role));
+    std::vector<std::string> alts;  // a left and a right one are a pair, not alternatives
     for (const auto& name : out.pieces)
-      if (xvc::is_sleeve_name(name, category(name)) && !sided(name)) sleeves.push_back(name);
-    if (sleeves.size() > 1) {
-      std::set<std::string> on_body;  // sleeves with a seam to a piece that is not a sleeve
-      for (const auto& s : xvc::list_seams(doc)) {
-        std::set<std::string> names;
-        for (const auto& h : s.hems)
-          if (const auto* p = doc.find(h.pattern)) names.insert(std::string(p->attribute("piece")));
-        const bool body = std::any_of(names.begin(), names.end(), [&](const std::string& n) {
-          return std::find(sleeves.begin(), sleeves.end(), n) == sleeves.end();
-        });
-        if (body)
-          for (const auto& n : names)
-            if (std::find(sleeves.begin(), sleeves.end(), n) != sleeves.end()) on_body.insert(n);
-      }
-      std::vector<std::string> chosen;
-      for (const auto& n : sleeves)
-        if (on_body.count(n)) chosen.push_back(n);
-      if (chosen.empty()) chosen.push_back(sleeves.front());
-      std::string list;
-      for (const auto& n : chosen) list += (list.empty() ? "" : ", ") + n;
-      for (const auto& n : sleeves) {
-        if (std::find(chosen.begin(), chosen.end(), n) != chosen.end()) continue;
-        out.pieces.erase(std::find(out.pieces.begin(), out.pieces.end(), n));
-        out.left_out.push_back(n);
-        out.decisions.push_back("piece " + n + " left out: an alternative to the sleeve " + list +
-                                (on_body.empty() ? " (the first in the document; no sleeve is sewn to an armhole)"
-                                                 : " (sewn to the armholes)"));
-      }
+      if (roles[name].role == role && roles[name].side == pattern::Side::none) alts.push_back(name);
+    if (alts.size() < 2) continue;
+    const auto is_alt = [&](const std::string& n) { return std::find(alts.begin(), alts.end(), n) != alts.end(); };
+    std::set<std::string> on_body;  // with a seam to a piece of another role
+    std::map<std::string, int> seams_of;
+    for (const auto& s : xvc::list_seams(doc)) {
+      std::set<std::string> names;
+      for (const auto& h : s.hems)
+        if (const auto* p = doc.find(h.pattern)) names.insert(std::string(p->attribute("piece")));
+      const bool body = std::any_of(names.begin(), names.end(), [&](const std::string& n) { return roles[n].role != role; });
+      for (const auto& n : names)
+        if (is_alt(n)) {
+          ++seams_of[n];
+          if (body) on_body.insert(n);
+        }
+    }
+    std::vector<std::string> chosen;
+    for (const auto& n : alts)
+      if (on_body.count(n)) chosen.push_back(n);
+    if (chosen.empty())
+      for (const auto& n : alts)
+        if (chosen.empty() || seams_of[n] > seams_of[chosen.front()]) chosen = {n};
+    std::string list;
+    for (const auto& n : chosen) list += (list.empty() ? "" : ", ") + n;
+    for (const auto& n : alts) {
+      if (std::find(chosen.begin(), chosen.end(), n) != chosen.end()) continue;
+      out.pieces.erase(std::find(out.pieces.begin(), out.pieces.end(), n));
+      out.left_out.push_back(n);
+      out.decisions.push_back("piece " + n + " left out: an alternative to the " + what + " " + list +
+                              (!on_body.empty() ? " (sewn to the garment's other pieces)"
+                                                : " (the one with the most seams, " + std::to_string(seams_of[chosen.front()]) +
+                                                      ", first in the document)"));
     }
   }
   if (out.pieces.empty()) {
     std::string names;
-    for (const auto* p : mine) names += (names.empty() ? "" : ", ") + std::string(p->attribute("piece"));
+    for (const auto* p : mine) {
+      const std::string name(p->attribute("piece"));
+      const pattern::Role r = roles[name].role;
+      names += (names.empty() ? "" : ", ") + name + " (" +
+               (r == pattern::Role::unknown ? std::string("role unknown") : std::string(pattern::role_name(r))) + ")";
+    }
     throw Error(file, "size " + out.size,
                 "nothing to drape: no seam vgd can find sews the pieces of this size together (" + names +
                     "); add seams with 'vgd seams add' or a seam file with 'vgd seams apply', and arrangements "
@@ -167,24 +272,72 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   }
 
   // The body: the size table from the style's name, the garment's size
-  // when that table has it, else the table's middle size.
+  // when that table has it. Otherwise the body nearest the pattern: the
+  // table (and, for a size no table has, the row) whose bust (tops) or hip
+  // (skirts, trousers) leaves the pattern's girth the usual ease.
   const std::string style(doc.root().attribute("name"));
   out.body_table = !options.body_table.empty() ? options.body_table : size_table_from_name(style);
-  std::string why = !options.body_table.empty() ? "as asked"
-                    : out.body_table.empty()    ? "the style's name '" + style + "' says neither men nor women; choose with --body-table"
-                                                : "the style's name '" + style + "'";
+  std::string why = !options.body_table.empty() ? "as asked" : "the style's name '" + style + "'";
   out.body_size = !options.body_size.empty() ? options.body_size : out.size;
-  if (options.body_size.empty()) {
-    try {
-      body::find_size(out.size, out.body_table);
-    } catch (const Error&) {
+  bool has_size = true;
+  try {
+    body::find_size(out.size, out.body_table);
+  } catch (const Error&) {
+    has_size = false;
+  }
+  if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
+    bool lower = false;
+    for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
+    std::vector<const xvc::Node*> draped;
+    for (const auto* p : mine)
+      if (std::find(out.pieces.begin(), out.pieces.end(), std::string(p->attribute("piece"))) != out.pieces.end()) draped.push_back(p);
+    const double girth = pattern_girth(doc, draped);
+    const double ease = lower ? kHipEase : kBustEase;
+    const char* where = lower ? "hip" : "bust";
+    std::vector<std::string> tables;
+    if (!out.body_table.empty()) tables = {out.body_table};
+    else tables = body::size_table_names();
+    struct Pick {
+      std::string table, label, sex;
+      double body = 0, miss = 1e300;
+    } best;
+    std::string others;
+    for (const auto& t : tables) {
+      Pick here;
+      for (const auto& row : body::load_size_table(body::size_table_file(t))) {
+        if (has_size && row.label != out.size) continue;
+        const double b = lower ? row.hip : row.bust;
+        const double miss = std::abs(girth - b - ease);
+        if (miss < here.miss) here = {t, row.label, row.sex, b, miss};
+      }
+      if (here.table.empty()) continue;
+      if (here.miss < best.miss) {
+        if (!best.table.empty())
+          others += "; " + best.table + " " + best.label + " leaves " + format_fixed(100 * (girth - best.body), 0) + " cm";
+        best = here;
+      } else {
+        others += "; " + here.table + " " + here.label + " leaves " + format_fixed(100 * (girth - here.body), 0) + " cm";
+      }
+    }
+    if (girth > 0 && !best.table.empty()) {
+      out.body_table = best.table;
+      out.body_size = best.label;
+      why = "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
+            " cm, " + format_fixed(100 * (girth - best.body), 0) + " cm of ease over the body's " +
+            format_fixed(100 * best.body, 0) + " cm (" + format_fixed(100 * ease, 0) + " cm wanted" + others +
+            "); choose with --body-table and --body-size";
+    } else if (!has_size) {
       const std::string table = !out.body_table.empty() ? out.body_table : body::size_table_names().front();
       const auto rows = body::load_size_table(body::size_table_file(table));
       if (!rows.empty()) {
         out.body_size = rows[rows.size() / 2].label;
         out.body_table = table;
-        why += "; the table has no size '" + out.size + "': its middle size, choose with --body-size";
+        why = "no table has the size '" + out.size + "' and the pattern has no front or back to measure: the "
+              "middle size, choose with --body-size";
       }
+    } else {
+      why = "the style's name '" + style + "' says neither men nor women and the pattern has no front or back to "
+            "measure; choose with --body-table";
     }
   }
   out.decisions.push_back("body: the mannequin of size " + out.body_size + " from " +

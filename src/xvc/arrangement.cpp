@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -83,12 +82,14 @@ pattern::Vec2 reference_point(const pattern::Piece& piece, double angle_deg) {
   return rotate(pattern::Vec2(0.5 * (xmin + xmax), ymax), -angle_deg);
 }
 
-std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body, const ArrangementOptions& opts) {
+std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body, const ArrangementOptions& opts,
+                                             std::string_view style) {
   if (piece.quantity == 0) return {};  // not cut (a reference piece): nothing to place
-  const std::string n = to_upper(piece.name) + " " + to_upper(piece.category);
+  const pattern::RoleGuess role = pattern::piece_role(piece.name, piece.category, piece.annotation, style);
+  using pattern::Role;
   Arrangement a;
   a.clearance = opts.clearance;
-  const bool band = has(n, "WAISTBAND") || (has(n, "WAIST") && has(n, "BAND"));
+  const bool band = role.role == Role::waistband;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -102,54 +103,96 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
     }
     box_h = piece.boundary.empty() ? 0 : hi - lo;
   }
-  // The same name rules as the seam suggestions (seams.cpp): SLEEVE or ...SL, ...SL1, ...SL FR.
-  const bool sleeve = has(n, "SLEEVE") || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
-  if (sleeve) {
-    a.height = opts.sleeve_drop;  // the cap top this far down the arm from its shoulder end
-    a.clearance = opts.sleeve_clearance;
-    Arrangement l = a, r = a;
-    l.segment = "left-arm";
-    l.side = "left";
-    r.segment = "right-arm";
-    r.side = "right";
-    if (has(n, "LEFT")) return {l};
-    if (has(n, "RIGHT")) return {r};
-    l.flip = true;  // one sleeve pattern cut twice: the left copy is the mirror
-    return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
+  switch (role.role) {
+    case Role::sleeve: {
+      a.height = opts.sleeve_drop;  // the cap top this far down the arm from its shoulder end
+      a.clearance = opts.sleeve_clearance;
+      Arrangement l = a, r = a;
+      l.segment = "left-arm";
+      l.side = "left";
+      r.segment = "right-arm";
+      r.side = "right";
+      if (role.side == pattern::Side::left) return {l};
+      if (role.side == pattern::Side::right) return {r};
+      l.flip = true;  // one sleeve pattern cut twice: the left copy is the mirror
+      return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
+    }
+    case Role::leg: {
+      // Upright with the wider end up (the waist), whichever way the grain line points.
+      double top_w = 0, bottom_w = 0;
+      {
+        double lo = 1e300, hi = -1e300;
+        for (const auto& c : piece.boundary) lo = std::min(lo, rotate(c.p, a.angle_deg).y()), hi = std::max(hi, rotate(c.p, a.angle_deg).y());
+        double t0 = 1e300, t1 = -1e300, b0 = 1e300, b1 = -1e300;
+        for (const auto& c : piece.boundary) {
+          const auto q = rotate(c.p, a.angle_deg);
+          if (q.y() > hi - 0.15 * (hi - lo)) t0 = std::min(t0, q.x()), t1 = std::max(t1, q.x());
+          if (q.y() < lo + 0.15 * (hi - lo)) b0 = std::min(b0, q.x()), b1 = std::max(b1, q.x());
+        }
+        top_w = t1 - t0;
+        bottom_w = b1 - b0;
+      }
+      if (top_w < bottom_w) a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+      const auto top = reference_point(piece, a.angle_deg);
+      a.x = top.x();
+      a.y = top.y();
+      // The front half is the narrower (a leg's back is cut wider for the seat): the
+      // right leg, seen from outside, has the front on its right (+x), the left leg on its left.
+      double umin = 1e300, umax = -1e300;
+      for (const auto& c : piece.boundary) {
+        const double u = rotate(c.p, a.angle_deg).x() - rotate(top, a.angle_deg).x();
+        umin = std::min(umin, u), umax = std::max(umax, u);
+      }
+      const bool front_at_plus = umax <= -umin;
+      a.height = opts.leg_top;
+      a.clearance = opts.sleeve_clearance;
+      Arrangement l = a, r = a;
+      l.segment = "left-leg";
+      l.side = "left";
+      l.flip = front_at_plus;
+      r.segment = "right-leg";
+      r.side = "right";
+      r.flip = !front_at_plus;
+      if (role.side == pattern::Side::left) return {l};
+      if (role.side == pattern::Side::right) return {r};
+      return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
+    }
+    case Role::waistband:
+      a.segment = "hips";
+      a.side = "front";
+      a.height = opts.waist_height + 0.5 * box_h;  // folded lengthwise: the fold sits above the waist
+      return {a};
+    case Role::collar:
+    case Role::collar_stand:
+    case Role::neckband:
+      a.segment = "neck";
+      a.side = "front";
+      a.height = opts.neck_point_height + box_h;
+      return {a};
+    case Role::front:
+    case Role::back:
+      a.segment = lower_body ? "hips" : "torso";
+      a.side = role.role == Role::front ? "front" : "back";
+      a.height = lower_body ? opts.waist_height : opts.neck_point_height + opts.bodice_lift;
+      return {a};
+    default:
+      return {};
   }
-  if (band) {
-    a.segment = "hips";
-    a.side = "front";
-    a.height = opts.waist_height + 0.5 * box_h;  // folded lengthwise: the fold sits above the waist
-    return {a};
-  }
-  if (has(n, "COLLAR") || has(n, "NECK")) {
-    a.segment = "neck";
-    a.side = "front";
-    a.height = opts.neck_point_height + box_h;
-    return {a};
-  }
-  const bool front = has(n, "FRONT") || std::regex_search(n, std::regex(R"((FRT?|FT)\d*( |$))"));
-  const bool back = has(n, "BACK") || std::regex_search(n, std::regex(R"((BK|BCK)\d*( |$))"));
-  if (!front && !back) return {};
-  a.segment = lower_body ? "hips" : "torso";
-  a.side = front ? "front" : "back";
-  a.height = lower_body ? opts.waist_height : opts.neck_point_height + opts.bodice_lift;
-  return {a};
 }
 
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(const Document& doc,
                                                                                    const ArrangementOptions& opts) {
   bool lower = false;
-  const std::string gname = to_upper(doc.root().attribute("name"));
+  const std::string style(doc.root().attribute("name"));
+  const std::string gname = to_upper(style);
   if (has(gname, "SKIRT") || has(gname, "TROUSER") || has(gname, "PANT")) lower = true;
   for (const Node* p : doc.patterns()) {
     const std::string n = to_upper(p->attribute("piece"));
-    if (has(n, "WAISTBAND") || has(n, "SKIRT")) lower = true;
+    if (piece_role(doc, *p).role == pattern::Role::waistband || has(n, "SKIRT")) lower = true;
   }
   std::vector<std::pair<std::string, std::vector<Arrangement>>> out;
   for (const Node* p : doc.patterns())
-    out.emplace_back(std::string(p->id()), suggest_arrangement(to_piece(doc, p->id()), lower, opts));
+    out.emplace_back(std::string(p->id()), suggest_arrangement(to_piece(doc, p->id()), lower, opts, style));
   return out;
 }
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
 
 #include "vgd/core/diagnostics.hpp"
@@ -26,6 +25,7 @@ struct Outline {
   const Node* node = nullptr;
   std::string id, piece, size, category;
   int quantity = 1;
+  pattern::RoleGuess role;
   pattern::Piece shape;
   std::vector<Stretch> stretches;
   std::vector<double> cum;  // cum[i]: arc length from vertex 0 to vertex i; cum[n] = perimeter
@@ -40,6 +40,7 @@ Outline outline(const Document& doc, const Node& pat) {
   o.piece = std::string(pat.attribute("piece"));
   o.size = std::string(pat.attribute("size"));
   o.category = std::string(pat.attribute("category"));
+  o.role = piece_role(doc, pat);
   if (const auto q = parse_int(pat.attribute("quantity"))) o.quantity = static_cast<int>(*q);
   o.shape = to_piece(doc, o.id);
   o.stretches = boundary_stretches(pat);
@@ -200,27 +201,38 @@ std::vector<Edge> edges(const Outline& o, const Frame& f, double merge_angle) {
   return out;
 }
 
-// ---- roles from names ----------------------------------------------------------------
-
-enum class Role { other, front, back, sleeve, waistband };
-
-}  // namespace
-
-bool is_sleeve_name(const std::string& piece, const std::string& category) {
-  const std::string n = to_upper(piece) + " " + to_upper(category);
-  return n.find("SLEEVE") != std::string::npos || std::regex_search(n, std::regex(R"(SL(\d| |$))"));
+// Two consecutive edges on one side of a piece read as one when they meet at a gentle
+// turn (a waist shaped on one piece and almost straight on the other: the front's side
+// seam is one edge, the back's two). At most `max_turn_deg` between them.
+std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, double max_turn_deg) {
+  const std::size_t ns = o.stretches.size();
+  if ((a.k1 + 1) % ns != b.k0 || a.side == 0 || a.side != b.side || b.k1 == a.k0) return std::nullopt;
+  if (turn_angle_deg(o.shape.boundary, o.stretches[b.k0].first) > max_turn_deg) return std::nullopt;
+  Edge e = a;
+  e.k1 = b.k1;
+  e.length = a.length + b.length;
+  const double wa = a.length / e.length, wb = b.length / e.length;
+  e.u_mid = wa * a.u_mid + wb * b.u_mid;
+  e.v_mean = wa * a.v_mean + wb * b.v_mean;
+  e.v_hat = wa * a.v_hat + wb * b.v_hat;
+  e.chord = a.chord + b.chord;
+  e.curved = true;
+  return e;
 }
 
-namespace {
+// ---- roles ----------------------------------------------------------------------------
+
+enum class Role { other, front, back, sleeve, waistband, leg };
 
 Role role_of(const Outline& o) {
-  const std::string n = to_upper(o.piece) + " " + to_upper(o.category);
-  if (is_sleeve_name(o.piece, o.category)) return Role::sleeve;
-  if (n.find("WAISTBAND") != std::string::npos || (n.find("WAIST") != std::string::npos && n.find("BAND") != std::string::npos))
-    return Role::waistband;
-  if (n.find("FRONT") != std::string::npos || std::regex_search(n, std::regex(R"((FRT?|FT)\d*( |$))"))) return Role::front;
-  if (n.find("BACK") != std::string::npos || std::regex_search(n, std::regex(R"((BK|BCK)\d*( |$))"))) return Role::back;
-  return Role::other;
+  switch (o.role.role) {
+    case pattern::Role::leg: return Role::leg;
+    case pattern::Role::sleeve: return Role::sleeve;
+    case pattern::Role::waistband: return Role::waistband;
+    case pattern::Role::front: return Role::front;
+    case pattern::Role::back: return Role::back;
+    default: return Role::other;
+  }
 }
 
 // ---- scoring -------------------------------------------------------------------------
@@ -259,6 +271,9 @@ void score_notches(const std::vector<Part>& parts, SeamSuggestion& s, double& fa
 }
 
 constexpr double kSewingSlack = 0.002;  // m
+// Relative length tolerance of a side seam (other seams: 0.02): a 2.5 % difference
+// still scores 0.67.
+constexpr double kSideSeamTolerance = 0.04;
 
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
                     const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
@@ -308,10 +323,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
   for (const auto& sl : ps) {
     if (sl.role != Role::sleeve || sl.edges.size() < 3) continue;
-    const std::string n = to_upper(sl.o->piece);
     std::vector<int> sides;
-    if (n.find("LEFT") != std::string::npos) sides = {1};
-    else if (n.find("RIGHT") != std::string::npos) sides = {-1};
+    if (sl.o->role.side == pattern::Side::left) sides = {1};
+    else if (sl.o->role.side == pattern::Side::right) sides = {-1};
     else if (sl.o->quantity >= 2) sides = {1, -1};
     else sides = {1};
     std::size_t cap = 0;
@@ -445,23 +459,81 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     if (best && best->score >= opts.min_score) found.push_back(*best);
   }
 
-  // 3. Fronts to backs: off-centre edges on opposite sides (front +u is the wearer's
+  // 3. Legs cut twice (tights, leggings: one piece per leg, no side seam): the hem is
+  //    the edge at the narrow end, the inseam the two edges beside it, sewn to each
+  //    other on each copy; the rises are the next edges out, the shorter one the front
+  //    (a back rise is the longer): each copy's front rise to the other's, and the back
+  //    rises likewise. The second copy is the flipped one (its hems are read on the
+  //    mirrored pattern laid face up, docs/xvc.md), so the crotch point meets the
+  //    crotch point when its rise is written reversed.
+  for (const auto& lg : ps) {
+    if (lg.role != Role::leg || lg.o->quantity < 2 || lg.edges.size() < 5) continue;
+    const auto& b = lg.o->shape.boundary;
+    // Which end is the hem: the narrower across the grain.
+    const double span = lg.frame.v_max - lg.frame.v_min;
+    double lo_min = 1e300, lo_max = -1e300, hi_min = 1e300, hi_max = -1e300;
+    for (const auto& c : b) {
+      const double u = c.p.dot(lg.frame.right), v = c.p.dot(lg.frame.up);
+      if (v < lg.frame.v_min + 0.15 * span) lo_min = std::min(lo_min, u), lo_max = std::max(lo_max, u);
+      if (v > lg.frame.v_max - 0.15 * span) hi_min = std::min(hi_min, u), hi_max = std::max(hi_max, u);
+    }
+    const bool hem_low = lo_max - lo_min < hi_max - hi_min;
+    const std::size_t n = lg.edges.size();
+    std::size_t hem = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (hem_low ? lg.edges[i].v_mean < lg.edges[hem].v_mean : lg.edges[i].v_mean > lg.edges[hem].v_mean) hem = i;
+    const Edge &ia = lg.edges[(hem + 1) % n], &ib = lg.edges[(hem + n - 1) % n];
+    const Edge &ra = lg.edges[(hem + 2) % n], &rb = lg.edges[(hem + n - 2) % n];
+    for (const char* which : {"right inseam", "left inseam"}) {
+      auto s = make(which, size, {{lg.o, ia.k0, ia.k1, false}, {lg.o, ib.k0, ib.k1, true}}, 1.0,
+                    "inseam of " + lg.o->piece + ": the edges on either side of its hem", 0, 0, 0.02);
+      if (s.score >= opts.min_score) found.push_back(s);
+    }
+    const Edge& front = ra.length <= rb.length ? ra : rb;
+    const Edge& back = ra.length <= rb.length ? rb : ra;
+    for (const auto& [which, e] : {std::pair<const char*, const Edge*>{"front rise", &front}, {"back rise", &back}}) {
+      auto s = make(which, size, {{lg.o, e->k0, e->k1, false}, {lg.o, e->k0, e->k1, true}}, 1.0,
+                    std::string("crotch seam of the two copies of ") + lg.o->piece + ": their " + which +
+                        "s (the " + (e == &front ? "shorter" : "longer") + " rise)",
+                    0, 0, 0.02);
+      if (s.score >= opts.min_score) found.push_back(s);
+    }
+  }
+
+  // 4. Fronts to backs: off-centre edges on opposite sides (front +u is the wearer's
   //    left, like back -u), similar length, shape and height. Greedy, best first.
   struct Cand {
     SeamSuggestion s;
-    std::pair<const Outline*, std::size_t> a, b;
+    std::vector<std::pair<const Outline*, std::size_t>> a, b;  // the edges each side covers
   };
   std::vector<Cand> cands;
+  // Each piece's side edges, alone and joined with the next at a gentle turn.
+  struct Run {
+    Edge e;
+    std::vector<std::size_t> idx;  // the edges it covers
+  };
+  const auto runs_of = [&](const PieceInfo& p) {
+    std::vector<Run> r;
+    for (std::size_t i = 0; i < p.edges.size(); ++i) {
+      if (p.edges[i].side == 0 || used.count({p.o, i})) continue;
+      r.push_back({p.edges[i], {i}});
+      const std::size_t j = (i + 1) % p.edges.size();
+      if (j != i && !used.count({p.o, j}))
+        if (const auto e = joined(*p.o, p.edges[i], p.edges[j], 45.0)) r.push_back({*e, {i, j}});
+    }
+    return r;
+  };
   for (const auto& fr : ps) {
     if (fr.role != Role::front) continue;
+    const auto fruns = runs_of(fr);
     for (const auto& bk : ps) {
       if (bk.role != Role::back) continue;
-      for (std::size_t i = 0; i < fr.edges.size(); ++i) {
-        const Edge& fe = fr.edges[i];
-        if (fe.side == 0 || used.count({fr.o, i})) continue;
-        for (std::size_t j = 0; j < bk.edges.size(); ++j) {
-          const Edge& be = bk.edges[j];
-          if (be.side != -fe.side || used.count({bk.o, j})) continue;
+      const auto bruns = runs_of(bk);
+      for (const auto& fru : fruns) {
+        const Edge& fe = fru.e;
+        for (const auto& bru : bruns) {
+          const Edge& be = bru.e;
+          if (be.side != -fe.side) continue;
           const Vec2 cf = fe.chord.normalized(), cb = Vec2(-be.chord.x(), be.chord.y()).normalized();
           const double dir = std::abs(cf.dot(cb));
           const double dv = fe.v_hat - be.v_hat;
@@ -469,19 +541,26 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
           const bool vertical = std::abs(cf.y()) > 0.8;
           const std::string what = vertical ? "side seam" : (fe.v_hat > 0.6 ? "shoulder" : "seam");
           const std::string side = fe.side > 0 ? "left " : "right ";
+          // A side seam tolerates more: a back cut longer at the hem than the front
+          // (a dropped back hem: 12 mm over 470 mm on a Gerber shirt) is eased in.
           auto s = make(side + what, size, {{fr.o, fe.k0, fe.k1, false}, {bk.o, be.k0, be.k1, true}}, shape,
                         what + " of " + fr.o->piece + " and " + bk.o->piece + " on the wearer's " + side + "side",
-                        0, 0, 0.02);
-          if (s.score >= opts.min_score) cands.push_back({s, {fr.o, i}, {bk.o, j}});
+                        0, 0, vertical ? kSideSeamTolerance : 0.02);
+          if (s.score < opts.min_score) continue;
+          Cand c{s, {}, {}};
+          for (const auto i : fru.idx) c.a.push_back({fr.o, i});
+          for (const auto j : bru.idx) c.b.push_back({bk.o, j});
+          cands.push_back(std::move(c));
         }
       }
     }
   }
   std::stable_sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) { return x.s.score > y.s.score; });
   for (const auto& c : cands) {
-    if (used.count(c.a) || used.count(c.b)) continue;
-    used.insert(c.a);
-    used.insert(c.b);
+    const auto taken = [&](const auto& v) { return std::any_of(v.begin(), v.end(), [&](const auto& e) { return used.count(e) > 0; }); };
+    if (taken(c.a) || taken(c.b)) continue;
+    used.insert(c.a.begin(), c.a.end());
+    used.insert(c.b.begin(), c.b.end());
     found.push_back(c.s);
   }
   std::stable_sort(found.begin(), found.end(), [](const SeamSuggestion& x, const SeamSuggestion& y) { return x.score > y.score; });

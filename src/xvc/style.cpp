@@ -252,4 +252,9 @@ std::vector<Stretch> boundary_stretches(const Node& pattern) {
   return out;
 }
 
+pattern::RoleGuess piece_role(const Document& doc, const Node& pattern) {
+  return pattern::piece_role(pattern.attribute("piece"), pattern.attribute("category"), pattern.attribute("annotation"),
+                             doc.root().attribute("name"));
+}
+
 }  // namespace vgd::xvc

@@ -65,6 +65,14 @@ TEST(Certificate, EachFailureIsNamedWithItsFigures) {
   EXPECT_NE(c.failures()[1].detail.find("left side seam: 12/30"), std::string::npos) << c.failures()[1].detail;
 
   c = good();
+  c.open_sides.push_back({"left", 1.06, 0.92, 51.0});  // front and back hanging apart
+  c.open_sides.push_back({"right", 0, 0, 8.0});        // sewn: the mesh's spacing
+  f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].kind, "open side");
+  EXPECT_NE(f[0].detail.find("left side from 1.06 m down to 0.92 m high: up to 51°"), std::string::npos) << f[0].detail;
+
+  c = good();
   c.stop_reason = "error";
   c.stop_message = "the step diverged";
   EXPECT_EQ(classes(c), "error|");

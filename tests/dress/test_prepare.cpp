@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/body/sizes.hpp"
 #include "vgd/dress/prepare.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
@@ -52,11 +53,10 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
   EXPECT_EQ(p.left_out, (std::vector<std::string>{"LABEL"}));
   EXPECT_EQ(p.body_table, "en13402-women");
-  EXPECT_EQ(p.body_size, "42") << "a letter size the table lacks: its middle row (32 to 50: the sixth of ten)";
   bool label = false, body = false, seam = false;
   for (const auto& d : p.decisions) {
-    label = label || d == "piece LABEL left out: no seam sews it";
-    body = body || d.find("from en13402-women (the style's name 'WM TOP'; the table has no size 'M'") != std::string::npos;
+    label = label || d == "piece LABEL (label) left out: it is bonded to its host and does not hang as cloth of its own";
+    body = body || d.find("from en13402-women (nearest the pattern: its bust girth is 60 cm") != std::string::npos;
     seam = seam || d.find("suggested at size M: FRONT to BACK") != std::string::npos;
   }
   EXPECT_TRUE(label && body && seam);
@@ -79,7 +79,7 @@ TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("nothing to drape"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("PART A, PART B"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("PART A (role unknown), PART B (role unknown)"), std::string::npos) << e.what();
   }
   PrepareOptions wrong;
   wrong.size = "XL";
@@ -90,25 +90,87 @@ TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
 
 namespace vgd::dress {
 
-// A style with only a base size (Valentina): the men's table has no size
-// "base", so the mannequin is the table's middle size, and that is said.
-TEST(PrepareGarment, ABaseSizeDrapesOnTheTablesMiddleSize) {
+// A style with only a base size (Valentina) drapes on the body nearest the
+// pattern: the row of its table whose bust leaves the pattern's chest the
+// usual ease (10 cm), and that is said.
+TEST(PrepareGarment, ABaseSizeDrapesOnTheBodyNearestThePattern) {
   pattern::Style s;
   s.name = "MEN shirt";
   s.sample_size = "base";
   s.sizes = {"base"};
-  s.pieces = {panel("FRONT", 0.0, 0.3, 0.5, "base"), panel("BACK", 1.0, 0.3, 0.5, "base")};
+  // Front and back 55 cm wide: a chest of 110 cm round.
+  s.pieces = {panel("FRONT", 0.0, 0.55, 0.7, "base"), panel("BACK", 1.0, 0.55, 0.7, "base")};
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_EQ(p.size, "base");
   EXPECT_EQ(p.body_table, "en13402-men");
-  EXPECT_EQ(p.body_size, "52") << "en13402-men has 44 to 58: its middle row";
+  const auto rows = body::load_size_table(body::size_table_file("en13402-men"));
+  const body::BodyMeasurements* chosen = nullptr;
+  for (const auto& r : rows)
+    if (r.label == p.body_size) chosen = &r;
+  ASSERT_NE(chosen, nullptr) << p.body_size;
+  for (const auto& r : rows)  // no other row leaves an ease nearer 10 cm
+    EXPECT_LE(std::abs(1.10 - chosen->bust - 0.10), std::abs(1.10 - r.bust - 0.10) + 1e-12) << r.label;
+  EXPECT_GT(chosen->bust, 0.95);
+  EXPECT_LT(chosen->bust, 1.05);
   bool said = false;
-  for (const auto& d : p.decisions) said = said || d.find("the table has no size 'base': its middle size") != std::string::npos;
+  for (const auto& d : p.decisions) said = said || d.find("nearest the pattern: its bust girth is 110 cm") != std::string::npos;
   EXPECT_TRUE(said);
   PrepareOptions asked;
   asked.body_size = "48";
   EXPECT_EQ(prepare_garment(doc, asked).body_size, "48");
+}
+
+// A style whose name says neither men nor women: the table whose body of the
+// garment's size leaves the pattern the usual ease (a Gerber shirt of size 50
+// with a 110 cm chest: the men's 50, 100 cm; the women's 50 would need 8 cm
+// more cloth than the pattern has).
+TEST(PrepareGarment, TheBodyTableFollowsThePatternsGirth) {
+  pattern::Style s;
+  s.name = "GMG1016S19";
+  s.sample_size = "50";
+  s.sizes = {"50"};
+  s.pieces = {panel("FR", 0.0, 0.55, 0.7, "50"), panel("BK", 1.0, 0.55, 0.7, "50")};
+  s.pieces[0].category = "FRONT";
+  s.pieces[1].category = "BACK";
+  xvc::Document doc = xvc::from_style(s);
+  Preparation p = prepare_garment(doc);
+  EXPECT_EQ(p.body_table, "en13402-men");
+  EXPECT_EQ(p.body_size, "50");
+  // Narrower pieces (a 96 cm chest) fit the women's 50 better than the men's.
+  s.pieces = {panel("FR", 0.0, 0.48, 0.7, "50"), panel("BK", 1.0, 0.48, 0.7, "50")};
+  s.pieces[0].category = "FRONT";
+  s.pieces[1].category = "BACK";
+  doc = xvc::from_style(s);
+  p = prepare_garment(doc);
+  const auto women = body::find_size("50", "en13402-women"), men = body::find_size("50", "en13402-men");
+  const bool women_nearer = std::abs(0.96 - women.bust - 0.10) < std::abs(0.96 - men.bust - 0.10);
+  EXPECT_EQ(p.body_table, women_nearer ? "en13402-women" : "en13402-men");
+}
+
+// Pieces left out say why, from their role: bonded interfacings, pockets sewn
+// on a face, linings, pieces nobody cuts.
+TEST(PrepareGarment, PiecesLeftOutSayWhy) {
+  pattern::Style s;
+  s.name = "WM TOP";
+  s.sample_size = "38";
+  s.sizes = {"38"};
+  s.pieces = {panel("FRONT", 0.0, 0.5, 0.6, "38"), panel("BACK", 1.0, 0.5, 0.6, "38"),
+              panel("COLLAR INTERFACING", 2.0, 0.4, 0.08, "38"), panel("POCKET", 3.0, 0.15, 0.15, "38"),
+              panel("FRONT LINING", 4.0, 0.5, 0.6, "38"), panel("GUIDE", 5.0, 0.2, 0.2, "38")};
+  s.pieces[5].quantity = 0;
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
+  const std::vector<std::string> want = {
+      "piece COLLAR INTERFACING (interfacing) left out: it is bonded to its host and does not hang as cloth of its own",
+      "piece POCKET (pocket) left out: it is sewn onto the face of its host piece, which vgd does not drape yet",
+      "piece FRONT LINING (lining) left out: a lining hangs inside the garment as a garment of its own; drape it as one",
+      "piece GUIDE left out: the file cuts it 0 times (a reference or an alternative)"};
+  for (const auto& w : want) EXPECT_NE(std::find(p.decisions.begin(), p.decisions.end(), w), p.decisions.end()) << w;
+  bool roles = false;
+  for (const auto& d : p.decisions) roles = roles || d.find("roles from the pieces' names: FRONT front, BACK back") == 0;
+  EXPECT_TRUE(roles);
 }
 
 }  // namespace vgd::dress

@@ -282,3 +282,109 @@ TEST(GarmentData, CommittedTShirtDxfMatchesTheDraft) {
   }
   EXPECT_EQ(committed.diagnostics.count(Severity::warning), 0u);
 }
+
+namespace {
+
+// The shared file imported (mirrored halves unfolded) as a document. A file
+// whose every piece says "Quantity: 0" (mirrored.DXF) reads as each cut once,
+// as vgd dress reads it.
+vgd::xvc::Document shared_document(const std::string& file) {
+  vgd::dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  auto style = vgd::dxf::import_file(vgd::test::shared_dxf(file), unfold).style;
+  if (std::all_of(style.pieces.begin(), style.pieces.end(), [](const auto& p) { return p.quantity == 0; }))
+    for (auto& p : style.pieces) p.quantity = 1;
+  return vgd::xvc::from_style(style);
+}
+
+std::vector<vgd::xvc::SeamSuggestion> at_size(const vgd::xvc::Document& doc, const std::string& size) {
+  vgd::xvc::SeamOptions o;
+  o.size = size;
+  return vgd::xvc::suggest_seams(doc, o);
+}
+
+}  // namespace
+
+// Tights cut as one piece per leg, twice (Gerber GLX4802S19, AAMA and ASTM):
+// each copy's inseam is sewn to itself, and the two copies' front rises to
+// each other, and their back rises; the front rise is the shorter. In the
+// sample size and the largest graded one.
+TEST(SeamSuggestions, OnePieceLegsCutTwiceSewTheirInseamsAndRises) {
+  VGD_REQUIRE_SHARED();
+  for (const std::string file : {"GLX4802S19_AAMA.DXF", "GLX4802S19_ASTM.DXF"}) {
+    vgd::dxf::ImportOptions unfold;
+    unfold.unfold_mirrored = true;
+    const auto style = vgd::dxf::import_file(vgd::test::shared_dxf(file), unfold).style;
+    const Document doc = from_style(style);
+    for (const std::string& size : {style.sample_size, style.sizes.back()}) {
+      SCOPED_TRACE(file + " size " + size);
+      std::map<std::string, int> count;
+      std::map<std::string, double> length;
+      for (const auto& s : at_size(doc, size)) {
+        if (doc.find(s.hems[0].pattern)->attribute("piece") != "GLX4802S19SLL") continue;  // the long leg
+        ++count[s.name];
+        length[s.name] = s.length_a;
+        ASSERT_EQ(s.hems.size(), 2u);
+        EXPECT_EQ(s.hems[0].pattern, s.hems[1].pattern) << s.name;
+        EXPECT_NEAR(s.length_a, s.length_b, 0.002) << s.name << " (the suggester eases in 2 mm without a mark)";
+        if (s.name.find("rise") != std::string::npos) {
+          EXPECT_EQ(s.hems[0].from, s.hems[1].from) << "the same stretches of the two copies";
+          EXPECT_NE(s.hems[0].reverse, s.hems[1].reverse) << "the flipped copy's rise read the other way";
+        }
+      }
+      EXPECT_EQ(count, (std::map<std::string, int>{{"back rise", 1}, {"front rise", 1}, {"left inseam", 1}, {"right inseam", 1}}));
+      EXPECT_LT(length["front rise"], length["back rise"]);
+      EXPECT_GT(length["left inseam"], 0.6) << "a long leg's inseam, crotch to ankle";
+    }
+  }
+}
+
+// Side seams whose front is one edge and whose back is two (a waist shaped
+// on one piece only), and a back cut 12 mm longer than its front (eased in):
+// both sides are found (Gerber tank C-S1615 in size 36; GMG1016S19 in 50).
+TEST(SeamSuggestions, SideSeamsAcrossAGentleTurnAndWithADroppedBackHem) {
+  VGD_REQUIRE_SHARED();
+  for (const auto& [file, size, min_length, ease] :
+       {std::tuple{"simple.DXF", "36", 0.40, 0.0}, std::tuple{"mirrored.DXF", "50", 0.46, -0.012}}) {
+    SCOPED_TRACE(file);
+    const Document doc = shared_document(file);
+    int sides = 0;
+    for (const auto& s : at_size(doc, size)) {
+      if (s.name.find("side seam") == std::string::npos) continue;
+      ++sides;
+      EXPECT_GT(s.length_a, min_length) << s.name;
+      EXPECT_NEAR(s.ease, ease, 0.001) << s.name;
+    }
+    EXPECT_EQ(sides, 2);
+  }
+}
+
+// Every piece of the shared files gets the role its name says; what no
+// dictionary word names is said to be unknown, not guessed.
+TEST(PieceRoles, EveryPieceOfTheSharedFiles) {
+  VGD_REQUIRE_SHARED();
+  const std::map<std::string, std::string> want = {
+      {"drill-holes.DXF", "back 1, collar 1, front 1, interfacing 2, placket 2, sleeve 1"},
+      {"MEN_CLASSIC_TEE.DXF", "back 1, collar 1, front 1, neckband 1, sleeve 3"},
+      {"mirrored.DXF", "back 1, collar 7, collar stand 2, cuff 1, front 1, neckband 1, placket 2, sleeve 2"},
+      {"GMH1006F18_AAMA.DXF", "back 1, front 1, neckband 2, sleeve 2"},
+      {"simple.DXF", "back 1, binding 2, front 1"},
+      {"WM_SLIM_TANK.DXF", "back 1, front 1"},
+      {"GLX4802S19_AAMA.DXF", "leg 2, unknown 1"},
+      {"ORILEGWB_AAMA.DXF", "unknown 1, waistband 1"},
+      {"Valentina_MaleShirt_AAMA_R12.dxf",
+       "back 1, collar 2, collar stand 1, front 1, interfacing 3, placket 2, pocket 2, pocket flap 2, sleeve 2, yoke 1"},
+      {"Valentina_Trousers_ASTM_R12.dxf", "back 1, front 3, pocket 4, unknown 1, waistband 2"},
+      {"clo-pattern.dxf", "unknown 9"},
+  };
+  for (const auto& [file, roles] : want) {
+    const Document doc = shared_document(file);
+    std::map<std::string, int> count;
+    std::set<std::string> seen;
+    for (const auto* p : doc.patterns())
+      if (seen.insert(std::string(p->attribute("piece"))).second) ++count[std::string(pattern::role_name(piece_role(doc, *p).role))];
+    std::string got;
+    for (const auto& [r, n] : count) got += (got.empty() ? "" : ", ") + r + " " + std::to_string(n);
+    EXPECT_EQ(got, roles) << file;
+  }
+}

@@ -60,8 +60,17 @@ struct PieceWhere {
 // A reason a drape is not passed: a class from a short fixed list and the
 // figures behind it (the piece or seam named).
 struct Failure {
-  std::string kind;    // error, no rest, seams open, penetration, self-intersection, over-stretched, displaced
+  std::string kind;    // error, no rest, seams open, open side, penetration, self-intersection, over-stretched, displaced
   std::string detail;  // e.g. "LEFT_SLEEVE_38: weft strain p95 121 % (limit 50 %)"
+};
+
+// A side of the trunk the garment leaves open where its front and back
+// should meet: slices of the cloth round the body with no cloth over a wide
+// arc centred on the body's left or right.
+struct OpenSide {
+  std::string side;            // "left" or "right" (the wearer's)
+  double top = 0, bottom = 0;  // m: heights of the highest and lowest open slice
+  double widest_deg = 0;       // deg: the widest arc without cloth
 };
 
 struct StageTime {
@@ -112,6 +121,16 @@ struct Certificate {
   std::vector<SeamState> seams;
   std::vector<PieceStrain> strain;
   std::vector<PieceWhere> placement;
+  // Trunk garments (pieces on the torso or hips): the sides left open
+  // between the bust (or 30 % below the cloth's top) and 8 cm above its hem,
+  // sliced every 2 cm. An arc wider than open_limit_deg centred within 60° of
+  // the body's left or right fails the drape ("open side"): a front and a back that
+  // hang apart instead of being sewn (an open front or back is a style, an
+  // open side is not). Sewn sides leave arcs of 7–9° (the mesh's spacing
+  // seen from the body's axis: the shipped T-shirt and skirt, a Gerber tank);
+  // the same tank with its side seams left out, 46–51°.
+  std::vector<OpenSide> open_sides;
+  double open_limit_deg = 25;
   ContactState contact;
   std::vector<double> times;            // s, per frame
   std::vector<double> kinetic_energy;   // J per particle, per frame
@@ -125,9 +144,9 @@ struct Certificate {
   double strain_limit = 1.0;
   double displacement_limit = 0.12;
   // Every check that fails, in a fixed order: error (the engine stopped the
-  // run), no rest, seams open, penetration (particles inside the body, or the
-  // body through an opening of the cloth: body_through_opening), self-intersection,
-  // over-stretched, displaced.
+  // run), no rest, seams open, open side (open_sides), penetration (particles inside
+  // the body, or the body through an opening of the cloth: body_through_opening),
+  // self-intersection, over-stretched, displaced.
   std::vector<Failure> failures() const;
   // What is measured and shown but does not fail the drape yet: "body
   // through cloth" (body_through_cloth; the shipped T-shirt's sleeve hems

@@ -4,9 +4,14 @@
 //
 //   seams     none in the document: vgd's suggestions at the sample size are
 //             added (graded sizes sew with them: dress/garment.hpp);
+//   roles     each piece's role from its name (pattern/roles.hpp), said;
 //   pieces    those of the size that a seam sews, and that a rule can arrange
-//             round the body; the others (collars, plackets, pockets,
-//             interfacings the suggester has no seam for) are left out;
+//             round the body; the others are left out, each with its reason:
+//             interfacings and labels (bonded, not cloth of their own),
+//             linings (a garment of their own), pockets, flaps and plackets
+//             (sewn onto a face, which vgd does not drape yet), pieces cut 0
+//             times, pieces no seam sews; of several sleeve patterns (a short
+//             and a full sleeve) the one sewn to the armholes;
 //   body      the size table of the garment's own sizes: men's when the
 //             style's name says men (MEN, MENS, MAN, MALE, or an M between
 //             separators as in "SS17_M POLO"), women's when it says women,
@@ -33,6 +38,10 @@ struct Preparation {
   std::string size;                    // the size to drape
   std::vector<std::string> pieces;     // piece names to drape, document order
   std::vector<std::string> left_out;   // piece names left out (each also in decisions)
+  // Of those, the pieces the garment is worn with, "NAME (role)": not the
+  // ones cut 0 times, alternatives, interfacings, labels or linings. A drape
+  // without them is of an incomplete garment (a tee without its sleeves).
+  std::vector<std::string> missing;
   std::string body_table;              // "" = the default search order
   std::string body_size;               // the mannequin's size (the garment's unless no table has it)
   int seams_added = 0;

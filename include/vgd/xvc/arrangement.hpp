@@ -65,18 +65,26 @@ struct ArrangementOptions {
   // bodice (85 crossing triangle pairs before the first step); from 6 cm on
   // nothing crosses, and the cap is pulled up into the armhole.
   double sleeve_drop = 0.06;        // m
+  // Legs (tights, trousers cut as one piece per leg): the piece's top (the
+  // waist) this far along the leg from its hip joint; negative: above it.
+  double leg_top = -0.10;           // m
 };
 
-// From the piece's name and category: FRONT -> torso front, BACK -> torso back (top
-// edge bodice_lift above the neck point), SLEEVE -> the arms (LEFT/RIGHT in the name picks one; a
-// sleeve cut twice gives the right arm and the left arm flipped; cap top sleeve_drop down the arm),
-// COLLAR/NECK -> neck front; in a lower-body garment FRONT/BACK -> hips front/back with
-// their top at the waist and WAISTBAND -> hips front around the waist. Empty when no
-// rule fits or the piece is not cut (quantity 0). The reference point and angle come from the piece's box and grain line.
+// From the piece's role (pattern/roles.hpp; `style` is the garment's name): front ->
+// torso front, back -> torso back (top edge bodice_lift above the neck point), sleeve ->
+// the arms (a left or right sleeve one arm; a sleeve cut twice gives the right arm and the
+// left arm flipped; cap top sleeve_drop down the arm), leg -> the legs the same way, the
+// wider end up (the waist, at leg_top) and the narrower half to the front (one copy
+// flipped: the right leg's front is on its pattern's +x), collar, collar stand, neckband ->
+// neck front; in a lower-body garment front/back -> hips front/back with their top at the
+// waist, and waistband -> hips front around the waist. Empty for other roles and when the
+// piece is not cut (quantity 0). The reference point and angle come from the piece's box
+// and grain line.
 std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body,
-                                             const ArrangementOptions& opts = {});
+                                             const ArrangementOptions& opts = {}, std::string_view style = {});
 // Every PATTERN of the document: (pattern id, its suggestions). A garment is lower-body
-// when a piece is a waistband or its name says skirt, trousers or pants.
+// when a piece is a waistband or its name says skirt, or the garment's says skirt,
+// trousers or pants.
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
     const Document& doc, const ArrangementOptions& opts = {});
 

@@ -67,15 +67,12 @@ struct SeamOptions {
   double merge_angle_deg = 20;   // stretches meeting at a turn turning less than this form one edge
 };
 
-// Pairs pieces by name (FRONT/BACK: side seams and shoulders; SLEEVE with FRONT+BACK:
-// cap to armhole, and the sleeve's underarm seam; WAISTBAND to the skirt waist) and
+// Pairs pieces by role (pattern/roles.hpp: front/back: side seams and shoulders; sleeve
+// with front+back: cap to armhole, and the sleeve's underarm seam; waistband to the
+// skirt waist) and
 // stretches by length, shape and notches; best first within each size. Patterns with
 // quantity 0 are skipped. See docs/xvc.md for the rules.
 std::vector<SeamSuggestion> suggest_seams(const Document& doc, const SeamOptions& opts = {});
-
-// The suggester's sleeve rule: SLEEVE in the piece's name or category, or
-// Gerber's SL, SL1, SL FR.
-bool is_sleeve_name(const std::string& piece, const std::string& category);
 
 // A SEAM element (no ids: AddNode gives them) for a suggestion.
 Node seam_node(const SeamSuggestion& s);

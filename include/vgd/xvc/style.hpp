@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "vgd/pattern/piece.hpp"
+#include "vgd/pattern/roles.hpp"
 #include "vgd/xvc/document.hpp"
 
 namespace vgd::xvc {
@@ -31,6 +32,10 @@ pattern::Style to_style(const Document& doc);
 
 // One PATTERN as a piece. Throws vgd::Error when `pattern_id` names no PATTERN.
 pattern::Piece to_piece(const Document& doc, std::string_view pattern_id);
+
+// What a PATTERN is in its garment (pattern/roles.hpp), from its piece name,
+// category and annotation, the garment's name read as the style's code.
+pattern::RoleGuess piece_role(const Document& doc, const Node& pattern);
 
 // A boundary C2DSEQ of a pattern and the vertices it holds in the piece's boundary:
 // indices first .. first + count - 1. Its edge runs on to the first vertex of the next
