@@ -3,11 +3,13 @@
 // attributes, file units become metres. Every repair is reported.
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <set>
 
+#include "encoding.hpp"
 #include "raw.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
@@ -695,8 +697,17 @@ ImportResult Interpreter::run() {
 }  // namespace
 
 ImportResult import_string(std::string_view text, const std::string& name, const ImportOptions& opts) {
-  const raw::Drawing drawing = raw::read(text, name);
-  return Interpreter(drawing, name, opts).run();
+  const Decoded decoded = to_utf8(text);
+  const raw::Drawing drawing = raw::read(decoded.text, name);
+  ImportResult r = Interpreter(drawing, name, opts).run();
+  if (decoded.replaced > 0)
+    r.diagnostics.warn(name, "$DWGCODEPAGE", decoded.note + "; " + std::to_string(decoded.replaced) +
+                                                 " byte(s) have no character there and read as U+FFFD");
+  else if (!decoded.note.empty() && decoded.note.find("names no code page") != std::string::npos)
+    r.diagnostics.warn(name, "$DWGCODEPAGE", decoded.note);
+  else if (!decoded.note.empty())
+    r.diagnostics.info(name, "$DWGCODEPAGE", decoded.note);
+  return r;
 }
 
 ImportResult import_file(const std::filesystem::path& path, const ImportOptions& opts) {

@@ -249,3 +249,38 @@ TEST(DxfImport, ValentinaStyleFileWithoutTextsUsesBlockNames) {
   EXPECT_EQ(r.style.producer, "dxfrw 0.6.3");
   EXPECT_EQ(r.style.units, "mm");
 }
+
+// Names in the file's code page: an R12 file from a Russian system writes its
+// piece names in ANSI_1251 (and says so in $DWGCODEPAGE); one that names no
+// code page is ANSI_1252; characters outside it come as \U+XXXX escapes.
+// Every name reads as UTF-8, and the import says what it did.
+TEST(DxfImport, NamesAreReadInTheFilesCodePage) {
+  auto file = [](const std::string& code_page, const std::string& name, const std::string& block) {
+    DxfText d;
+    if (!code_page.empty()) d.pair(0, "SECTION").pair(2, "HEADER").pair(9, "$DWGCODEPAGE").pair(3, code_page).pair(0, "ENDSEC");
+    d.begin_blocks().square_piece(block, name, "M").end_section().begin_entities().insert(block).end_section().eof();
+    return d.str();
+  };
+  auto info = [](const vgd::dxf::ImportResult& r) {
+    std::string all;
+    for (const auto& d : r.diagnostics.items()) all += d.message + "\n";
+    return all;
+  };
+  // "Спинка" (back) in ANSI_1251 bytes.
+  const std::string back_1251 = "\xD1\xEF\xE8\xED\xEA\xE0";
+  auto r = import_string(file("ANSI_1251", back_1251, back_1251 + "_M"), "ru.dxf");
+  ASSERT_EQ(r.style.pieces.size(), 1u);
+  EXPECT_EQ(r.style.pieces[0].name, "Спинка");
+  EXPECT_EQ(r.style.pieces[0].block, "Спинка_M");
+  EXPECT_NE(info(r).find("texts read in its code page ANSI_1251"), std::string::npos) << info(r);
+  // "Devant gauche, épaule" with é in ANSI_1252, the code page unnamed: a warning says so.
+  r = import_string(file("", "Devant \xE9paule", "D_M"), "fr.dxf");
+  EXPECT_EQ(r.style.pieces[0].name, "Devant épaule");
+  EXPECT_NE(info(r).find("names no code page ($DWGCODEPAGE): read as ANSI_1252"), std::string::npos) << info(r);
+  // A UTF-8 file is kept as it is; \U+ escapes become their characters.
+  r = import_string(file("ANSI_1252", "R\\U+00FCcken \\U+0420", "B_M"), "de.dxf");
+  EXPECT_EQ(r.style.pieces[0].name, "Rücken Р");
+  EXPECT_EQ(info(r).find("code page"), std::string::npos) << info(r);
+  r = import_string(file("", "Ärmel", "A_M"), "utf8.dxf");
+  EXPECT_EQ(r.style.pieces[0].name, "Ärmel");
+}
