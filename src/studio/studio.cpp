@@ -16,6 +16,7 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/dress/prepare.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
 #include "vgd/render/offscreen.hpp"
@@ -109,6 +110,7 @@ struct Studio::Impl {
   dress::DrapeOptions drape;
   std::string body_text;  // the body file typed in; "" = the mannequin of the size
   std::vector<std::string> body_notes;  // what the importer decided for the last drape's body
+  std::vector<std::string> preparation;  // what the last drape decided for the document (dress::Preparation)
   bool self_collision_told = false;
   DrapeJob job;
   std::optional<dress::Certificate> cert;
@@ -734,17 +736,41 @@ struct Studio::Impl {
                                                 std::to_string(reinterpret_cast<std::uintptr_t>(this)));
         fs::create_directories(work_dir);
       }
-      // The drape reads the document as it is now, unsaved edits included.
+      // The drape reads the document as it is now, unsaved edits included, made
+      // ready as vgd dress makes it (dress/prepare.hpp): seams suggested when it
+      // has none, the pieces no seam sews left out, the body's table and size.
       const fs::path copy = work_dir / (file.empty() ? fs::path("garment.xvc") : file.filename());
-      xvc::save_file(doc, copy);
+      xvc::Document prepared = doc;
+      dress::PrepareOptions po;
+      po.size = drape.size;
+      const dress::Preparation prep = dress::prepare_garment(prepared, po);
+      xvc::save_file(prepared, copy);
       dress::DrapeOptions d = drape;
       d.garment = copy;
+      if (d.pieces.empty()) d.pieces = prep.pieces;
+      if (!d.avatar && d.mannequin_table.empty()) {
+        d.mannequin_table = prep.body_table;
+        if (prep.body_size != prep.size) {
+          scene::AvatarDef a;
+          a.kind = scene::AvatarDef::Kind::mannequin;
+          a.size = prep.body_size;
+          a.table = prep.body_table;
+          d.avatar = a;
+        }
+      }
+      preparation = prep.decisions;
+      std::string made;
+      if (prep.seams_added > 0) made += ", " + std::to_string(prep.seams_added) + " seams suggested (not in the document)";
+      if (!prep.left_out.empty()) {
+        made += ", left out:";
+        for (const auto& n : prep.left_out) made += " " + n;
+      }
       scene::SceneDef def = dress::drape_scene(d);
       cert.reset();
       cloth = {};
       job.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
       was_running = true;
-      say("Draping size " + drape.size + " at quality " + kQualityNames[static_cast<int>(drape.quality)] + "...");
+      say("Draping size " + prep.size + " at quality " + kQualityNames[static_cast<int>(drape.quality)] + made + "...");
     } catch (const std::exception& e) {
       say(std::string("The drape cannot start: ") + e.what(), true);
     }
@@ -1105,6 +1131,7 @@ void Studio::set_body(const std::filesystem::path& file, const std::string& unit
 }
 DrapeStatus Studio::drape_status() const { return impl_->job.status(); }
 const std::optional<dress::Certificate>& Studio::certificate() const { return impl_->cert; }
+const std::vector<std::string>& Studio::preparation() const { return impl_->preparation; }
 void Studio::wait_for_drape() { impl_->job.wait(); }
 const std::string& Studio::selected() const { return impl_->selected; }
 const std::vector<std::pair<std::string, std::string>>& Studio::picked() const { return impl_->picked; }

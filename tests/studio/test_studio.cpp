@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "vgd/body/mannequin.hpp"
 #include "vgd/body/sizes.hpp"
@@ -14,6 +15,7 @@
 #include "vgd/render/image.hpp"
 #include "vgd/dress/drape.hpp"
 #include "vgd/studio/harness.hpp"
+#include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
@@ -347,6 +349,38 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   h.drag(r->cx(), r->cy(), r->cx() + 120, r->cy());
   h.frames(2);
   EXPECT_LT(vgd::qa::ssim(crop(img, *r), crop(h.screenshot(), *r)), 0.9);
+}
+
+// A document with no seams (a pattern file imported as it is) drapes as vgd
+// dress drapes it (dress/prepare.hpp): seams suggested for the drape, said
+// in the status bar and in preparation(); the studio's document keeps none.
+TEST(Studio, ADocumentWithoutSeamsIsPreparedAsVgdDressPreparesIt) {
+  omp_set_num_threads(1);
+  namespace xvc = vgd::xvc;
+  xvc::Document d = xvc::load_file(kSkirt);
+  for (const auto& s : xvc::list_seams(d)) xvc::execute(d, *std::make_unique<xvc::DeleteNode>(s.id));
+  ASSERT_TRUE(xvc::list_seams(d).empty());
+  const fs::path file = temp_dir("unsewn") / "skirt.xvc";
+  xvc::save_file(d, file);
+  Harness h(1024, 700);
+  ASSERT_TRUE(h.studio().open(file));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 4.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+  EXPECT_NE(h.studio().status().find("seams suggested (not in the document)"), std::string::npos) << h.studio().status();
+  h.studio().wait_for_drape();
+  h.frames(4);
+  EXPECT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
+  ASSERT_TRUE(h.studio().certificate());
+  int pairs = 0, closed = 0;
+  for (const auto& st : h.studio().certificate()->seams) pairs += st.pairs, closed += st.closed;
+  EXPECT_GT(pairs, 100);
+  EXPECT_EQ(closed, pairs);
+  bool said = false;
+  for (const auto& line : h.studio().preparation()) said = said || line.find("suggested at size") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 // The body row: a body file typed in, its unit and up axis forced in the

@@ -126,6 +126,9 @@ class Studio {
   DrapeStatus drape_status() const;
   // The certificate of the last finished drape.
   const std::optional<dress::Certificate>& certificate() const;
+  // What the last drape decided for the document, as vgd dress says it
+  // (seams suggested, pieces left out, the body): dress::Preparation::decisions.
+  const std::vector<std::string>& preparation() const;
   // Blocks until the drape worker has finished (for scripts and tests).
   void wait_for_drape();
   // The id of the element selected in the tree ("" when none).
