@@ -134,6 +134,35 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
 
+  // Legs by elimination: a garment with a waistband and no front, back or leg piece
+  // (leggings whose leg is named by a code, ORILEG's "LL", category "LENGTH OPTIONS")
+  // wears its pieces cut twice that no name places as its legs. Said, and written in
+  // the document as the word LEG added to their category, which the role rules read.
+  {
+    bool band = false, body = false;
+    std::set<std::string> unknown;
+    for (const auto* p : doc.patterns()) {
+      const pattern::Role r = xvc::piece_role(doc, *p).role;
+      band = band || r == pattern::Role::waistband;
+      body = body || r == pattern::Role::front || r == pattern::Role::back || r == pattern::Role::leg;
+      if (r == pattern::Role::unknown && parse_int(p->attribute("quantity")).value_or(0) >= 2)
+        unknown.insert(std::string(p->attribute("piece")));
+    }
+    if (band && !body && !unknown.empty()) {
+      std::vector<std::unique_ptr<xvc::Command>> set;
+      for (const auto* p : doc.patterns())
+        if (unknown.count(std::string(p->attribute("piece")))) {
+          const std::string category(p->attribute("category"));
+          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "category",
+                                                            category.empty() ? "LEG" : category + " LEG"));
+        }
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("legs by elimination", std::move(set)));
+      for (const auto& n : unknown)
+        out.decisions.push_back("piece " + n + " read as a leg: cut twice in a garment with a waistband and no front, "
+                                "back or leg (LEG added to its category)");
+    }
+  }
+
   // Seams: vgd's suggestions when the document has none.
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;

@@ -157,11 +157,24 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
       if (role.side == pattern::Side::right) return {r};
       return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
     }
-    case Role::waistband:
+    case Role::waistband: {
+      // Round the waist lengthwise: a band drawn upright is turned a quarter clockwise
+      // (its right edge to the bottom, as the seam suggestions expect).
+      double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
+      for (const auto& c : piece.boundary)
+        w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
+      if (h1 - h0 > w1 - w0) {
+        a.angle_deg = -90;
+        const auto top = reference_point(piece, a.angle_deg);
+        a.x = top.x();
+        a.y = top.y();
+        box_h = w1 - w0;
+      }
       a.segment = "hips";
       a.side = "front";
       a.height = opts.waist_height + 0.5 * box_h;  // folded lengthwise: the fold sits above the waist
       return {a};
+    }
     case Role::collar:
     case Role::collar_stand:
     case Role::neckband:

@@ -390,8 +390,33 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
   }
 
+  // A leg piece's hem and waist edges: the hem at the end narrower across the grain,
+  // the waist the edge furthest from it.
+  auto leg_ends = [](const PieceInfo& lg) {
+    const auto& b = lg.o->shape.boundary;
+    const double span = lg.frame.v_max - lg.frame.v_min;
+    double lo_min = 1e300, lo_max = -1e300, hi_min = 1e300, hi_max = -1e300;
+    for (const auto& c : b) {
+      const double u = c.p.dot(lg.frame.right), v = c.p.dot(lg.frame.up);
+      if (v < lg.frame.v_min + 0.15 * span) lo_min = std::min(lo_min, u), lo_max = std::max(lo_max, u);
+      if (v > lg.frame.v_max - 0.15 * span) hi_min = std::min(hi_min, u), hi_max = std::max(hi_max, u);
+    }
+    const bool hem_low = lo_max - lo_min < hi_max - hi_min;
+    std::size_t hem = 0, waist = 0;
+    for (std::size_t i = 1; i < lg.edges.size(); ++i) {
+      const double v = lg.edges[i].v_mean;
+      if (hem_low ? v < lg.edges[hem].v_mean : v > lg.edges[hem].v_mean) hem = i;
+      if (hem_low ? v > lg.edges[waist].v_mean : v < lg.edges[waist].v_mean) waist = i;
+    }
+    return std::pair{hem, waist};
+  };
+
   // 2. Waistband to the skirt waist: the band's best-fitting edge to the fronts' and
-  //    backs' top edges (the back split at centre back when it has a turn point there).
+  //    backs' top edges (the back split at centre back when it has a turn point there);
+  //    without a front and a back, to the waists of a leg cut twice (leggings): the right
+  //    leg's from centre back to centre front, the left leg's on to centre back. In each
+  //    copy's own terms (the left leg flipped) its waist runs the other way, so both
+  //    hems are reversed.
   for (const auto& wb : ps) {
     if (wb.role != Role::waistband) continue;
     std::vector<Part> waist;
@@ -409,51 +434,83 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       if (p.role == Role::front && !fr) fr = &p;
       if (p.role == Role::back && !bk) bk = &p;
     }
-    if (!fr || !bk) continue;
-    const auto tf = top_edge(*fr), tb = top_edge(*bk);
-    if (!tf || !tb) continue;
-    const Edge &ef = fr->edges[*tf], &eb = bk->edges[*tb];
-    // Split the back's waist at the stretch boundary nearest to centre back.
-    std::optional<std::size_t> split;
-    double best_d = 0.01;
-    for (std::size_t k = eb.k0; k != eb.k1; k = (k + 1) % bk->o->stretches.size()) {
-      const std::size_t next = (k + 1) % bk->o->stretches.size();
-      const Vec2 p = bk->o->shape.boundary[bk->o->stretches[next].first].p;
-      const double d = std::abs(p.dot(bk->frame.right) - bk->frame.u_centre);
-      if (d < best_d) {
-        best_d = d;
-        split = k;
-      }
-    }
+    const PieceInfo* lg = nullptr;
+    for (const auto& p : ps)
+      if (p.role == Role::leg && p.o->quantity >= 2 && p.edges.size() >= 5 && !lg) lg = &p;
     std::vector<Part> parts{{wb.o, 0, 0, false}};
-    if (split) {
-      // Back's +u half (the wearer's right seen from behind) runs from the side to
-      // centre back along the contour; reversed it starts at centre back.
-      parts.push_back({bk->o, eb.k0, *split, true});
-      parts.push_back({fr->o, ef.k0, ef.k1, true});
-      parts.push_back({bk->o, (*split + 1) % bk->o->stretches.size(), eb.k1, true});
+    if (fr && bk) {
+      const auto tf = top_edge(*fr), tb = top_edge(*bk);
+      if (!tf || !tb) continue;
+      const Edge &ef = fr->edges[*tf], &eb = bk->edges[*tb];
+      // Split the back's waist at the stretch boundary nearest to centre back.
+      std::optional<std::size_t> split;
+      double best_d = 0.01;
+      for (std::size_t k = eb.k0; k != eb.k1; k = (k + 1) % bk->o->stretches.size()) {
+        const std::size_t next = (k + 1) % bk->o->stretches.size();
+        const Vec2 p = bk->o->shape.boundary[bk->o->stretches[next].first].p;
+        const double d = std::abs(p.dot(bk->frame.right) - bk->frame.u_centre);
+        if (d < best_d) {
+          best_d = d;
+          split = k;
+        }
+      }
+      if (split) {
+        // Back's +u half (the wearer's right seen from behind) runs from the side to
+        // centre back along the contour; reversed it starts at centre back.
+        parts.push_back({bk->o, eb.k0, *split, true});
+        parts.push_back({fr->o, ef.k0, ef.k1, true});
+        parts.push_back({bk->o, (*split + 1) % bk->o->stretches.size(), eb.k1, true});
+      } else {
+        parts.push_back({fr->o, ef.k0, ef.k1, true});
+        parts.push_back({bk->o, eb.k0, eb.k1, true});
+      }
+    } else if (lg) {
+      const Edge& w = lg->edges[leg_ends(*lg).second];
+      parts.push_back({lg->o, w.k0, w.k1, true});
+      parts.push_back({lg->o, w.k0, w.k1, true});
     } else {
-      parts.push_back({fr->o, ef.k0, ef.k1, true});
-      parts.push_back({bk->o, eb.k0, eb.k1, true});
+      continue;
     }
-    for (std::size_t i = 1; i < parts.size(); ++i) total += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+    for (std::size_t i = 1; i < parts.size(); ++i)
+      total += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
     std::optional<SeamSuggestion> best;
     // Any run of stretches within one of the band's long edges: a button stand split
     // off by a turn point stays open.
     std::vector<std::pair<std::size_t, std::size_t>> runs;
     const std::size_t ns = wb.o->stretches.size();
+    // The band's long edges, however it is drawn: those at least half as long as its
+    // longest. Of runs scoring alike, the one on the band's bottom edge as it is
+    // arranged round the body (xvc/arrangement.hpp: a band drawn upright is turned a
+    // quarter clockwise, its right edge to the bottom): that edge runs from the
+    // wearer's right to the left as the waist's parts do.
+    double longest = 0;
+    double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
+    for (const auto& e : wb.edges) longest = std::max(longest, e.length);
+    for (const auto& c : wb.o->shape.boundary)
+      w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
+    const bool upright = h1 - h0 > w1 - w0;
+    std::vector<double> bottomness;  // per run
     for (const auto& e : wb.edges) {
-      if (std::abs(e.chord.x()) < std::abs(e.chord.y())) continue;  // the band's long edges only
+      if (e.length < 0.5 * longest) continue;
       const std::size_t m = (e.k1 + ns - e.k0) % ns + 1;
       for (std::size_t i = 0; i < m; ++i)
-        for (std::size_t j = i; j < m; ++j) runs.emplace_back((e.k0 + i) % ns, (e.k0 + j) % ns);
+        for (std::size_t j = i; j < m; ++j) {
+          runs.emplace_back((e.k0 + i) % ns, (e.k0 + j) % ns);
+          bottomness.push_back(upright ? e.u_mid : -e.v_mean);
+        }
     }
-    for (const auto& [k0, k1] : runs) {
-      parts[0] = {wb.o, k0, k1, false};
+    std::optional<double> best_bottom;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      parts[0] = {wb.o, runs[r].first, runs[r].second, false};
       auto s = make("waist seam", size, parts, 1.0,
-                    "waistband " + wb.o->piece + " to the waist of " + bk->o->piece + " and " + fr->o->piece, -0.01,
-                    0.01, 0.03);
-      if (!best || s.score > best->score) best = s;
+                    "waistband " + wb.o->piece + " to the waist of " +
+                        (fr && bk ? bk->o->piece + " and " + fr->o->piece : "both copies of " + lg->o->piece),
+                    -0.01, 0.01, 0.03);
+      const bool alike = best && std::abs(s.score - best->score) < 1e-6;
+      if (!best || (!alike && s.score > best->score) || (alike && bottomness[r] > *best_bottom)) {
+        best = s;
+        best_bottom = bottomness[r];
+      }
     }
     (void)total;
     if (best && best->score >= opts.min_score) found.push_back(*best);
@@ -468,20 +525,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    crotch point when its rise is written reversed.
   for (const auto& lg : ps) {
     if (lg.role != Role::leg || lg.o->quantity < 2 || lg.edges.size() < 5) continue;
-    const auto& b = lg.o->shape.boundary;
-    // Which end is the hem: the narrower across the grain.
-    const double span = lg.frame.v_max - lg.frame.v_min;
-    double lo_min = 1e300, lo_max = -1e300, hi_min = 1e300, hi_max = -1e300;
-    for (const auto& c : b) {
-      const double u = c.p.dot(lg.frame.right), v = c.p.dot(lg.frame.up);
-      if (v < lg.frame.v_min + 0.15 * span) lo_min = std::min(lo_min, u), lo_max = std::max(lo_max, u);
-      if (v > lg.frame.v_max - 0.15 * span) hi_min = std::min(hi_min, u), hi_max = std::max(hi_max, u);
-    }
-    const bool hem_low = lo_max - lo_min < hi_max - hi_min;
     const std::size_t n = lg.edges.size();
-    std::size_t hem = 0;
-    for (std::size_t i = 1; i < n; ++i)
-      if (hem_low ? lg.edges[i].v_mean < lg.edges[hem].v_mean : lg.edges[i].v_mean > lg.edges[hem].v_mean) hem = i;
+    const std::size_t hem = leg_ends(lg).first;
     const Edge &ia = lg.edges[(hem + 1) % n], &ib = lg.edges[(hem + n - 1) % n];
     const Edge &ra = lg.edges[(hem + 2) % n], &rb = lg.edges[(hem + n - 2) % n];
     for (const char* which : {"right inseam", "left inseam"}) {

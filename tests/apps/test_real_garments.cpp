@@ -23,7 +23,7 @@ struct RealGarment {
   const char* file;      // in ../shared/data/dxf
   const char* size;      // "" = the sample size
   int code;              // vgd dress's exit code: 0 passed, 3 a check failed, 1 nothing to drape
-  const char* segments;  // passed: the draped pieces' segments, sorted, space-separated
+  const char* segments;  // the draped pieces' segments, sorted, space-separated; "" = not checked
   const char* says;      // what the output says: a decision, or why it cannot drape
 };
 
@@ -43,7 +43,7 @@ TEST_P(RealGarments, DressAsListed) {
   if (g.code == 1) return;
   const nlohmann::json c = read_json(out / "certificate.json");
   EXPECT_EQ(c["passed"].get<bool>(), g.code == 0) << c["failures"].dump();
-  if (g.code != 0) return;
+  if (!*g.segments) return;
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
   std::vector<std::string> segments;
   for (const auto& p : c["placement"]) segments.push_back(p["segment"].get<std::string>());
@@ -71,7 +71,6 @@ INSTANTIATE_TEST_SUITE_P(
                     "piece GMG1016S19-ST left out: an alternative to the sleeve GMG1016S19-SS"},
         RealGarment{"tank_binding_36", "simple.DXF", "", 0, "torso torso",
                     "piece C-S1615WWO206-NB (binding) left out: no seam sews it"},
-
         RealGarment{"tights_aama_36", "GLX4802S19_AAMA.DXF", "", 0, "left-leg right-leg",
                     "piece GLX4802SLS left out: an alternative to the leg GLX4802S19SLL"},
         RealGarment{"tights_astm_40", "GLX4802S19_ASTM.DXF", "40", 0, "left-leg right-leg",
@@ -88,9 +87,9 @@ INSTANTIATE_TEST_SUITE_P(
             "valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 3, "",
             "the garment is draped without PLACKETTOP (placket), POCKETFLAP (pocket flap), YOKE (yoke)"},
         RealGarment{"valentina_trousers", "Valentina_Trousers_ASTM_R12.dxf", "", 1, "", "nothing to drape"},
-        RealGarment{
-            "leggings_orileg", "ORILEGWB_AAMA.DXF", "", 1, "",
-            "sews the pieces of this size together (ORILEG WB WB (waistband), ORILEG WB LL (role unknown))"},
+        // Sewn and in place, failed by one crossing pair at the crotch.
+        RealGarment{"leggings_36", "ORILEGWB_AAMA.DXF", "", 3, "hips left-leg right-leg",
+                    "piece ORILEG WB LL read as a leg: cut twice in a garment with a waistband"},
         RealGarment{"clo_pattern", "clo-pattern.dxf", "", 1, "", "nothing to drape"}),
     [](const ::testing::TestParamInfo<RealGarment>& p) { return std::string(p.param.name); });
 

@@ -198,3 +198,37 @@ TEST(PrepareGarment, AnAlternativeSleeveIsLeftOut) {
 }
 
 }  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// Legs by elimination: leggings whose leg piece is named by a code (ORILEG's
+// "LL", category "LENGTH OPTIONS"): a piece cut twice, of no role, in a
+// garment with a waistband and no front, back or leg, is read as a leg,
+// said, and written in the document as LEG in its category.
+TEST(PrepareGarment, APieceCutTwiceBesideAWaistbandIsALeg) {
+  pattern::Style s;
+  s.name = "ORILEG WB";
+  s.sample_size = "36";
+  s.sizes = {"36"};
+  s.pieces = {panel("ORILEG WB WB", 0.0, 0.05, 0.7, "36"), panel("ORILEG WB LL", 1.0, 0.3, 0.9, "36")};
+  s.pieces[1].quantity = 2;
+  s.pieces[1].category = "LENGTH OPTIONS";
+  xvc::Document doc = xvc::from_style(s);
+  try {
+    prepare_garment(doc);  // rectangles: no seam fits, nothing to drape; the roles are read first
+  } catch (const Error&) {
+  }
+  const auto* leg = doc.patterns().back();
+  EXPECT_EQ(leg->attribute("category"), "LENGTH OPTIONS LEG");
+  EXPECT_EQ(xvc::piece_role(doc, *leg).role, pattern::Role::leg);
+  // With a front in the garment, nothing is read by elimination.
+  s.pieces.push_back(panel("FRONT", 2.0, 0.3, 0.5, "36"));
+  xvc::Document other = xvc::from_style(s);
+  try {
+    prepare_garment(other);
+  } catch (const Error&) {
+  }
+  EXPECT_EQ(other.patterns()[1]->attribute("category"), "LENGTH OPTIONS");
+}
+
+}  // namespace vgd::dress
