@@ -7,56 +7,13 @@
 #include <initializer_list>
 #include <set>
 
+#include "vgd/core/strings.hpp"
+
 namespace vgd::pattern {
 
 namespace {
 
 // ---- folding --------------------------------------------------------------------------
-
-// Appends code point c as UTF-8.
-void put(std::string& out, std::uint32_t c) {
-  if (c < 0x80) {
-    out += static_cast<char>(c);
-  } else if (c < 0x800) {
-    out += static_cast<char>(0xC0 | (c >> 6));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  } else if (c < 0x10000) {
-    out += static_cast<char>(0xE0 | (c >> 12));
-    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (c >> 18));
-    out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  }
-}
-
-// Decodes one UTF-8 sequence at s[i]; advances i. Returns 0xFFFFFFFF for an invalid byte
-// (which the caller keeps as it is).
-std::uint32_t next_code_point(std::string_view s, std::size_t& i) {
-  const auto b = static_cast<unsigned char>(s[i]);
-  if (b < 0x80) {
-    ++i;
-    return b;
-  }
-  const int n = (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xE ? 2 : (b >> 3) == 0x1E ? 3 : -1;
-  if (n < 0 || i + n >= s.size()) {
-    ++i;
-    return 0xFFFFFFFF;
-  }
-  std::uint32_t c = n == 1 ? (b & 0x1F) : n == 2 ? (b & 0x0F) : (b & 0x07);
-  for (int k = 1; k <= n; ++k) {
-    const auto cb = static_cast<unsigned char>(s[i + k]);
-    if ((cb & 0xC0) != 0x80) {
-      ++i;
-      return 0xFFFFFFFF;
-    }
-    c = (c << 6) | (cb & 0x3F);
-  }
-  i += n + 1;
-  return c;
-}
 
 // Latin-1 letters with accents -> their ASCII base letter(s), upper case; 0 = not a letter.
 const char* latin1_base(std::uint32_t c) {
@@ -74,7 +31,7 @@ bool is_letter(std::uint32_t c) {
   if (c >= 0xC0 && c <= 0xFF) return latin1_base(c) != nullptr;
   if (c >= 0x80 && c < 0xC0) return false;      // Latin-1 punctuation and signs
   if (c >= 0x2000 && c < 0x2070) return false;  // general punctuation
-  return c != 0xFFFFFFFF;
+  return c != vgd::kInvalidUtf8;
 }
 
 // ---- words ----------------------------------------------------------------------------
@@ -97,7 +54,7 @@ std::vector<Token> tokens_of(const std::string& folded) {
   std::size_t i = 0;
   while (i < folded.size()) {
     const std::size_t start = i;
-    const std::uint32_t c = next_code_point(folded, i);
+    const std::uint32_t c = vgd::next_utf8(folded, i);
     if (is_letter(c)) {
       cur.append(folded, start, i - start);
     } else if (!cur.empty()) {
@@ -249,21 +206,21 @@ std::string fold_name(std::string_view text) {
   std::size_t i = 0;
   while (i < text.size()) {
     const std::size_t start = i;
-    const std::uint32_t c = next_code_point(text, i);
-    if (c == 0xFFFFFFFF) {
+    const std::uint32_t c = vgd::next_utf8(text, i);
+    if (c == vgd::kInvalidUtf8) {
       out.append(text.substr(start, i - start));
     } else if (c < 0x80) {
       out += static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
     } else if (const char* base = latin1_base(c)) {
       out += base;
     } else if (c >= 0x0430 && c <= 0x044F) {  // Cyrillic а..я
-      put(out, c - 0x20);
+      vgd::append_utf8(out, c - 0x20);
     } else if (c >= 0x0450 && c <= 0x045F) {  // ѐ..џ (ё among them)
-      put(out, c == 0x0451 ? 0x0415 : c - 0x50);
+      vgd::append_utf8(out, c == 0x0451 ? 0x0415 : c - 0x50);
     } else if (c == 0x0401) {  // Ё reads as Е
-      put(out, 0x0415);
+      vgd::append_utf8(out, 0x0415);
     } else {
-      put(out, c);
+      vgd::append_utf8(out, c);
     }
   }
   return out;

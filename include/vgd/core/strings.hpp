@@ -1,5 +1,6 @@
 #pragma once
 // Small string helpers used by the file readers.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -24,5 +25,13 @@ std::string format_double(double v);
 
 // Fixed-point text for messages ("3.14"), locale-independent.
 std::string format_fixed(double v, int decimals);
+
+// UTF-8. The code point starting at s[i], i moved past it; kInvalidUtf8 (i
+// moved one byte) for a byte that starts no valid sequence or a sequence cut
+// short. Overlong forms are not rejected.
+inline constexpr std::uint32_t kInvalidUtf8 = 0xFFFFFFFF;
+std::uint32_t next_utf8(std::string_view s, std::size_t& i);
+bool is_utf8(std::string_view s);
+void append_utf8(std::string& out, std::uint32_t code_point);
 
 }  // namespace vgd

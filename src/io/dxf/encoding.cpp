@@ -9,35 +9,11 @@
 #include <cstdint>
 #include <string>
 
+#include "vgd/core/strings.hpp"
+
 namespace vgd::dxf {
 
 namespace {
-
-bool valid_utf8(std::string_view s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const auto b = static_cast<unsigned char>(s[i]);
-    const int n = b < 0x80 ? 0 : (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xE ? 2 : (b >> 3) == 0x1E ? 3 : -1;
-    if (n < 0 || i + n >= s.size()) return false;
-    for (int k = 1; k <= n; ++k)
-      if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return false;
-    i += n + 1;
-  }
-  return true;
-}
-
-void put_utf8(std::string& out, std::uint32_t c) {
-  if (c < 0x80) {
-    out += static_cast<char>(c);
-  } else if (c < 0x800) {
-    out += static_cast<char>(0xC0 | (c >> 6));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  } else {
-    out += static_cast<char>(0xE0 | (c >> 12));
-    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  }
-}
 
 // The value of the header variable $DWGCODEPAGE (group 3 after it), or "".
 std::string code_page_of(std::string_view text) {
@@ -89,7 +65,7 @@ std::string decode_unicode_escapes(std::string_view text) {
         c = c * 16 + static_cast<std::uint32_t>(std::max(d, 0));
       }
       if (hex && c != 0 && (c < 0xD800 || c > 0xDFFF)) {
-        put_utf8(out, c);
+        append_utf8(out, c);
         i += 6;
         continue;
       }
@@ -101,7 +77,7 @@ std::string decode_unicode_escapes(std::string_view text) {
 
 Decoded to_utf8(std::string_view text) {
   Decoded d;
-  if (valid_utf8(text)) {
+  if (is_utf8(text)) {
     d.text = decode_unicode_escapes(text);
     return d;
   }
