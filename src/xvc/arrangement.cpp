@@ -30,6 +30,35 @@ double upright_angle(const pattern::Piece& p) {
   return std::abs(a) < 1e-9 ? 0.0 : a;
 }
 
+// A bodice hanging from straps (a tank): within the top 5 cm of the piece turned
+// upright, its cloth spans less than a quarter of its width.
+bool straps(const pattern::Piece& piece, double angle_deg) {
+  const std::size_t n = piece.boundary.size();
+  if (n < 3) return false;
+  std::vector<pattern::Vec2> q(n);
+  double xmin = 1e300, xmax = -1e300, ymax = -1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = rotate(piece.boundary[i].p, angle_deg);
+    xmin = std::min(xmin, q[i].x()), xmax = std::max(xmax, q[i].x()), ymax = std::max(ymax, q[i].y());
+  }
+  // The cloth's width along a horizontal line at y: the summed lengths of the
+  // intervals inside the outline (even-odd).
+  auto covered = [&](double y) {
+    std::vector<double> xs;
+    for (std::size_t i = 0; i < n; ++i) {
+      const pattern::Vec2 &a = q[i], &b = q[(i + 1) % n];
+      if ((a.y() > y) != (b.y() > y)) xs.push_back(a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+    }
+    std::sort(xs.begin(), xs.end());
+    double w = 0;
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) w += xs[k + 1] - xs[k];
+    return w;
+  };
+  double widest = 0;
+  for (const double d : {0.01, 0.02, 0.03, 0.04, 0.05}) widest = std::max(widest, covered(ymax - d));
+  return widest < 0.25 * (xmax - xmin);
+}
+
 }  // namespace
 
 const std::vector<std::string_view>& arrangement_segments() {
@@ -186,7 +215,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
     case Role::back:
       a.segment = lower_body ? "hips" : "torso";
       a.side = role.role == Role::front ? "front" : "back";
-      a.height = lower_body ? opts.waist_height : opts.neck_point_height + opts.bodice_lift;
+      a.height = lower_body ? opts.waist_height : opts.neck_point_height + (straps(piece, a.angle_deg) ? 0.0 : opts.bodice_lift);
       return {a};
     default:
       return {};

@@ -55,7 +55,10 @@ struct ArrangementOptions {
   // Bodices hang this far above the neck point, so their shoulder edges start
   // above the body's shoulders and the shoulder seams close over them in free
   // air (started level with the neck point they had to be dragged up over the
-  // shoulders against friction and stalled).
+  // shoulders against friction and stalled). Not a bodice hanging from straps
+  // (within its top 5 cm its cloth spans less than a quarter of its width: a
+  // tank): lifted, its straps closed above the shoulders and stood there
+  // beside the neck; level with the neck point they come to rest on them.
   double bodice_lift = 0.05;        // m
   // Sleeves fit an arm closely: at 3 cm their underarm edges started in the
   // gap between arm and torso and could not meet.
