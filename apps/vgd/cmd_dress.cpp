@@ -39,10 +39,10 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--size", o->size, "The garment's size (default: the sample size); the mannequin is of this size");
   sub->add_option("--body-table", o->body_table,
                   "Size table of the mannequin (vgd mannequin --list-sizes; default: men's or women's from the "
-                  "style's name, else the default search order)");
+                  "style's name, else the table nearest the pattern's girth)");
   sub->add_option("--body-size", o->body_size,
-                  "The mannequin's size, when it is not the garment's (default: the garment's; a size the table "
-                  "lacks, as Valentina's 'base': its middle size)");
+                  "The mannequin's size, when it is not the garment's (default: the garment's; a size no table "
+                  "has, as Valentina's 'base': the size nearest the pattern's girth)");
   sub->add_option("--avatar", o->avatar, "Body mesh (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")
       ->check(CLI::ExistingFile);
   sub->add_option("--unit", o->avatar_unit, "--avatar's unit: auto, m, dm, cm, mm, in")->capture_default_str();

@@ -10,13 +10,22 @@
 //             interfacings and labels (bonded, not cloth of their own),
 //             linings (a garment of their own), pockets, flaps and plackets
 //             (sewn onto a face, which vgd does not drape yet), pieces cut 0
-//             times, pieces no seam sews; of several sleeve patterns (a short
-//             and a full sleeve) the one sewn to the armholes;
+//             times, pieces no seam sews; of several sleeve (or leg) patterns
+//             (a short and a full sleeve) the one sewn to the armholes, else
+//             the one with the most seams;
+//   quantities a document where every piece says it is cut 0 times: each
+//             as often as its annotation says ("2XFABRIC"), else once;
+//   legs      in a garment with a waistband and no front, back or leg, a
+//             piece cut twice whose name says nothing is the leg (LEG added
+//             to its category);
 //   body      the size table of the garment's own sizes: men's when the
 //             style's name says men (MEN, MENS, MAN, MALE, or an M between
-//             separators as in "SS17_M POLO"), women's when it says women,
-//             else the default search order; the garment's size, or, when
-//             the table has no such size (Valentina's "base"), its middle one.
+//             separators as in "SS17_M POLO"), women's when it says women;
+//             otherwise, and for a size no table has (Valentina's "base"),
+//             the table and size whose bust (tops) or hip (skirts,
+//             trousers, legs) leaves the pattern's girth the usual ease;
+//             without a front or back to measure, the first table with the
+//             size, or the middle size of the first table.
 //
 // Every decision is a sentence in Preparation::decisions, and the SEAMs it
 // adds are in the document, so the designer can read, correct and re-run.
@@ -30,7 +39,7 @@ namespace vgd::dress {
 struct PrepareOptions {
   std::string size;        // the garment's size; "" = the document's sample size
   std::string body_table;  // size table of the mannequin; "" = from the style's name
-  std::string body_size;   // the mannequin's size; "" = the garment's, else the table's middle size
+  std::string body_size;   // the mannequin's size; "" = the garment's, or the size nearest the pattern
   double min_score = 0.5;  // seam suggestions below are not added
 };
 
