@@ -37,7 +37,7 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
   }
   // Legs: the piece's top at the waist, above the hip joint.
   if (const BodySegment* leg = avatar.segment("right-leg"); leg && ao.waist_height > 0 && leg->axis.y() < -0.5)
-    ao.leg_top = -(ao.waist_height - leg->start.y()) / -leg->axis.y();
+    ao.leg_top = (ao.waist_height - leg->start.y()) / leg->axis.y();  // < 0: the waist is above the joint
   std::map<std::string, std::vector<xvc::Arrangement>> out;
   const auto suggested = xvc::suggest_arrangements(doc, ao);
   for (const auto* p : doc.patterns()) {

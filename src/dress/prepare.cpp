@@ -8,11 +8,11 @@
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/roles.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
-#include "vgd/pattern/roles.hpp"
 
 namespace vgd::dress {
 
@@ -35,19 +35,16 @@ std::vector<std::string> tokens(const std::string& s) {
 
 bool starts(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
-
 // Ease of a garment over the body at the girth vgd matches it by (m): a
 // regular top's chest over the bust, a skirt's or trousers' hip over the hip.
 constexpr double kBustEase = 0.10, kHipEase = 0.05;
 
-// The pattern's girth (m): over the front and back pieces given, each piece's
-// widest extent across its grain line between 25 % and 75 % of its length
-// along it, times the times it is cut. 0 without a front or back.
+// The pattern's girth (m): over the pieces given (its fronts and backs), each
+// piece's widest extent across its grain line between 25 % and 75 % of its
+// length along it, times the times it is cut. 0 without a piece.
 double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node*>& patterns) {
   double girth = 0;
   for (const auto* node : patterns) {
-    const pattern::RoleGuess g = xvc::piece_role(doc, *node);
-    if (g.role != pattern::Role::front && g.role != pattern::Role::back) continue;
     const pattern::Piece p = xvc::to_piece(doc, node->id());
     if (p.boundary.size() < 3) continue;
     pattern::Vec2 up = pattern::Vec2::UnitY();
@@ -317,17 +314,22 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
     bool lower = false;
     for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
-    std::vector<const xvc::Node*> draped;
-    for (const auto* p : mine)
-      if (std::find(out.pieces.begin(), out.pieces.end(), std::string(p->attribute("piece"))) != out.pieces.end()) draped.push_back(p);
-    const double girth = pattern_girth(doc, draped);
+    std::vector<const xvc::Node*> trunk;  // the fronts and backs draped
+    for (const auto* p : mine) {
+      const std::string name(p->attribute("piece"));
+      const pattern::Role r = roles[name].role;
+      if ((r == pattern::Role::front || r == pattern::Role::back) &&
+          std::find(out.pieces.begin(), out.pieces.end(), name) != out.pieces.end())
+        trunk.push_back(p);
+    }
+    const double girth = pattern_girth(doc, trunk);
     const double ease = lower ? kHipEase : kBustEase;
     const char* where = lower ? "hip" : "bust";
     std::vector<std::string> tables;
     if (!out.body_table.empty()) tables = {out.body_table};
     else tables = body::size_table_names();
     struct Pick {
-      std::string table, label, sex;
+      std::string table, label;
       double body = 0, miss = 1e300;
     } best;
     std::string others;
@@ -337,7 +339,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         if (has_size && row.label != out.size) continue;
         const double b = lower ? row.hip : row.bust;
         const double miss = std::abs(girth - b - ease);
-        if (miss < here.miss) here = {t, row.label, row.sex, b, miss};
+        if (miss < here.miss) here = {t, row.label, b, miss};
       }
       if (here.table.empty()) continue;
       if (here.miss < best.miss) {

@@ -112,89 +112,64 @@ Hit match(const std::vector<Token>& toks, std::string_view entry) {
 }
 
 struct Concept {
-  const char* name;
   std::initializer_list<const char*> words;
 };
 
 // The dictionary: English, Spanish, Portuguese, German, French, Russian; Gerber codes.
 // Upper case, accents folded (fold_name).
-const Concept kLabel{"label", {"LABEL", "ETIQUETA", "ETIKETT", "ETIQUETTE", "ЭТИКЕТКА", "=LBL"}};
-const Concept kInterfacing{
-    "interfacing",
-    {"INTERFACING", "INTERFACE", "INTERLINING", "INTERLIN", "FUSIBLE", "FUSING", "ENTRETELA", "ENTRETELA",
-     "EINLAGE", "ENTOILAGE", "THERMOCOLLANT", "ДУБЛЕРИН", "ФЛИЗЕЛИН", "=INTF", "=FUS"}};
-const Concept kLining{"lining", {"LINING", "FORRO", "FUTTER", "DOUBLURE", "ПОДКЛАДКА", "=LNG", "=LINE"}};
-const Concept kFlap{"pocket flap", {"FLAP", "KLAPPE", "TASCHENPATTE", "RABAT", "КЛАПАН", "=FLP"}};
-const Concept kFlapWord{"flap", {"=TAPA", "=PATTE", "=PORTINHOLA"}};
+const Concept kLabel{{"LABEL", "ETIQUETA", "ETIKETT", "ETIQUETTE", "ЭТИКЕТКА", "=LBL"}};
+const Concept kInterfacing{{"INTERFACING", "INTERFACE", "INTERLINING", "INTERLIN", "FUSIBLE", "FUSING",
+                            "ENTRETELA", "ENTRETELA", "EINLAGE", "ENTOILAGE", "THERMOCOLLANT", "ДУБЛЕРИН",
+                            "ФЛИЗЕЛИН", "=INTF", "=FUS"}};
+const Concept kLining{{"LINING", "FORRO", "FUTTER", "DOUBLURE", "ПОДКЛАДКА", "=LNG", "=LINE"}};
+const Concept kFlap{{"FLAP", "KLAPPE", "TASCHENPATTE", "RABAT", "КЛАПАН", "=FLP"}};
+const Concept kFlapWord{{"=TAPA", "=PATTE", "=PORTINHOLA"}};
 const Concept kPocket{
-    "pocket",
     {"POCKET", "BOLSILLO", "=BOLSO", "TASCHE", "POCHE", "КАРМАН", "*КАРМАН", "$PKT", "=PCKT", "=POC"}};
 const Concept kLoop{
-    "belt loop",
     {"BELTLOOP", "TRABILLA", "PASADOR", "PASSANTE", "PASSANT", "SCHLAUFE", "ШЛЕВКА", "*ШЛЁВК", "=LOOP"}};
 const Concept kFly{
-    "fly", {"=FLY", "FLYSHIELD", "BRAGUETA", "BRAGUILHA", "HOSENSCHLITZ", "BRAGUETTE", "ГУЛЬФИК", "=ZIPPER"}};
+    {"=FLY", "FLYSHIELD", "BRAGUETA", "BRAGUILHA", "HOSENSCHLITZ", "BRAGUETTE", "ГУЛЬФИК", "=ZIPPER"}};
 const Concept kCuff{
-    "cuff", {"CUFF", "$CUF", "=PUNO", "PUNHO", "MANSCHETTE", "BUNDCHEN", "POIGNET", "МАНЖЕТ", "*МАНЖЕТ"}};
-const Concept kNeckband{"neckband", {"NECKBAND", "NECKRIB", "RIBCOLLAR", "COLLARRIB", "HALSBUND"}};
-const Concept kNeck{"neck", {"NECK", "CUELLO", "HALS", "ГОРЛОВИН"}};
-const Concept kRib{"rib", {"=RIB", "=RIBANA", "RIPP", "=RIPPE"}};
-const Concept kBand{"band", {"=BAND", "=BANDE", "=BANDA"}};
-const Concept kStand{"stand", {"STAND", "=BASE", "BASE", "STEG", "=PIE", "=PIED", "=PE", "СТОЙКА", "*СТОЙК"}};
+    {"CUFF", "$CUF", "=PUNO", "PUNHO", "MANSCHETTE", "BUNDCHEN", "POIGNET", "МАНЖЕТ", "*МАНЖЕТ"}};
+const Concept kNeckband{{"NECKBAND", "NECKRIB", "RIBCOLLAR", "COLLARRIB", "HALSBUND"}};
+const Concept kNeck{{"NECK", "CUELLO", "HALS", "ГОРЛОВИН"}};
+const Concept kRib{{"=RIB", "=RIBANA", "RIPP", "=RIPPE"}};
+const Concept kBand{{"=BAND", "=BANDE", "=BANDA"}};
+const Concept kStand{{"STAND", "=BASE", "BASE", "STEG", "=PIE", "=PIED", "=PE", "СТОЙКА", "*СТОЙК"}};
 const Concept kCollar{
-    "collar",
     {"COLLAR", "$CLR", "=CO", "=COL", "CUELLO", "=GOLA", "COLARINHO", "KRAGEN", "ВОРОТНИК", "*ВОРОТНИК"}};
 const Concept kPlacket{
-    "placket",
     {"PLACKET", "=PLKT", "=PLK", "TAPETA", "CARCELA", "KNOPFLEISTE", "LEISTE", "ПЛАНКА", "*ПЛАНК"}};
-const Concept kFacing{"facing", {"FACING", "=FCG", "VISTA", "BELEG", "PAREMENT", "ПОДБОРТ", "*ПОДБОРТ"}};
-const Concept kBinding{"binding",
-                       {"BINDING", "=BIAS", "=VIVO", "=VIES", "SCHRAGBAND", "EINFASS", "=BIAIS", "ОКАНТОВК",
+const Concept kFacing{{"FACING", "=FCG", "VISTA", "BELEG", "PAREMENT", "ПОДБОРТ", "*ПОДБОРТ"}};
+const Concept kBinding{{"BINDING", "=BIAS", "=VIVO", "=VIES", "SCHRAGBAND", "EINFASS", "=BIAIS", "ОКАНТОВК",
                         "*ОКАНТОВК", "=БЕЙКА"}};
-const Concept kYoke{"yoke",
-                    {"YOKE", "$YK", "CANESU", "=PALA", "=PASSE", "EMPIECEMENT", "КОКЕТКА", "*КОКЕТК"}};
-const Concept kHood{"hood", {"=HOOD", "CAPUCHA", "CAPUZ", "KAPUZE", "CAPUCHE", "КАПЮШОН"}};
-const Concept kWaistband{"waistband",
-                         {"WAISTBAND", "$WB", "=WSTBD", "=WSTB", "PRETINA", "=COS", "=BUND", "BUNDBAND",
+const Concept kYoke{{"YOKE", "$YK", "CANESU", "=PALA", "=PASSE", "EMPIECEMENT", "КОКЕТКА", "*КОКЕТК"}};
+const Concept kHood{{"=HOOD", "CAPUCHA", "CAPUZ", "KAPUZE", "CAPUCHE", "КАПЮШОН"}};
+const Concept kWaistband{{"WAISTBAND", "$WB", "=WSTBD", "=WSTB", "PRETINA", "=COS", "=BUND", "BUNDBAND",
                           "CEINTURE", "=ПОЯС", "*ПОЯС"}};
-const Concept kWaist{"waist", {"WAIST", "CINTURA", "TAILLE"}};
-const Concept kSleeve{"sleeve",
-                      {"SLEEVE", "$SLV", "$SL", "=MANGA", "ARMEL", "AERMEL", "MANCHE", "РУКАВ", "*РУКАВ"}};
-const Concept kLeg{"leg",
-                   {"=LEG", "=LEGS", "=TIGHT", "=TIGHTS", "PIERNA", "=PERNA", "HOSENBEIN", "=BEIN", "JAMBE",
+const Concept kWaist{{"WAIST", "CINTURA", "TAILLE"}};
+const Concept kSleeve{{"SLEEVE", "$SLV", "$SL", "=MANGA", "ARMEL", "AERMEL", "MANCHE", "РУКАВ", "*РУКАВ"}};
+const Concept kLeg{{"=LEG", "=LEGS", "=TIGHT", "=TIGHTS", "PIERNA", "=PERNA", "HOSENBEIN", "=BEIN", "JAMBE",
                     "ШТАНИН", "*ШТАНИН"}};
-const Concept kFront{"front",
-                     {"FRONT", "$FR", "$FRT", "=FT", "DELANTER", "*DELANTER", "FRENTE", "VORDERTEIL",
+const Concept kFront{{"FRONT", "$FR", "$FRT", "=FT", "DELANTER", "*DELANTER", "FRENTE", "VORDERTEIL",
                       "VORDERHOSE", "*VORDER", "DEVANT", "=ПЕРЕД", "*ПЕРЕД", "ПОЛОЧКА", "*ПОЛОЧК"}};
-const Concept kBack{"back",
-                    {"BACK", "$BK", "$BCK", "ESPALDA", "TRASER", "*TRASER", "COSTAS", "RUCKEN", "RUECKEN",
+const Concept kBack{{"BACK", "$BK", "$BCK", "ESPALDA", "TRASER", "*TRASER", "COSTAS", "RUCKEN", "RUECKEN",
                      "HINTERTEIL", "HINTERHOSE", "*HINTER", "=DOS", "СПИНКА", "*СПИНК", "*ЗАДН"}};
-const Concept kLeft{"left",
-                    {"LEFT", "=LT", "=LFT", "*IZQUIERD", "*ESQUERD", "=LINKS", "*LINKE", "GAUCHE", "*ЛЕВ"}};
-const Concept kRight{"right",
-                     {"RIGHT", "=RT", "=RGT", "*DERECH", "*DIREIT", "=RECHTS", "*RECHTE", "*DROIT", "*ПРАВ"}};
+const Concept kLeft{{"LEFT", "=LT", "=LFT", "*IZQUIERD", "*ESQUERD", "=LINKS", "*LINKE", "GAUCHE", "*ЛЕВ"}};
+const Concept kRight{{"RIGHT", "=RT", "=RGT", "*DERECH", "*DIREIT", "=RECHTS", "*RECHTE", "*DROIT", "*ПРАВ"}};
 // Words that make the next one a description, not a name (FRONT WITH POCKET).
-const Concept kModifier{"modifier",
-                        {"=WITH", "=W", "=WITHOUT", "=NO", "=CON", "=SIN", "=COM", "=SEM", "=MIT", "=OHNE",
+const Concept kModifier{{"=WITH", "=W", "=WITHOUT", "=NO", "=CON", "=SIN", "=COM", "=SEM", "=MIT", "=OHNE",
                          "=AVEC", "=SANS", "=С", "=БЕЗ"}};
 // What a piece is cut from: the annotation's fabric words.
-const Concept kFabric{"fabric",
-                      {"FABRIC", "SELF", "SHELL", "=RIB", "TELA", "TECIDO", "STOFF", "TISSU", "ТКАНЬ"}};
+const Concept kFabric{{"FABRIC", "SELF", "SHELL", "=RIB", "TELA", "TECIDO", "STOFF", "TISSU", "ТКАНЬ"}};
 
-struct Found {
-  bool any = false;
-  std::vector<Hit> hits;
-};
+using Found = std::vector<Hit>;  // where a concept's words matched
 
-Found find(std::vector<Token>& toks, const Concept& c) {
+Found find(const std::vector<Token>& toks, const Concept& c) {
   Found f;
-  for (const char* w : c.words) {
-    const Hit h = match(toks, w);
-    if (h.found) {
-      f.any = true;
-      f.hits.push_back(h);
-    }
-  }
+  for (const char* w : c.words)
+    if (const Hit h = match(toks, w); h.found) f.push_back(h);
   return f;
 }
 
@@ -299,7 +274,7 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
   // WITH POCKET, NO POCKET: the described word does not name the piece.
   for (std::size_t t = 0; t + 1 < toks.size(); ++t) {
     std::vector<Token> one{toks[t]};
-    if (find(one, kModifier).any) {
+    if (!find(one, kModifier).empty()) {
       toks[t].used = true;
       toks[t + 1].used = true;
       toks[t + 1].described = true;
@@ -307,12 +282,12 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
   }
   RoleGuess g;
   const auto use = [&](const Found& f) {
-    for (const Hit& h : f.hits) toks[h.token].used = true;
+    for (const Hit& h : f) toks[h.token].used = true;
   };
   const auto take = [&](Role r, const Found& f) {
     g.role = r;
     use(f);
-    const Hit& h = f.hits.front();
+    const Hit& h = f.front();
     g.word = toks[h.token].text.substr(h.pos, h.len);
   };
   const Found label = find(toks, kLabel), interfacing = find(toks, kInterfacing),
@@ -326,65 +301,65 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
               leg = find(toks, kLeg), front = find(toks, kFront), back = find(toks, kBack);
   // The annotation says what the piece is cut from: interlining alone makes an interfacing.
   std::vector<Token> ann = tokens_of(fold_name(annotation));
-  const bool cut_from_interlining = find(ann, kInterfacing).any && !find(ann, kFabric).any;
+  const bool cut_from_interlining = !find(ann, kInterfacing).empty() && find(ann, kFabric).empty();
 
-  if (label.any)
+  if (!label.empty())
     take(Role::label, label);
-  else if (interfacing.any)
+  else if (!interfacing.empty())
     take(Role::interfacing, interfacing);
   else if (cut_from_interlining)
     g.role = Role::interfacing, g.word = fold_name(annotation);
-  else if (lining.any)
+  else if (!lining.empty())
     take(Role::lining, lining);
-  else if (flap.any)
+  else if (!flap.empty())
     take(Role::pocket_flap, flap);
-  else if (pocket.any && flap_word.any)
+  else if (!pocket.empty() && !flap_word.empty())
     take(Role::pocket_flap, flap_word), use(pocket);
-  else if (pocket.any)
+  else if (!pocket.empty())
     take(Role::pocket, pocket);
-  else if (loop.any)
+  else if (!loop.empty())
     take(Role::belt_loop, loop);
-  else if (fly.any)
+  else if (!fly.empty())
     take(Role::fly, fly);
-  else if (cuff.any)
+  else if (!cuff.empty())
     take(Role::cuff, cuff);
-  else if (neckband.any)
+  else if (!neckband.empty())
     take(Role::neckband, neckband);
-  else if (neck.any && (rib.any || band.any))
+  else if (!neck.empty() && (!rib.empty() || !band.empty()))
     take(Role::neckband, neck), use(rib), use(band);
-  else if (collar.any && rib.any)
+  else if (!collar.empty() && !rib.empty())
     take(Role::neckband, collar), use(rib);
-  else if (collar.any && (stand.any || band.any))
+  else if (!collar.empty() && (!stand.empty() || !band.empty()))
     take(Role::collar_stand, collar), use(stand), use(band);
-  else if (collar.any)
+  else if (!collar.empty())
     take(Role::collar, collar);
-  else if (placket.any)
+  else if (!placket.empty())
     take(Role::placket, placket);
-  else if (facing.any)
+  else if (!facing.empty())
     take(Role::facing, facing);
-  else if (binding.any)
+  else if (!binding.empty())
     take(Role::binding, binding);
-  else if (yoke.any)
+  else if (!yoke.empty())
     take(Role::yoke, yoke);
-  else if (hood.any)
+  else if (!hood.empty())
     take(Role::hood, hood);
-  else if (waistband.any)
+  else if (!waistband.empty())
     take(Role::waistband, waistband);
-  else if (waist.any && (rib.any || band.any))
+  else if (!waist.empty() && (!rib.empty() || !band.empty()))
     take(Role::waistband, waist), use(rib), use(band);
-  else if (sleeve.any)
+  else if (!sleeve.empty())
     take(Role::sleeve, sleeve);
-  else if (leg.any)
+  else if (!leg.empty())
     take(Role::leg, leg);
-  else if (front.any)
+  else if (!front.empty())
     take(Role::front, front);
-  else if (back.any)
+  else if (!back.empty())
     take(Role::back, back);
 
   const Found left = find(toks, kLeft), right = find(toks, kRight);
-  if (left.any != right.any) {
-    g.side = left.any ? Side::left : Side::right;
-    use(left.any ? left : right);
+  if (!left.empty() != !right.empty()) {
+    g.side = !left.empty() ? Side::left : Side::right;
+    use(!left.empty() ? left : right);
   }
   // The rest of the name tells alternatives apart (SHORT, LONG, HALF, FULL, ...); what is
   // left of a run-together token counts too (SHORTSLEEVE -> SHORT).

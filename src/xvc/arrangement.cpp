@@ -6,6 +6,7 @@
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/xvc/style.hpp"
 
 namespace vgd::xvc {
@@ -147,21 +148,10 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
       return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
     }
     case Role::leg: {
-      // Upright with the wider end up (the waist), whichever way the grain line points.
-      double top_w = 0, bottom_w = 0;
-      {
-        double lo = 1e300, hi = -1e300;
-        for (const auto& c : piece.boundary) lo = std::min(lo, rotate(c.p, a.angle_deg).y()), hi = std::max(hi, rotate(c.p, a.angle_deg).y());
-        double t0 = 1e300, t1 = -1e300, b0 = 1e300, b1 = -1e300;
-        for (const auto& c : piece.boundary) {
-          const auto q = rotate(c.p, a.angle_deg);
-          if (q.y() > hi - 0.15 * (hi - lo)) t0 = std::min(t0, q.x()), t1 = std::max(t1, q.x());
-          if (q.y() < lo + 0.15 * (hi - lo)) b0 = std::min(b0, q.x()), b1 = std::max(b1, q.x());
-        }
-        top_w = t1 - t0;
-        bottom_w = b1 - b0;
-      }
-      if (top_w < bottom_w) a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+      // Upright with the wider end up (the waist), whichever way the grain line points:
+      // the pattern's direction that turning by the angle brings to +y.
+      if (!pattern::wider_at_top(piece.boundary, rotate(pattern::Vec2::UnitY(), -a.angle_deg)))
+        a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
       const auto top = reference_point(piece, a.angle_deg);
       a.x = top.x();
       a.y = top.y();

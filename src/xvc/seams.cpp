@@ -393,15 +393,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // A leg piece's hem and waist edges: the hem at the end narrower across the grain,
   // the waist the edge furthest from it.
   auto leg_ends = [](const PieceInfo& lg) {
-    const auto& b = lg.o->shape.boundary;
-    const double span = lg.frame.v_max - lg.frame.v_min;
-    double lo_min = 1e300, lo_max = -1e300, hi_min = 1e300, hi_max = -1e300;
-    for (const auto& c : b) {
-      const double u = c.p.dot(lg.frame.right), v = c.p.dot(lg.frame.up);
-      if (v < lg.frame.v_min + 0.15 * span) lo_min = std::min(lo_min, u), lo_max = std::max(lo_max, u);
-      if (v > lg.frame.v_max - 0.15 * span) hi_min = std::min(hi_min, u), hi_max = std::max(hi_max, u);
-    }
-    const bool hem_low = lo_max - lo_min < hi_max - hi_min;
+    const bool hem_low = pattern::wider_at_top(lg.o->shape.boundary, lg.frame.up);
     std::size_t hem = 0, waist = 0;
     for (std::size_t i = 1; i < lg.edges.size(); ++i) {
       const double v = lg.edges[i].v_mean;

@@ -2,8 +2,8 @@
 // none, pieces no seam sews left out, the body's size table from the style.
 #include <gtest/gtest.h>
 
-#include "vgd/core/diagnostics.hpp"
 #include "vgd/body/sizes.hpp"
+#include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/prepare.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
@@ -19,9 +19,21 @@ pattern::Piece panel(const std::string& name, double x0, double w, double h, con
   p.block = name + "_" + size;
   p.name = name;
   p.size = size;
-  for (const auto& q : std::vector<Vec2>{{x0, 0}, {x0 + w, 0}, {x0 + w, h}, {x0, h}}) p.boundary.push_back({q, PointKind::turn});
+  for (const auto& q : std::vector<Vec2>{{x0, 0}, {x0 + w, 0}, {x0 + w, h}, {x0, h}})
+    p.boundary.push_back({q, PointKind::turn});
   p.grain_line = pattern::Segment{Vec2(x0 + w / 2, 0.1), Vec2(x0 + w / 2, h - 0.1)};
   return p;
+}
+
+// A style of one size holding these pieces.
+pattern::Style one_size(const std::string& name, const std::string& size,
+                        std::vector<pattern::Piece> pieces) {
+  pattern::Style s;
+  s.name = name;
+  s.sample_size = size;
+  s.sizes = {size};
+  s.pieces = std::move(pieces);
+  return s;
 }
 
 }  // namespace
@@ -39,11 +51,9 @@ TEST(SizeTableFromName, MenOrWomenFromTheStyleName) {
 }
 
 TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
-  pattern::Style s;
-  s.name = "WM TOP";
-  s.sample_size = "M";
-  s.sizes = {"M"};
-  s.pieces = {panel("FRONT", 0.0, 0.30, 0.50), panel("BACK", 1.0, 0.30, 0.50), panel("LABEL", 2.0, 0.04, 0.02)};
+  pattern::Style s = one_size(
+      "WM TOP", "M",
+      {panel("FRONT", 0.0, 0.30, 0.50), panel("BACK", 1.0, 0.30, 0.50), panel("LABEL", 2.0, 0.04, 0.02)});
   xvc::Document doc = xvc::from_style(s);
   ASSERT_TRUE(xvc::list_seams(doc).empty());
   const Preparation p = prepare_garment(doc);
@@ -55,8 +65,11 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   EXPECT_EQ(p.body_table, "en13402-women");
   bool label = false, body = false, seam = false;
   for (const auto& d : p.decisions) {
-    label = label || d == "piece LABEL (label) left out: it is bonded to its host and does not hang as cloth of its own";
-    body = body || d.find("from en13402-women (nearest the pattern: its bust girth is 60 cm") != std::string::npos;
+    label =
+        label ||
+        d == "piece LABEL (label) left out: it is bonded to its host and does not hang as cloth of its own";
+    body = body ||
+           d.find("from en13402-women (nearest the pattern: its bust girth is 60 cm") != std::string::npos;
     seam = seam || d.find("suggested at size M: FRONT to BACK") != std::string::npos;
   }
   EXPECT_TRUE(label && body && seam);
@@ -68,18 +81,16 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
 }
 
 TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
-  pattern::Style s;
-  s.name = "parts";
-  s.sample_size = "M";
-  s.sizes = {"M"};
-  s.pieces = {panel("PART A", 0.0, 0.30, 0.50), panel("PART B", 1.0, 0.05, 0.07)};
+  pattern::Style s =
+      one_size("parts", "M", {panel("PART A", 0.0, 0.30, 0.50), panel("PART B", 1.0, 0.05, 0.07)});
   xvc::Document doc = xvc::from_style(s);
   try {
     prepare_garment(doc);
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("nothing to drape"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("PART A (role unknown), PART B (role unknown)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("PART A (role unknown), PART B (role unknown)"), std::string::npos)
+        << e.what();
   }
   PrepareOptions wrong;
   wrong.size = "XL";
@@ -94,12 +105,9 @@ namespace vgd::dress {
 // pattern: the row of its table whose bust leaves the pattern's chest the
 // usual ease (10 cm), and that is said.
 TEST(PrepareGarment, ABaseSizeDrapesOnTheBodyNearestThePattern) {
-  pattern::Style s;
-  s.name = "MEN shirt";
-  s.sample_size = "base";
-  s.sizes = {"base"};
   // Front and back 55 cm wide: a chest of 110 cm round.
-  s.pieces = {panel("FRONT", 0.0, 0.55, 0.7, "base"), panel("BACK", 1.0, 0.55, 0.7, "base")};
+  pattern::Style s = one_size(
+      "MEN shirt", "base", {panel("FRONT", 0.0, 0.55, 0.7, "base"), panel("BACK", 1.0, 0.55, 0.7, "base")});
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_EQ(p.size, "base");
@@ -114,7 +122,8 @@ TEST(PrepareGarment, ABaseSizeDrapesOnTheBodyNearestThePattern) {
   EXPECT_GT(chosen->bust, 0.95);
   EXPECT_LT(chosen->bust, 1.05);
   bool said = false;
-  for (const auto& d : p.decisions) said = said || d.find("nearest the pattern: its bust girth is 110 cm") != std::string::npos;
+  for (const auto& d : p.decisions)
+    said = said || d.find("nearest the pattern: its bust girth is 110 cm") != std::string::npos;
   EXPECT_TRUE(said);
   PrepareOptions asked;
   asked.body_size = "48";
@@ -126,11 +135,8 @@ TEST(PrepareGarment, ABaseSizeDrapesOnTheBodyNearestThePattern) {
 // with a 110 cm chest: the men's 50, 100 cm; the women's 50 would need 8 cm
 // more cloth than the pattern has).
 TEST(PrepareGarment, TheBodyTableFollowsThePatternsGirth) {
-  pattern::Style s;
-  s.name = "GMG1016S19";
-  s.sample_size = "50";
-  s.sizes = {"50"};
-  s.pieces = {panel("FR", 0.0, 0.55, 0.7, "50"), panel("BK", 1.0, 0.55, 0.7, "50")};
+  pattern::Style s =
+      one_size("GMG1016S19", "50", {panel("FR", 0.0, 0.55, 0.7, "50"), panel("BK", 1.0, 0.55, 0.7, "50")});
   s.pieces[0].category = "FRONT";
   s.pieces[1].category = "BACK";
   xvc::Document doc = xvc::from_style(s);
@@ -151,25 +157,28 @@ TEST(PrepareGarment, TheBodyTableFollowsThePatternsGirth) {
 // Pieces left out say why, from their role: bonded interfacings, pockets sewn
 // on a face, linings, pieces nobody cuts.
 TEST(PrepareGarment, PiecesLeftOutSayWhy) {
-  pattern::Style s;
-  s.name = "WM TOP";
-  s.sample_size = "38";
-  s.sizes = {"38"};
-  s.pieces = {panel("FRONT", 0.0, 0.5, 0.6, "38"), panel("BACK", 1.0, 0.5, 0.6, "38"),
-              panel("COLLAR INTERFACING", 2.0, 0.4, 0.08, "38"), panel("POCKET", 3.0, 0.15, 0.15, "38"),
-              panel("FRONT LINING", 4.0, 0.5, 0.6, "38"), panel("GUIDE", 5.0, 0.2, 0.2, "38")};
+  pattern::Style s =
+      one_size("WM TOP", "38",
+               {panel("FRONT", 0.0, 0.5, 0.6, "38"), panel("BACK", 1.0, 0.5, 0.6, "38"),
+                panel("COLLAR INTERFACING", 2.0, 0.4, 0.08, "38"), panel("POCKET", 3.0, 0.15, 0.15, "38"),
+                panel("FRONT LINING", 4.0, 0.5, 0.6, "38"), panel("GUIDE", 5.0, 0.2, 0.2, "38")});
   s.pieces[5].quantity = 0;
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
   const std::vector<std::string> want = {
-      "piece COLLAR INTERFACING (interfacing) left out: it is bonded to its host and does not hang as cloth of its own",
-      "piece POCKET (pocket) left out: it is sewn onto the face of its host piece, which vgd does not drape yet",
-      "piece FRONT LINING (lining) left out: a lining hangs inside the garment as a garment of its own; drape it as one",
+      "piece COLLAR INTERFACING (interfacing) left out: it is bonded to its host and does not hang as cloth "
+      "of its own",
+      "piece POCKET (pocket) left out: it is sewn onto the face of its host piece, which vgd does not drape "
+      "yet",
+      "piece FRONT LINING (lining) left out: a lining hangs inside the garment as a garment of its own; "
+      "drape it as one",
       "piece GUIDE left out: the file cuts it 0 times (a reference or an alternative)"};
-  for (const auto& w : want) EXPECT_NE(std::find(p.decisions.begin(), p.decisions.end(), w), p.decisions.end()) << w;
+  for (const auto& w : want)
+    EXPECT_NE(std::find(p.decisions.begin(), p.decisions.end(), w), p.decisions.end()) << w;
   bool roles = false;
-  for (const auto& d : p.decisions) roles = roles || d.find("roles from the pieces' names: FRONT front, BACK back") == 0;
+  for (const auto& d : p.decisions)
+    roles = roles || d.find("roles from the pieces' names: FRONT front, BACK back") == 0;
   EXPECT_TRUE(roles);
 }
 
@@ -181,19 +190,18 @@ namespace vgd::dress {
 // Valentina shirt) are alternatives: without an armhole seam the first in
 // the document is draped and the other left out, said.
 TEST(PrepareGarment, AnAlternativeSleeveIsLeftOut) {
-  pattern::Style s;
-  s.name = "MEN shirt";
-  s.sample_size = "50";
-  s.sizes = {"50"};
-  s.pieces = {panel("FRONT", 0, 0.3, 0.6, "50"), panel("BACK", 1, 0.3, 0.6, "50"), panel("SHORTSLEEVE", 2, 0.4, 0.25, "50"),
-              panel("FULLSLEEVE", 3, 0.4, 0.6, "50")};
+  pattern::Style s =
+      one_size("MEN shirt", "50",
+               {panel("FRONT", 0, 0.3, 0.6, "50"), panel("BACK", 1, 0.3, 0.6, "50"),
+                panel("SHORTSLEEVE", 2, 0.4, 0.25, "50"), panel("FULLSLEEVE", 3, 0.4, 0.6, "50")});
   xvc::Document doc = xvc::from_style(s);
   const Preparation p = prepare_garment(doc);
   EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "SHORTSLEEVE"), p.pieces.end());
   EXPECT_EQ(std::find(p.pieces.begin(), p.pieces.end(), "FULLSLEEVE"), p.pieces.end());
   bool said = false;
   for (const auto& d : p.decisions)
-    said = said || d.find("piece FULLSLEEVE left out: an alternative to the sleeve SHORTSLEEVE") != std::string::npos;
+    said = said ||
+           d.find("piece FULLSLEEVE left out: an alternative to the sleeve SHORTSLEEVE") != std::string::npos;
   EXPECT_TRUE(said);
 }
 
@@ -206,11 +214,9 @@ namespace vgd::dress {
 // garment with a waistband and no front, back or leg, is read as a leg,
 // said, and written in the document as LEG in its category.
 TEST(PrepareGarment, APieceCutTwiceBesideAWaistbandIsALeg) {
-  pattern::Style s;
-  s.name = "ORILEG WB";
-  s.sample_size = "36";
-  s.sizes = {"36"};
-  s.pieces = {panel("ORILEG WB WB", 0.0, 0.05, 0.7, "36"), panel("ORILEG WB LL", 1.0, 0.3, 0.9, "36")};
+  pattern::Style s =
+      one_size("ORILEG WB", "36",
+               {panel("ORILEG WB WB", 0.0, 0.05, 0.7, "36"), panel("ORILEG WB LL", 1.0, 0.3, 0.9, "36")});
   s.pieces[1].quantity = 2;
   s.pieces[1].category = "LENGTH OPTIONS";
   xvc::Document doc = xvc::from_style(s);

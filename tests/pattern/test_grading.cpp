@@ -167,3 +167,18 @@ TEST(MarkCorners, SquareCornersAreTurnsAndARoundedCornerIsNot) {
   }
   EXPECT_EQ(mark_corners(o), 0) << "marked once";
 }
+
+// A leg's waist end is wider than its hem: measured across the given up
+// direction, whichever way the outline is drawn.
+TEST(WiderAtTop, TellsTheWaistEndOfALegFromItsHem) {
+  // A tapered leg, waist (40 cm) at y = 1, hem (15 cm) at y = 0.
+  const std::vector<ContourPoint> leg = {
+      {{0.125, 0.0}, PointKind::turn}, {{0.275, 0.0}, PointKind::turn}, {{0.4, 1.0}, PointKind::turn}, {{0.0, 1.0}, PointKind::turn}};
+  EXPECT_TRUE(wider_at_top(leg, Vec2(0, 1)));
+  EXPECT_FALSE(wider_at_top(leg, Vec2(0, -1)));
+  // Drawn sideways (waist at x = 1): +x is up.
+  std::vector<ContourPoint> sideways = leg;
+  for (auto& c : sideways) c.p = Vec2(c.p.y(), -c.p.x());
+  EXPECT_TRUE(wider_at_top(sideways, Vec2(1, 0)));
+  EXPECT_FALSE(wider_at_top(sideways, Vec2(-1, 0)));
+}

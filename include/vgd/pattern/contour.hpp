@@ -81,4 +81,8 @@ bool unfold_about_mirror_line(Piece& piece, double tol_m = 1e-4);
 // Returns the number of loops removed; the outline stays counter-clockwise.
 int remove_small_self_loops(std::vector<ContourPoint>& outline, double max_loop_fraction = 0.05);
 
+// Whether the outline, measured across `up` (unit), is wider among its vertices in
+// its top 15 % along `up` than in its bottom 15 %: a leg's waist end against its hem.
+bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up);
+
 }  // namespace vgd::pattern

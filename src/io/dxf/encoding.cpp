@@ -4,7 +4,6 @@
 #include <iconv.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <string>
@@ -35,8 +34,7 @@ std::string code_page_of(std::string_view text) {
 
 // iconv's name for a DXF code page ("ANSI_1251" -> "CP1251"); "" when unknown.
 std::string iconv_name(const std::string& dxf) {
-  std::string u;
-  for (const char c : dxf) u += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string u = to_upper(dxf);
   if (u.rfind("ANSI_", 0) == 0) {
     const std::string n = u.substr(5);
     if (n == "936") return "GBK";
