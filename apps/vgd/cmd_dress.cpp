@@ -78,6 +78,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     po.size = o->size;
     po.body_table = o->body_table;
     po.body_size = o->body_size;
+    po.avatar = o->avatar;
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
     if (!prep.missing.empty()) {

@@ -301,6 +301,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // when that table has it. Otherwise the body nearest the pattern: the
   // table (and, for a size no table has, the row) whose bust (tops) or hip
   // (skirts, trousers) leaves the pattern's girth the usual ease.
+  if (!options.avatar.empty()) {
+    out.body_size = out.size;
+    out.decisions.push_back("body: " + options.avatar + " (as asked), not a mannequin");
+    return out;
+  }
   const std::string style(doc.root().attribute("name"));
   out.body_table = !options.body_table.empty() ? options.body_table : size_table_from_name(style);
   std::string why = !options.body_table.empty() ? "as asked" : "the style's name '" + style + "'";

@@ -743,6 +743,7 @@ struct Studio::Impl {
       xvc::Document prepared = doc;
       dress::PrepareOptions po;
       po.size = drape.size;
+      if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) po.avatar = drape.avatar->file.string();
       const dress::Preparation prep = dress::prepare_garment(prepared, po);
       xvc::save_file(prepared, copy);
       dress::DrapeOptions d = drape;

@@ -238,3 +238,20 @@ TEST(PrepareGarment, APieceCutTwiceBesideAWaistbandIsALeg) {
 }
 
 }  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// A body file given instead of a mannequin: said as the body, no table or
+// mannequin size chosen for it.
+TEST(PrepareGarment, ABodyFileIsTheBodyNotAMannequin) {
+  xvc::Document doc =
+      xvc::from_style(one_size("WM TOP", "38", {panel("FRONT", 0.0, 0.5, 0.6, "38"), panel("BACK", 1.0, 0.5, 0.6, "38")}));
+  PrepareOptions o;
+  o.avatar = "scan.glb";
+  const Preparation p = prepare_garment(doc, o);
+  EXPECT_EQ(p.body_table, "");
+  EXPECT_EQ(p.decisions.back(), "body: scan.glb (as asked), not a mannequin");
+  for (const auto& d : p.decisions) EXPECT_EQ(d.find("mannequin of size"), std::string::npos) << d;
+}
+
+}  // namespace vgd::dress

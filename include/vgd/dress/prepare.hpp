@@ -25,7 +25,8 @@
 //             the table and size whose bust (tops) or hip (skirts,
 //             trousers, legs) leaves the pattern's girth the usual ease;
 //             without a front or back to measure, the first table with the
-//             size, or the middle size of the first table.
+//             size, or the middle size of the first table. A body file
+//             given instead of a mannequin is said, and no table chosen.
 //
 // Every decision is a sentence in Preparation::decisions, and the SEAMs it
 // adds are in the document, so the designer can read, correct and re-run.
@@ -40,6 +41,7 @@ struct PrepareOptions {
   std::string size;        // the garment's size; "" = the document's sample size
   std::string body_table;  // size table of the mannequin; "" = from the style's name
   std::string body_size;   // the mannequin's size; "" = the garment's, or the size nearest the pattern
+  std::string avatar;      // a body file draped on instead of a mannequin: said, no table chosen
   double min_score = 0.5;  // seam suggestions below are not added
 };
 
