@@ -7,7 +7,8 @@
 // Imports the DXF (half pieces unfolded) or reads the XVC, decides what the
 // file does not say (dress::prepare_garment: seams, the pieces to drape, the
 // body's size table), says each decision, writes the document it drapes as
-// OUT/garment.xvc (correct it and run vgd dress or vgd drape on it again),
+// OUT/garment.xvc with each pattern's role and whether it is draped (correct
+// it and run vgd dress on it again),
 // drapes it as vgd drape does and writes previews in OUT/previews/.
 #include <cstdio>
 
@@ -56,7 +57,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
-  sub->footer("Writes OUTPUT/garment.xvc (the document draped, with the seams vgd added), garment.obj, avatar.obj, "
+  sub->footer("Writes OUTPUT/garment.xvc (the document draped: the seams vgd added, each pattern's role and "
+              "drape=true/false; correct it and run vgd dress on it again), garment.obj, avatar.obj, "
               "certificate.json and previews/<view>.png.\n"
               "Exit codes: 0 draped and passed, 1 bad input or nothing to drape, 3 a check failed.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
@@ -102,8 +104,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       vgd::cli::say(common, "vgd: the document already in " + prepared.string() + " is kept as " + kept.string());
     }
     vgd::xvc::save_file(doc, prepared);
-    vgd::cli::say(common, "vgd: wrote " + prepared.string() + " (the document draped; correct it and run vgd drape " +
-                              prepared.string() + " again)");
+    vgd::cli::say(common, "vgd: wrote " + prepared.string() +
+                              " (the document draped, each piece's role and whether it is draped in it; correct it "
+                              "and run vgd dress " + prepared.string() + " again)");
 
     vgd::cli::DrapeRun run;
     run.options.garment = fs::absolute(prepared);

@@ -172,8 +172,9 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
   if (min_angle <= 0) min_angle = xvc::get_parameter(doc, "mesh.min_angle").value_or(25.0);
   const double turn_angle = xvc::get_parameter(doc, "mesh.turn_angle").value_or(30.0);
 
-  // The pieces of the size (and of the list, when one is given): one per
-  // arrangement of the PATTERN (a sleeve cut twice is placed twice), at least one.
+  // The pieces of the size (and of the list, when one is given; without a
+  // list, those not marked drape="false"): one per arrangement of the
+  // PATTERN (a sleeve cut twice is placed twice), at least one.
   std::vector<std::vector<xvc::Stretch>> stretches;  // per pattern kept
   std::vector<std::vector<int>> copies;              // per pattern kept: its pieces
   std::set<std::string> left_out;                    // stretches of this size's patterns left out
@@ -183,10 +184,12 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     gp.pattern_id = std::string(p->id());
     gp.piece = xvc::to_piece(doc, gp.pattern_id);
     gp.name = gp.piece.name.empty() ? gp.piece.block : gp.piece.name;
-    if (!options.pieces.empty() &&
-        std::find_if(options.pieces.begin(), options.pieces.end(), [&](const std::string& s) {
-          return s == gp.piece.name || s == gp.piece.block || s == gp.pattern_id;
-        }) == options.pieces.end()) {
+    const bool listed_out = !options.pieces.empty()
+                                ? std::find_if(options.pieces.begin(), options.pieces.end(), [&](const std::string& s) {
+                                    return s == gp.piece.name || s == gp.piece.block || s == gp.pattern_id;
+                                  }) == options.pieces.end()
+                                : xvc::drape_attribute(*p) == false;
+    if (listed_out) {
       for (const auto& st : xvc::boundary_stretches(*p)) left_out.insert(st.id);
       continue;
     }

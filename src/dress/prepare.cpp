@@ -220,7 +220,10 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       if (p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
         out.missing.push_back(name + (what.empty() ? " (role unknown)" : what));
     };
-    if (mine.size() > 1 && !sewn.count(name)) {
+    if (xvc::drape_attribute(*p) == false) {
+      out.left_out.push_back(name);
+      out.decisions.push_back("piece " + name + what + " left out: the document says drape=\"false\"");
+    } else if (mine.size() > 1 && !sewn.count(name)) {
       if (p->attribute("quantity") == "0")
         leave("the file cuts it 0 times (a reference or an alternative)");
       else if (!pattern::drapes_as_cloth(role))
@@ -245,11 +248,14 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // another role (a sleeve to the armholes) are the garment's; with none
   // sewn there, the one with the most seams, the first in the document of
   // those. The others are left out.
+  std::set<std::string> kept;  // pieces the document says to drape: no alternatives
+  for (const auto* p : mine)
+    if (xvc::drape_attribute(*p) == true) kept.insert(std::string(p->attribute("piece")));
   for (const pattern::Role role : {pattern::Role::sleeve, pattern::Role::leg}) {
     const std::string what(pattern::role_name(role));
     std::vector<std::string> alts;  // a left and a right one are a pair, not alternatives
     for (const auto& name : out.pieces)
-      if (roles[name].role == role && roles[name].side == pattern::Side::none) alts.push_back(name);
+      if (roles[name].role == role && roles[name].side == pattern::Side::none && !kept.count(name)) alts.push_back(name);
     if (alts.size() < 2) continue;
     const auto is_alt = [&](const std::string& n) { return std::find(alts.begin(), alts.end(), n) != alts.end(); };
     std::set<std::string> on_body;  // with a seam to a piece of another role
@@ -295,6 +301,29 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                 "nothing to drape: no seam vgd can find sews the pieces of this size together (" + names +
                     "); add seams with 'vgd seams add' or a seam file with 'vgd seams apply', and arrangements "
                     "with 'vgd place'");
+  }
+
+  // Written in the document where it says nothing yet: each pattern's role
+  // and whether it is draped, so that the designer corrects one and runs
+  // again (the drape of the document alone leaves out drape="false").
+  {
+    std::vector<std::unique_ptr<xvc::Command>> set;
+    const std::set<std::string> draped(out.pieces.begin(), out.pieces.end());
+    for (const auto* p : doc.patterns()) {
+      const std::string name(p->attribute("piece")), id(p->id());
+      if (!p->has_attribute("role")) {
+        const auto it = roles.find(name);
+        const pattern::Role r = it != roles.end() ? it->second.role : xvc::piece_role(doc, *p).role;
+        set.push_back(std::make_unique<xvc::SetAttribute>(id, "role", std::string(pattern::role_name(r))));
+      }
+      if (!p->has_attribute("drape"))
+        set.push_back(std::make_unique<xvc::SetAttribute>(id, "drape", draped.count(name) ? "true" : "false"));
+    }
+    if (!set.empty()) {
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("roles and pieces to drape", std::move(set)));
+      out.decisions.push_back("each pattern's role and whether it is draped written in the document (PATTERN "
+                              "attributes role and drape): correct one there and run again");
+    }
   }
 
   // The body: the size table from the style's name, the garment's size

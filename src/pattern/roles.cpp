@@ -251,6 +251,23 @@ std::string_view role_name(Role role) {
   return "unknown";
 }
 
+const std::vector<Role>& all_roles() {
+  static const std::vector<Role> roles = [] {
+    std::vector<Role> v;
+    for (int r = static_cast<int>(Role::unknown); r <= static_cast<int>(Role::label); ++r) v.push_back(static_cast<Role>(r));
+    return v;
+  }();
+  return roles;
+}
+
+std::optional<Role> role_from_name(std::string_view name) {
+  std::string spaced(name);
+  std::replace(spaced.begin(), spaced.end(), '_', ' ');
+  for (const Role r : all_roles())
+    if (role_name(r) == spaced) return r;
+  return std::nullopt;
+}
+
 std::string_view side_name(Side side) {
   return side == Side::left ? "left" : side == Side::right ? "right" : "";
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/roles.hpp"
 #include "vgd/xvc/document.hpp"
 
 namespace vgd::xvc::detail {
@@ -18,6 +19,8 @@ const AttributeRule kId{"id", VT::id, true};
 std::vector<ElementRule> make_rules() {
   const std::vector<std::string_view> roles = {"boundary", "internal", "cutout", "sew",
                                                "grain",    "mirror",   "grade"};
+  std::vector<std::string_view> piece_roles;  // pattern/roles.hpp
+  for (const pattern::Role r : pattern::all_roles()) piece_roles.push_back(pattern::role_name(r));
   return {
       // ---- GARMENT and its containers ----
       {"GARMENT", "garment",
@@ -33,7 +36,8 @@ std::vector<ElementRule> make_rules() {
       // ---- modules ----
       {"PATTERN", "pattern",
        {kId, {"block"}, {"piece"}, {"size"}, {"quantity", VT::count}, {"flipped", VT::count}, {"category"},
-        {"fabric"}, {"annotation"}, {"closed", VT::boolean}, {"self_intersecting", VT::boolean}},
+        {"fabric"}, {"annotation"}, {"closed", VT::boolean}, {"self_intersecting", VT::boolean},
+        {"role", VT::choice, false, piece_roles}, {"drape", VT::boolean}},
        {{"ANNOTATION"}, {"C2DSEQ"}, {"POSITION"}, {"ASSOCIATION"}}},
       {"SEAM", "seam", {kId, {"name"}, {"type", VT::name}}, {{"HEM", 2, -1}, {"ASSOCIATION"}}},
       {"GRADATION", "grad", {kId, {"piece", VT::text, true}}, {{"SIZE"}}},

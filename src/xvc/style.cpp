@@ -252,9 +252,20 @@ std::vector<Stretch> boundary_stretches(const Node& pattern) {
   return out;
 }
 
+std::optional<bool> drape_attribute(const Node& pattern) {
+  if (!pattern.has_attribute("drape")) return std::nullopt;
+  return detail::parse_bool(pattern.attribute("drape"));
+}
+
 pattern::RoleGuess piece_role(const Document& doc, const Node& pattern) {
-  return pattern::piece_role(pattern.attribute("piece"), pattern.attribute("category"), pattern.attribute("annotation"),
-                             doc.root().attribute("name"));
+  pattern::RoleGuess g = pattern::piece_role(pattern.attribute("piece"), pattern.attribute("category"),
+                                             pattern.attribute("annotation"), doc.root().attribute("name"));
+  if (pattern.has_attribute("role"))
+    if (const auto set = pattern::role_from_name(pattern.attribute("role")); set && *set != g.role) {
+      g.role = *set;
+      g.word = "role=\"" + std::string(pattern.attribute("role")) + "\"";
+    }
+  return g;
 }
 
 }  // namespace vgd::xvc

@@ -38,6 +38,18 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   const auto again = run_vgd({"seams", "list", (out / "garment.xvc").string()});
   EXPECT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.out.find("left armhole"), std::string::npos) << again.out;
+  // With each piece's role and whether it is draped, read back when it runs
+  // on its own document: the collar stays out, as the document now says.
+  const std::string saved = vgd::read_file(out / "garment.xvc");
+  EXPECT_NE(saved.find("role=\"collar\""), std::string::npos);
+  EXPECT_NE(saved.find("role=\"sleeve\""), std::string::npos);
+  const auto rerun = run_vgd({"dress", (out / "garment.xvc").string(), "--size", "44", "-o", out.string(),
+                              "--no-previews", "--time-limit", "0.05"});
+  EXPECT_TRUE(rerun.code == 0 || rerun.code == 3) << rerun.err;
+  EXPECT_NE(rerun.err.find("piece SS17_M POLO REG CO (collar) left out: the document says drape=\"false\""),
+            std::string::npos)
+      << rerun.err;
+  EXPECT_EQ(rerun.err.find("is kept as"), std::string::npos) << "its own input is not moved aside";
 }
 
 // The project's own skirt as AAMA DXF (what `vgd draft` writes, every size):

@@ -277,3 +277,33 @@ TEST(Garment, EachSeamSewsTheCopyPlacedNearItsOtherPieces) {
 }
 
 }  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// A pattern the document marks drape="false" (vgd dress left it out; the
+// designer can flip it) is not assembled when no piece list is given, and
+// its seams are not sewn, with a warning; a piece list overrides the mark.
+TEST(Garment, APatternMarkedNotToDrapeIsLeftOut) {
+  const xvc::Document probe = two_panels({});
+  const auto f = stretch_ids(probe, 0), b = stretch_ids(probe, 1);
+  xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "side"}, {"type", "plain"}},
+                 {hem("hem1", f[1], f[1], "forward"), hem("hem2", b[3], b[3], "reverse")}};
+  xvc::Node root = two_panels({seam}).root();
+  for (auto& c : root.children)
+    if (c.tag == "PATTERNS") c.children[1].set_attribute("drape", "false");
+  const xvc::Document doc(std::move(root), "panels.xvc");
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.03;
+  const Garment g = assemble_garment(doc, opt, diag);
+  ASSERT_EQ(g.pieces.size(), 1u);
+  EXPECT_EQ(g.pieces[0].name, "FRONT");
+  EXPECT_TRUE(g.seams.empty());
+  ASSERT_FALSE(diag.items().empty());
+  EXPECT_EQ(diag.items().front().message, "seam 'side' is not sewn: one of its pieces is left out");
+  opt.pieces = {"FRONT", "BACK"};
+  Diagnostics listed;
+  EXPECT_EQ(assemble_garment(doc, opt, listed).pieces.size(), 2u);
+}
+
+}  // namespace vgd::dress

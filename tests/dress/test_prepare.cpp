@@ -2,10 +2,16 @@
 // none, pieces no seam sews left out, the body's size table from the style.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
+
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/prepare.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
+#include "vgd/xvc/validate.hpp"
 #include "vgd/xvc/style.hpp"
 
 namespace vgd::dress {
@@ -252,6 +258,76 @@ TEST(PrepareGarment, ABodyFileIsTheBodyNotAMannequin) {
   EXPECT_EQ(p.body_table, "");
   EXPECT_EQ(p.decisions.back(), "body: scan.glb (as asked), not a mannequin");
   for (const auto& d : p.decisions) EXPECT_EQ(d.find("mannequin of size"), std::string::npos) << d;
+}
+
+}  // namespace vgd::dress
+
+namespace vgd::dress {
+
+// Each pattern's role and whether it is draped are written in the document
+// (attributes role and drape) where it says nothing yet; a designer's
+// correction there is what the next run reads: a full sleeve chosen instead
+// of the short one, a piece whose name says nothing given a role.
+TEST(PrepareGarment, RolesAndPiecesToDrapeAreWrittenInTheDocumentAndCorrectedThere) {
+  pattern::Style s =
+      one_size("MEN shirt", "50",
+               {panel("FRONT", 0, 0.3, 0.6, "50"), panel("BACK", 1, 0.3, 0.6, "50"),
+                panel("SHORTSLEEVE", 2, 0.4, 0.25, "50"), panel("FULLSLEEVE", 3, 0.4, 0.6, "50"),
+                panel("POCKET", 4, 0.15, 0.15, "50")});
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation first = prepare_garment(doc);
+  std::map<std::string, std::pair<std::string, std::string>> written;  // piece -> role, drape
+  for (const auto* p : doc.patterns())
+    written[std::string(p->attribute("piece"))] = {std::string(p->attribute("role")), std::string(p->attribute("drape"))};
+  using RD = std::pair<std::string, std::string>;
+  EXPECT_EQ(written["FRONT"], RD("front", "true"));
+  EXPECT_EQ(written["BACK"], RD("back", "true"));
+  EXPECT_EQ(written["SHORTSLEEVE"], RD("sleeve", "true"));
+  EXPECT_EQ(written["FULLSLEEVE"], RD("sleeve", "false"));
+  EXPECT_EQ(written["POCKET"], RD("pocket", "false"));
+  const Diagnostics v = xvc::validate_string(xvc::save_string(doc), "shirt.xvc", xvc::default_schema_path());
+  for (const auto& d : v.items()) ADD_FAILURE() << d.format();
+
+  // Run again: the same choice, nothing more written.
+  const Preparation same = prepare_garment(doc);
+  EXPECT_EQ(same.pieces, first.pieces);
+  EXPECT_TRUE(std::none_of(same.decisions.begin(), same.decisions.end(),
+                           [](const std::string& d) { return d.find("written in the document") != std::string::npos; }));
+
+  // The designer wants the full sleeve.
+  for (const auto* p : doc.patterns()) {
+    const std::string id(p->id()), piece(p->attribute("piece"));
+    if (piece == "SHORTSLEEVE" || piece == "FULLSLEEVE") {
+      xvc::SetAttribute set(id, "drape", piece == "FULLSLEEVE" ? "true" : "false");
+      xvc::execute(doc, set);
+    }
+  }
+  const Preparation corrected = prepare_garment(doc);
+  EXPECT_NE(std::find(corrected.pieces.begin(), corrected.pieces.end(), "FULLSLEEVE"), corrected.pieces.end());
+  EXPECT_EQ(std::find(corrected.pieces.begin(), corrected.pieces.end(), "SHORTSLEEVE"), corrected.pieces.end());
+  EXPECT_NE(std::find(corrected.decisions.begin(), corrected.decisions.end(),
+                      "piece SHORTSLEEVE (sleeve) left out: the document says drape=\"false\""),
+            corrected.decisions.end());
+  EXPECT_TRUE(corrected.missing.empty()) << "a piece the designer left out is not missing from the garment";
+}
+
+// A role set in the document is read instead of the name's words.
+TEST(PrepareGarment, ARoleSetInTheDocumentIsReadInsteadOfTheName) {
+  pattern::Style s = one_size("WM top", "38", {panel("PANEL 7", 0, 0.3, 0.6, "38")});
+  xvc::Document doc = xvc::from_style(s);
+  const std::string id(doc.patterns()[0]->id());
+  EXPECT_EQ(xvc::piece_role(doc, *doc.patterns()[0]).role, pattern::Role::unknown);
+  xvc::SetAttribute set(id, "role", "collar stand");
+  xvc::execute(doc, set);
+  EXPECT_EQ(xvc::piece_role(doc, *doc.patterns()[0]).role, pattern::Role::collar_stand);
+  EXPECT_EQ(xvc::piece_role(doc, *doc.patterns()[0]).word, "role=\"collar stand\"");
+  xvc::SetAttribute wrong(id, "role", "elbow");
+  try {
+    xvc::execute(doc, wrong);
+    FAIL() << "a role that is none was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("role \"elbow\""), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace vgd::dress

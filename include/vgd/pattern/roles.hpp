@@ -17,6 +17,7 @@
 // When several roles match, the most specific wins: an interfacing or lining
 // of a collar is an interfacing or lining, a sleeve cuff a cuff, a collar
 // stand not a collar, a pocket's front a pocket, and only then front/back.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,6 +69,11 @@ RoleGuess piece_role(std::string_view name, std::string_view category = {}, std:
 
 // "front", "collar stand", ... ("unknown").
 std::string_view role_name(Role role);
+// The role of that name (role_name's words; "collar_stand" as well), or
+// nothing for a name that is none.
+std::optional<Role> role_from_name(std::string_view name);
+// Every role, Role::unknown first.
+const std::vector<Role>& all_roles();
 std::string_view side_name(Side side);  // "", "left", "right"
 
 // Pieces that do not hang as cloth of their own: interfacing and fusibles

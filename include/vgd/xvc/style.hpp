@@ -12,6 +12,7 @@
 //   GRADATIONS: the style's size run as SIZEs, then one GRADATION per piece name whose
 //   SIZEs name the PATTERN of each size and mark the sample size.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,9 +34,15 @@ pattern::Style to_style(const Document& doc);
 // One PATTERN as a piece. Throws vgd::Error when `pattern_id` names no PATTERN.
 pattern::Piece to_piece(const Document& doc, std::string_view pattern_id);
 
-// What a PATTERN is in its garment (pattern/roles.hpp), from its piece name,
-// category and annotation, the garment's name read as the style's code.
+// What a PATTERN is in its garment (pattern/roles.hpp): its role attribute
+// when it has one (written by vgd dress, corrected by the designer), else
+// from its piece name, category and annotation, the garment's name read as
+// the style's code. The side and variant words are the name's.
 pattern::RoleGuess piece_role(const Document& doc, const Node& pattern);
+
+// A PATTERN's drape attribute: true or false as the document says (set by
+// vgd dress, corrected by the designer), nothing when it has none.
+std::optional<bool> drape_attribute(const Node& pattern);
 
 // A boundary C2DSEQ of a pattern and the vertices it holds in the piece's boundary:
 // indices first .. first + count - 1. Its edge runs on to the first vertex of the next
