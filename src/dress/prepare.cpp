@@ -191,10 +191,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       const std::string name(p->attribute("piece"));
       const pattern::RoleGuess g = xvc::piece_role(doc, *p);
       roles[name] = g;
+      std::string detail = std::string(pattern::side_name(g.side));
+      if (g.half != pattern::Half::none) detail += (detail.empty() ? "" : ", ") + std::string(pattern::half_name(g.half));
       said += (said.empty() ? "" : ", ") + name + " " +
               (g.role == pattern::Role::unknown ? std::string("?")
-                                                : std::string(pattern::role_name(g.role)) +
-                                                      (g.side != pattern::Side::none ? " (" + std::string(pattern::side_name(g.side)) + ")" : ""));
+                                                : std::string(pattern::role_name(g.role)) + (detail.empty() ? "" : " (" + detail + ")"));
     }
     out.decisions.push_back("roles from the pieces' names: " + said);
   }

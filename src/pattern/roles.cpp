@@ -272,6 +272,10 @@ std::string_view side_name(Side side) {
   return side == Side::left ? "left" : side == Side::right ? "right" : "";
 }
 
+std::string_view half_name(Half half) {
+  return half == Half::front ? "front half" : half == Half::back ? "back half" : "";
+}
+
 bool drapes_as_cloth(Role role) {
   return role != Role::interfacing && role != Role::label && role != Role::lining;
 }
@@ -373,6 +377,21 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
   else if (!back.empty())
     take(Role::back, back);
 
+  // A sleeve's front or back word makes it a half of a sleeve cut in two; the
+  // name's word over the category's (Gerber files swap the two halves'
+  // categories).
+  if (g.role == Role::sleeve) {
+    const std::size_t name_tokens = tokens_of(n).size();
+    const auto in = [&](const Found& f, bool name_part) {
+      return std::any_of(f.begin(), f.end(), [&](const Hit& h) { return (h.token < name_tokens) == name_part; });
+    };
+    bool fr = in(front, true), bk = in(back, true);
+    if (!fr && !bk) fr = in(front, false), bk = in(back, false);
+    if (fr != bk) {
+      g.half = fr ? Half::front : Half::back;
+      for (const Hit& h : fr ? front : back) toks[h.token].used = true;
+    }
+  }
   const Found left = find(toks, kLeft), right = find(toks, kRight);
   if (!left.empty() != !right.empty()) {
     g.side = !left.empty() ? Side::left : Side::right;

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
+#include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
 namespace vgd::xvc {
@@ -58,6 +60,31 @@ bool straps(const pattern::Piece& piece, double angle_deg) {
   double widest = 0;
   for (const double d : {0.01, 0.02, 0.03, 0.04, 0.05}) widest = std::max(widest, covered(ymax - d));
   return widest < 0.25 * (xmax - xmin);
+}
+
+// How far below the top of its pattern (turned upright by its grain line) the
+// highest point of a hem lies (m).
+double hem_drop(const Document& doc, const HemRef& hem) {
+  const Node* node = doc.find(hem.pattern);
+  const pattern::Piece piece = to_piece(doc, hem.pattern);
+  const auto stretches = boundary_stretches(*node);
+  const std::size_t n = piece.boundary.size();
+  std::size_t from = 0, to = 0;
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    if (stretches[k].id == hem.from) from = k;
+    if (stretches[k].id == hem.to) to = k;
+  }
+  if (n == 0 || stretches.empty()) return 0;
+  const double angle = upright_angle(piece);
+  double top = -1e300, hem_top = -1e300;
+  for (const auto& c : piece.boundary) top = std::max(top, rotate(c.p, angle).y());
+  const std::size_t first = stretches[from].first;
+  const std::size_t last = to + 1 < stretches.size() ? stretches[to + 1].first : 0;  // the hem's end vertex
+  for (std::size_t i = first;; i = (i + 1) % n) {
+    hem_top = std::max(hem_top, rotate(piece.boundary[i].p, angle).y());
+    if (i == last % n) break;
+  }
+  return top - hem_top;
 }
 
 }  // namespace
@@ -114,8 +141,13 @@ pattern::Vec2 reference_point(const pattern::Piece& piece, double angle_deg) {
 
 std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body, const ArrangementOptions& opts,
                                              std::string_view style) {
+  return suggest_arrangement(piece, pattern::piece_role(piece.name, piece.category, piece.annotation, style), lower_body,
+                             opts);
+}
+
+std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const pattern::RoleGuess& role,
+                                             bool lower_body, const ArrangementOptions& opts) {
   if (piece.quantity == 0) return {};  // not cut (a reference piece): nothing to place
-  const pattern::RoleGuess role = pattern::piece_role(piece.name, piece.category, piece.annotation, style);
   using pattern::Role;
   Arrangement a;
   a.clearance = opts.clearance;
@@ -142,9 +174,27 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool l
       l.side = "left";
       r.segment = "right-arm";
       r.side = "right";
+      if (role.half != pattern::Half::none) {
+        // Half a sleeve: on the front or the back of the arm, its over-arm
+        // edge (the one from the highest point, the cap's top) on the arm's
+        // outside. On a limb the pattern's +u runs to the body's left (+x) on
+        // the front and to its right on the back, so the over-arm edge lies on
+        // +u for the left arm's front half and the right arm's back half.
+        const bool front = role.half == pattern::Half::front;
+        l.side = r.side = front ? "front" : "back";
+        double umin = 1e300, umax = -1e300, top_u = 0, top_v = -1e300;
+        for (const auto& c : piece.boundary) {
+          const auto q = rotate(c.p, a.angle_deg);
+          umin = std::min(umin, q.x()), umax = std::max(umax, q.x());
+          if (q.y() > top_v) top_v = q.y(), top_u = q.x();
+        }
+        const bool over_plus = top_u > 0.5 * (umin + umax);
+        l.flip = over_plus != front;
+        r.flip = over_plus != !front;
+      }
       if (role.side == pattern::Side::left) return {l};
       if (role.side == pattern::Side::right) return {r};
-      l.flip = true;  // one sleeve pattern cut twice: the left copy is the mirror
+      if (role.half == pattern::Half::none) l.flip = true;  // one sleeve pattern cut twice: the left copy is the mirror
       return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
     }
     case Role::leg: {
@@ -224,7 +274,38 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
   }
   std::vector<std::pair<std::string, std::vector<Arrangement>>> out;
   for (const Node* p : doc.patterns())
-    out.emplace_back(std::string(p->id()), suggest_arrangement(to_piece(doc, p->id()), lower, opts, style));
+    out.emplace_back(std::string(p->id()), suggest_arrangement(to_piece(doc, p->id()), piece_role(doc, *p), lower, opts));
+
+  // Halves of a sleeve sewn to each other: the back half goes as far up or down
+  // the arm as puts the top of its longest seam with the front half level with
+  // the front half's (a half that reaches past the shoulder point, hung by its
+  // box top, started that much lower and was dragged up the arm).
+  struct Longest {
+    double length = 0, front_drop = 0, back_drop = 0;
+  };
+  std::map<std::string, Longest> shift;  // back half's pattern id
+  for (const auto& seam : list_seams(doc)) {
+    if (seam.hems.size() != 2) continue;
+    const Node *a = doc.find(seam.hems[0].pattern), *b = doc.find(seam.hems[1].pattern);
+    if (!a || !b) continue;
+    const auto ra = piece_role(doc, *a), rb = piece_role(doc, *b);
+    if (ra.role != pattern::Role::sleeve || rb.role != pattern::Role::sleeve || ra.half == rb.half ||
+        ra.half == pattern::Half::none || rb.half == pattern::Half::none)
+      continue;
+    const bool a_front = ra.half == pattern::Half::front;
+    const HemRef& fh = seam.hems[a_front ? 0 : 1];
+    const HemRef& bh = seam.hems[a_front ? 1 : 0];
+    Longest& l = shift[bh.pattern];
+    if (fh.length <= l.length) continue;
+    l.length = fh.length;
+    l.front_drop = hem_drop(doc, fh);
+    l.back_drop = hem_drop(doc, bh);
+  }
+  for (auto& [id, list] : out) {
+    const auto it = shift.find(id);
+    if (it == shift.end()) continue;
+    for (auto& a : list) a.height += it->second.front_drop - it->second.back_drop;
+  }
   return out;
 }
 

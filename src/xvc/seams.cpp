@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -322,7 +323,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
 
   // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
   for (const auto& sl : ps) {
-    if (sl.role != Role::sleeve || sl.edges.size() < 3) continue;
+    if (sl.role != Role::sleeve || sl.edges.size() < 3 || sl.o->role.half != pattern::Half::none) continue;
     std::vector<int> sides;
     if (sl.o->role.side == pattern::Side::left) sides = {1};
     else if (sl.o->role.side == pattern::Side::right) sides = {-1};
@@ -388,6 +389,174 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         if (s.score >= opts.min_score) found.push_back(s);
       }
     }
+  }
+
+  // 1b. Sleeves cut in two along the arm (a front and a back half, TEESL FR and TEESL
+  //     BK). Their edges match in parts (a half may reach past the shoulder point), so
+  //     runs of stretches within an edge are matched, not whole edges. The front half's
+  //     cap is its curved run that best fits a curved front armhole run on its side;
+  //     then the halves' runs from their hems' ends pair, alike in length (the longer
+  //     pair is the over-arm seam, the shorter the underarm), the first hem forward,
+  //     the other reverse; the back half's cap is, of its runs left (not on its hem,
+  //     the lowest edge, nor beside it), the one that best fits a back armhole. The hems stay open. A
+  //     half cut twice sews once per copy, the right arm's first (its first
+  //     arrangement).
+  struct StretchRun {
+    std::size_t k0, k1, edge;
+    double length;
+    bool curved;
+  };
+  const auto stretch_runs = [](const PieceInfo& p) {
+    std::vector<StretchRun> runs;
+    const auto& o = *p.o;
+    const std::size_t ns = o.stretches.size();
+    for (std::size_t e = 0; e < p.edges.size(); ++e) {
+      const std::size_t count = (p.edges[e].k1 + ns - p.edges[e].k0) % ns + 1;
+      for (std::size_t a = 0; a < count; ++a)
+        for (std::size_t b = a; b < count; ++b) {
+          const std::size_t k0 = (p.edges[e].k0 + a) % ns, k1 = (p.edges[e].k0 + b) % ns;
+          const auto [start, length] = arc_range(o, k0, k1);
+          const std::size_t n = o.shape.boundary.size();
+          const std::size_t v0 = o.stretches[k0].first, v1 = k1 + 1 < ns ? o.stretches[k1 + 1].first : 0;
+          const double chord = (o.shape.boundary[v1 % n].p - o.shape.boundary[v0].p).norm();
+          runs.push_back({k0, k1, e, length, chord > 0 && length / chord > 1.01});
+        }
+    }
+    return runs;
+  };
+  const auto covers = [](const Outline& o, const StretchRun& r) {
+    std::set<std::size_t> ks;
+    for (std::size_t k = r.k0;; k = (k + 1) % o.stretches.size()) {
+      ks.insert(k);
+      if (k == r.k1) break;
+    }
+    return ks;
+  };
+  const auto copies_of = [](const Outline& o) {
+    if (o.role.side == pattern::Side::left) return std::vector<int>{1};
+    if (o.role.side == pattern::Side::right) return std::vector<int>{-1};
+    return o.quantity >= 2 ? std::vector<int>{-1, 1} : std::vector<int>{1};
+  };
+  std::map<const Outline*, std::set<std::size_t>> half_cap;   // the cap's stretches of each half
+  std::map<const Outline*, std::set<std::size_t>> half_sewn;  // stretches sewn to the other half
+  const auto disjoint = [](const std::set<std::size_t>& x, const std::set<std::size_t>& y) {
+    return std::none_of(x.begin(), x.end(), [&](std::size_t k) { return y.count(k) > 0; });
+  };
+  // A half's cap: of its runs that `may` be one, the one that best fits an armhole run
+  // (curved) on its side of the arm, scored by length (half the ease a whole cap may
+  // have), notches and how much of the armhole edge the run covers; of runs fitting
+  // alike, the longest pair.
+  const auto sew_cap = [&](const PieceInfo& sl, const std::function<bool(const StretchRun&)>& may) {
+    const bool front_half = sl.o->role.half == pattern::Half::front;
+    const auto sruns = stretch_runs(sl);
+    std::optional<std::size_t> cap;  // index in sruns, fixed by the first copy
+    for (const int sigma : copies_of(*sl.o)) {
+      std::optional<SeamSuggestion> best;
+      std::pair<const Outline*, std::size_t> taken{};
+      std::size_t best_cap = 0;
+      for (std::size_t c = 0; c < sruns.size(); ++c) {
+        if ((cap && c != *cap) || (!cap && !may(sruns[c]))) continue;
+        for (const auto& bp : ps) {
+          if (bp.role != (front_half ? Role::front : Role::back)) continue;
+          for (const auto& br : stretch_runs(bp)) {
+            const Edge& be = bp.edges[br.edge];
+            if (be.side != (front_half ? sigma : -sigma) || !br.curved || used.count({bp.o, br.edge})) continue;
+            const std::string name = std::string(sigma > 0 ? "left " : "right ") + (front_half ? "front" : "back") + " armhole";
+            // The shape factor: how much of the armhole edge the run covers.
+            auto s = make(name, size, {{sl.o, sruns[c].k0, sruns[c].k1, false}, {bp.o, br.k0, br.k1, true}},
+                          std::min(1.0, br.length / be.length),
+                          "cap of the sleeve's " + std::string(front_half ? "front" : "back") + " half " + sl.o->piece +
+                              " to the " + (sigma > 0 ? "left" : "right") + " armhole of " + bp.o->piece,
+                          -0.005, 0.5 * opts.max_cap_ease, 0.02);
+            if (!best || s.score > best->score + 1e-9 ||
+                (s.score > best->score - 1e-9 && s.length_a + s.length_b > best->length_a + best->length_b))
+              best = s, taken = {bp.o, br.edge}, best_cap = c;
+          }
+        }
+      }
+      if (best && best->score >= opts.min_score) {
+        used.insert(taken);
+        cap = best_cap;
+        found.push_back(*best);
+      }
+    }
+    if (cap) half_cap[sl.o] = covers(*sl.o, sruns[*cap]);
+  };
+  // A half's hem: its edge lowest down.
+  const auto hem_edge = [](const PieceInfo& p) {
+    std::size_t hem = 0;
+    for (std::size_t i = 1; i < p.edges.size(); ++i)
+      if (p.edges[i].v_mean < p.edges[hem].v_mean) hem = i;
+    return hem;
+  };
+  // A cap is neither on the hem nor beside it: the runs from the hem's ends are the
+  // over-arm and underarm seams.
+  const auto off_hem = [&](const PieceInfo& p, const StretchRun& r) {
+    const Edge& hem = p.edges[hem_edge(p)];
+    const std::size_t n = p.o->stretches.size();
+    return r.edge != hem_edge(p) && r.k0 != (hem.k1 + 1) % n && (r.k1 + 1) % n != hem.k0;
+  };
+  // The front halves' caps first: a curved run.
+  for (const auto& sl : ps)
+    if (sl.role == Role::sleeve && sl.o->role.half == pattern::Half::front)
+      sew_cap(sl, [&](const StretchRun& r) { return r.curved && off_hem(sl, r); });
+  // The halves to each other, hems left open.
+  for (const auto& fh : ps) {
+    if (fh.role != Role::sleeve || fh.o->role.half != pattern::Half::front || !half_cap.count(fh.o)) continue;
+    for (const auto& bh : ps) {
+      if (bh.role != Role::sleeve || bh.o->role.half != pattern::Half::back || bh.o->role.side != fh.o->role.side ||
+          bh.o->quantity != fh.o->quantity)
+        continue;
+      struct Pair {
+        SeamSuggestion s;
+        std::set<std::size_t> f, b;  // stretches covered
+      };
+      // The runs that leave the hem at one end and reach it at the other: the
+      // front half's run leaving its hem sews to the back half's run reaching
+      // its own, and the other way round (each half's hem ends are the ends of
+      // the two seams; lengths alone mistook a cap for an over-arm edge at
+      // graded sizes).
+      const Edge &fhem = fh.edges[hem_edge(fh)], &bhem = bh.edges[hem_edge(bh)];
+      const std::size_t nf = fh.o->stretches.size(), nb = bh.o->stretches.size();
+      std::vector<Pair> kept;
+      std::set<std::size_t> bi;
+      for (const bool front_leaves : {true, false}) {
+        std::optional<Pair> best;
+        for (const auto& fr : stretch_runs(fh)) {
+          if (front_leaves ? fr.k0 != (fhem.k1 + 1) % nf : (fr.k1 + 1) % nf != fhem.k0) continue;
+          const auto fk = covers(*fh.o, fr);
+          if (!disjoint(fk, half_cap[fh.o])) continue;
+          for (const auto& br : stretch_runs(bh)) {
+            if (front_leaves ? (br.k1 + 1) % nb != bhem.k0 : br.k0 != (bhem.k1 + 1) % nb) continue;
+            auto sg = make("seam", size, {{fh.o, fr.k0, fr.k1, false}, {bh.o, br.k0, br.k1, true}}, 1.0, "", 0, 0, 0.02);
+            if (sg.score < opts.min_score) continue;
+            if (!best || sg.score > best->s.score + 1e-9 ||
+                (sg.score > best->s.score - 1e-9 && sg.length_a > best->s.length_a))
+              best = Pair{std::move(sg), fk, covers(*bh.o, br)};
+          }
+        }
+        if (best && disjoint(best->b, bi)) {
+          bi.insert(best->b.begin(), best->b.end());
+          kept.push_back(std::move(*best));
+        }
+      }
+      half_sewn[bh.o].insert(bi.begin(), bi.end());
+      if (kept.size() == 2 && kept[1].s.length_a > kept[0].s.length_a) std::swap(kept[0], kept[1]);
+      for (const int sigma : copies_of(*fh.o))
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+          SeamSuggestion s = kept[k].s;
+          const std::string what = k == 0 && kept.size() == 2 ? "over-arm seam" : "underarm";
+          s.name = std::string(sigma > 0 ? "left " : "right ") + what;
+          s.reason = what + " of the sleeve halves " + fh.o->piece + " and " + bh.o->piece + s.reason;
+          found.push_back(std::move(s));
+        }
+    }
+  }
+  // The back halves' caps: a run not sewn to the front half, and not on the hem.
+  for (const auto& sl : ps) {
+    if (sl.role != Role::sleeve || sl.o->role.half != pattern::Half::back || sl.edges.empty()) continue;
+    const auto sewn = half_sewn[sl.o];
+    sew_cap(sl, [&](const StretchRun& r) { return off_hem(sl, r) && disjoint(covers(*sl.o, r), sewn); });
   }
 
   // A leg piece's hem and waist edges: the hem at the end narrower across the grain,

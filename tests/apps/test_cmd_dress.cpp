@@ -2,12 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "support/json_file.hpp"
+#include "support/split_sleeve.hpp"
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace vgd::test {
 
@@ -81,6 +85,37 @@ TEST(CliDress, ADraftedSkirtDxfDrapesInOneCommand) {
   EXPECT_NE(again.err.find("is kept as"), std::string::npos) << again.err;
   EXPECT_NE(vgd::read_file(out / "d" / "garment.previous.xvc").find("corrected by hand"), std::string::npos);
   EXPECT_EQ(vgd::read_file(out / "d" / "garment.xvc").find("corrected by hand"), std::string::npos);
+}
+
+// A T-shirt whose sleeve is cut in two along the arm (a front and a back
+// half, each cut twice), with no seam in its document: the halves are sewn to
+// each other and to their armholes, each placed on its own side of its arm
+// (flipped as the side needs), and the drape passes with every seam closed.
+TEST(CliDress, ASleeveCutInTwoDrapesOnBothArms) {
+  const auto out = scratch_dir("dress-split-sleeve");
+  const auto xvc = out / "split.xvc";
+  vgd::xvc::save_file(vgd::xvc::from_style(tee_with_split_sleeves()), xvc);
+  const auto r = run_vgd({"dress", xvc.string(), "-o", (out / "d").string(), "--no-previews"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("SLEEVE FRONT sleeve (front half), SLEEVE BACK sleeve (back half)"), std::string::npos) << r.err;
+  const json c = read_json(out / "d" / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  int sleeve_seams = 0;
+  for (const auto& s : c["seams"]) {
+    EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
+    const std::string name = s["name"];
+    sleeve_seams += name.find("armhole") != std::string::npos || name.find("arm seam") != std::string::npos ||
+                    name.find("underarm") != std::string::npos;
+  }
+  EXPECT_EQ(sleeve_seams, 8) << "each arm: front and back armhole, over-arm seam, underarm";
+  std::map<std::string, int> on;
+  for (const auto& p : c["placement"]) ++on[p["piece"].get<std::string>() + " " + p["segment"].get<std::string>()];
+  for (const char* half : {"SLEEVE_FRONT_", "SLEEVE_BACK_"})
+    for (const char* arm : {"left-arm", "right-arm"}) {
+      int n = 0;
+      for (const auto& [k, v] : on) n += k.rfind(half, 0) == 0 && k.find(arm) != std::string::npos ? v : 0;
+      EXPECT_EQ(n, 1) << half << " on the " << arm;
+    }
 }
 
 }  // namespace vgd::test

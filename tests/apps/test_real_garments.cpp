@@ -81,9 +81,11 @@ INSTANTIATE_TEST_SUITE_P(
                     "piece GLX4802SLS left out: an alternative to the leg GLX4802S19SLL"},
         RealGarment{"tights_astm_40", "GLX4802S19_ASTM.DXF", "40", 0, "left-leg right-leg",
                     "seam 'front rise' suggested at size 36"},
-        RealGarment{"men_tee_50", "MEN_CLASSIC_TEE.DXF", "", 0, "torso torso",
-                    "the garment is draped without REGULAR TEECO (neckband), REGULAR TEESL BK (sleeve), "
-                    "REGULAR TEESL FR (sleeve)"},
+        // Its sleeve cut in two (front and back half, each cut twice); the
+        // back half is not graded and reaches past the shoulder point: it is
+        // hung level with the front half along their over-arm seam.
+        RealGarment{"men_tee_50", "MEN_CLASSIC_TEE.DXF", "", 0, "left-arm left-arm right-arm right-arm torso torso",
+                    "REGULAR TEESL BK sleeve (back half), REGULAR TEESL FR sleeve (front half)"},
         // Not yet: each with the reason vgd gives.
         RealGarment{
             "valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 3, "",

@@ -130,6 +130,21 @@ TEST(PieceRole, VariantWordsTellAlternativesApart) {
   EXPECT_TRUE(piece_role("FRONT").variant.empty());
 }
 
+// A sleeve's front or back word makes it half of a sleeve cut in two along the
+// arm; the name's word wins over the category's (MEN_CLASSIC_TEE's two halves
+// carry each other's name as category).
+TEST(PieceRole, SleeveHalvesFromTheirFrontOrBackWord) {
+  EXPECT_EQ(piece_role("REGULAR TEESL FR", "REGULAR TEESL BK", "2XFABRIC", "MEN CLASSIC TEE").half, Half::front);
+  EXPECT_EQ(piece_role("REGULAR TEESL BK", "REGULAR TEESL FR", "2XFABRIC", "MEN CLASSIC TEE").half, Half::back);
+  EXPECT_EQ(piece_role("X", "SLEEVE BACK").half, Half::back);
+  EXPECT_EQ(piece_role("Manga delantera").half, Half::front);
+  EXPECT_EQ(piece_role("SLEEVE").half, Half::none);
+  EXPECT_EQ(piece_role("REGULAR TEESL1", "SLEEVE SHORT", "", "MEN CLASSIC TEE").half, Half::none);
+  EXPECT_EQ(piece_role("FRONT").half, Half::none) << "only sleeves are cut in halves";
+  EXPECT_EQ(piece_role("LEFT SLEEVE FRONT").side, Side::left);
+  EXPECT_EQ(half_name(Half::back), "back half");
+}
+
 // An annotation makes an interfacing only when interlining is all that is cut.
 TEST(PieceRole, AnnotationCountsOnlyForWhatIsCut) {
   EXPECT_EQ(piece_role("P7", "", "1XINTERLINING").role, Role::interfacing);

@@ -7,6 +7,7 @@
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
+#include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 #include "vgd/xvc/validate.hpp"
 
@@ -84,4 +85,63 @@ TEST(Arrangement, RulesRefuseIncompleteOrMisplacedArrangements) {
   EXPECT_EQ(a.height, 1.25);
   EXPECT_EQ(a.clearance, 0.02);
   EXPECT_TRUE(a.flip);
+}
+
+// A sleeve cut in two: each half on its own side of each arm, and a back half
+// that reaches 5 cm above the top of the seam it shares with the front half
+// (a tab past the shoulder point, as in MEN_CLASSIC_TEE) goes 5 cm further up
+// the arm, so that the seam's two tops start level.
+TEST(Arrangement, SleeveHalvesOnTheirSidesAndLevelAlongTheirSeam) {
+  pattern::Style s;
+  s.name = "halves";
+  s.sample_size = "M";
+  s.sizes = {"M"};
+  const auto half = [](const std::string& name, std::vector<pattern::Vec2> pts) {
+    pattern::Piece p;
+    p.name = name;
+    p.block = name + "_M";
+    p.size = "M";
+    p.quantity = 2;
+    for (const auto& q : pts) p.boundary.push_back({q, pattern::PointKind::turn});
+    p.grain_line = pattern::Segment{pattern::Vec2(0, 0.05), pattern::Vec2(0, 0.25)};
+    return p;
+  };
+  // Front: its over-arm edge (0,0)->(0,0.30) on the right, the top of the piece.
+  s.pieces.push_back(half("SLEEVE FRONT", {{-0.15, 0}, {0, 0}, {0, 0.30}, {-0.15, 0.20}}));
+  // Back: its over-arm edge (0,0.30)->(0,0) on the left, a tab up to 0.35 beside it.
+  s.pieces.push_back(half("SLEEVE BACK", {{0, 0}, {0.15, 0}, {0.15, 0.20}, {0.02, 0.35}, {0, 0.30}}));
+  Document doc = from_style(s);
+  const auto f = doc.patterns()[0], b = doc.patterns()[1];
+  const auto fs = boundary_stretches(*f), bs = boundary_stretches(*b);
+  HemRef fh{std::string(f->id()), fs[1].id, fs[1].id, false, 0.30, 0};
+  HemRef bh{std::string(b->id()), bs[4].id, bs[4].id, true, 0.30, 0};
+
+  // Without the seam, both hang by their tops.
+  auto arranged = suggest_arrangements(doc);
+  ASSERT_EQ(arranged.size(), 2u);
+  ASSERT_EQ(arranged[0].second.size(), 2u);
+  ASSERT_EQ(arranged[1].second.size(), 2u);
+  const double top = arranged[0].second[0].height;
+  EXPECT_EQ(arranged[1].second[0].height, top);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(arranged[0].second[k].side, "front");
+    EXPECT_EQ(arranged[1].second[k].side, "back");
+  }
+  EXPECT_EQ(arranged[0].second[0].segment, "right-arm");
+  EXPECT_EQ(arranged[0].second[1].segment, "left-arm");
+  // The over-arm edge (from the piece's highest point) outside the arm: at the
+  // front of the right arm the pattern's +u runs to the body's left, inside,
+  // so the front half (over-arm on +u) is flipped there; at the back +u runs
+  // outside, so the back half (over-arm on -u) is flipped too; each left copy
+  // is the mirror.
+  EXPECT_TRUE(arranged[0].second[0].flip);
+  EXPECT_FALSE(arranged[0].second[1].flip);
+  EXPECT_TRUE(arranged[1].second[0].flip);
+  EXPECT_FALSE(arranged[1].second[1].flip);
+
+  execute(doc, *std::make_unique<AddSeams>(std::vector<Node>{seam_node("over-arm seam", {fh, bh})}));
+  arranged = suggest_arrangements(doc);
+  EXPECT_EQ(arranged[0].second[0].height, top);
+  EXPECT_NEAR(arranged[1].second[0].height, top - 0.05, 1e-12) << "5 cm further up the arm";
+  EXPECT_NEAR(arranged[1].second[1].height, top - 0.05, 1e-12);
 }

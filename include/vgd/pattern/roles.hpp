@@ -51,9 +51,14 @@ enum class Role {
 
 enum class Side { none, left, right };
 
+// A sleeve cut in two along the arm (Gerber's TEESL FR and TEESL BK): the
+// half on the front of the arm or on its back.
+enum class Half { none, front, back };
+
 struct RoleGuess {
   Role role = Role::unknown;
   Side side = Side::none;
+  Half half = Half::none;            // sleeves only: FRONT/FR or BACK/BK beside the sleeve word
   std::string word;                  // the word that decided the role ("" when unknown)
   std::vector<std::string> variant;  // the name's other words (SHORT, LONG, HALF, ...):
                                      // what tells alternatives of one role apart
@@ -75,6 +80,7 @@ std::optional<Role> role_from_name(std::string_view name);
 // Every role, Role::unknown first.
 const std::vector<Role>& all_roles();
 std::string_view side_name(Side side);  // "", "left", "right"
+std::string_view half_name(Half half);  // "", "front half", "back half"
 
 // Pieces that do not hang as cloth of their own: interfacing and fusibles
 // (bonded to their host), labels, linings (a garment of their own inside).

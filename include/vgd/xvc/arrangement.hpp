@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "vgd/pattern/piece.hpp"
+#include "vgd/pattern/roles.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/document.hpp"
 
@@ -76,7 +77,9 @@ struct ArrangementOptions {
 // From the piece's role (pattern/roles.hpp; `style` is the garment's name): front ->
 // torso front, back -> torso back (top edge bodice_lift above the neck point), sleeve ->
 // the arms (a left or right sleeve one arm; a sleeve cut twice gives the right arm and the
-// left arm flipped; cap top sleeve_drop down the arm), leg -> the legs the same way, the
+// left arm flipped; cap top sleeve_drop down the arm; the front or back half of a sleeve
+// cut in two on that side of the arm, its over-arm edge outside, flipped as that needs),
+// leg -> the legs the same way, the
 // wider end up (the waist, at leg_top) and the narrower half to the front (one copy
 // flipped: the right leg's front is on its pattern's +x), collar, collar stand, neckband ->
 // neck front; in a lower-body garment front/back -> hips front/back with their top at the
@@ -85,9 +88,12 @@ struct ArrangementOptions {
 // and grain line.
 std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body,
                                              const ArrangementOptions& opts = {}, std::string_view style = {});
-// Every PATTERN of the document: (pattern id, its suggestions). A garment is lower-body
-// when a piece is a waistband or its name says skirt, or the garment's says skirt,
-// trousers or pants.
+// The same for a piece whose role is known (a PATTERN's role attribute: xvc::piece_role).
+std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const pattern::RoleGuess& role,
+                                             bool lower_body, const ArrangementOptions& opts = {});
+// Every PATTERN of the document (its role as xvc::piece_role reads it): (pattern id, its
+// suggestions). A garment is lower-body when a piece is a waistband or its name says
+// skirt, or the garment's says skirt, trousers or pants.
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
     const Document& doc, const ArrangementOptions& opts = {});
 
