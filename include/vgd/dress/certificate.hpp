@@ -111,10 +111,12 @@ struct Certificate {
   int body_through_cloth = -1;
   double max_body_through = 0;  // m, the deepest such point
   std::map<std::string, int> body_through_by_piece;
-  // Of those, triangles with the body deeper inside them than their longest
-  // rest edge: no ridge between particles can reach that far into an intact
-  // cloth; the body is through an opening of it (a gaping slit, a strap
-  // beside the shoulder instead of on it). A failure ("penetration").
+  // Of those, triangles with the body deeper inside them than a quarter of
+  // their longest rest edge: no ridge between particles reaches that far into
+  // an intact cloth (the sag of the chord over the body's curvature); the
+  // body is through an opening of it (a gaping slit, a strap beside the
+  // shoulder instead of on it, a crotch between seam ends). A failure
+  // ("penetration").
   int body_through_opening = -1;
   std::map<std::string, int> body_through_opening_by_piece;
   std::map<std::string, int> crossings_by_pieces;  // "A / B" (A ≤ B by name) → crossing pairs between them
