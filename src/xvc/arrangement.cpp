@@ -64,17 +64,11 @@ bool straps(const pattern::Piece& piece, double angle_deg) {
 
 // How far below the top of its pattern (turned upright by its grain line) the
 // highest point of a hem lies (m).
-double hem_drop(const Document& doc, const HemRef& hem) {
-  const Node* node = doc.find(hem.pattern);
-  const pattern::Piece piece = to_piece(doc, hem.pattern);
-  const auto stretches = boundary_stretches(*node);
+double hem_drop(const Document& doc, const Node& node, std::size_t from, std::size_t to) {
+  const pattern::Piece piece = to_piece(doc, node.id());
+  const auto stretches = boundary_stretches(node);
   const std::size_t n = piece.boundary.size();
-  std::size_t from = 0, to = 0;
-  for (std::size_t k = 0; k < stretches.size(); ++k) {
-    if (stretches[k].id == hem.from) from = k;
-    if (stretches[k].id == hem.to) to = k;
-  }
-  if (n == 0 || stretches.empty()) return 0;
+  if (n == 0 || from >= stretches.size() || to >= stretches.size()) return 0;
   const double angle = upright_angle(piece);
   double top = -1e300, hem_top = -1e300;
   for (const auto& c : piece.boundary) top = std::max(top, rotate(c.p, angle).y());
@@ -85,6 +79,18 @@ double hem_drop(const Document& doc, const HemRef& hem) {
     if (i == last % n) break;
   }
   return top - hem_top;
+}
+
+// A hem's stretches as indices in its pattern's boundary (graded sizes have the
+// sample's stretches: the same indices name the same edges in every size).
+std::pair<std::size_t, std::size_t> stretch_range(const Node& pattern, const HemRef& hem) {
+  const auto stretches = boundary_stretches(pattern);
+  std::size_t from = 0, to = 0;
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    if (stretches[k].id == hem.from) from = k;
+    if (stretches[k].id == hem.to) to = k;
+  }
+  return {from, to};
 }
 
 }  // namespace
@@ -279,32 +285,45 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
   // Halves of a sleeve sewn to each other: the back half goes as far up or down
   // the arm as puts the top of its longest seam with the front half level with
   // the front half's (a half that reaches past the shoulder point, hung by its
-  // box top, started that much lower and was dragged up the arm).
-  struct Longest {
-    double length = 0, front_drop = 0, back_drop = 0;
+  // box top, started that much lower and was dragged up the arm). A size with
+  // no seams of its own takes its sample's, at the same stretches.
+  struct HalfSeam {
+    std::string front, back;  // piece names
+    std::pair<std::size_t, std::size_t> f, b;
   };
-  std::map<std::string, Longest> shift;  // back half's pattern id
+  std::vector<HalfSeam> half_seams;
   for (const auto& seam : list_seams(doc)) {
     if (seam.hems.size() != 2) continue;
     const Node *a = doc.find(seam.hems[0].pattern), *b = doc.find(seam.hems[1].pattern);
-    if (!a || !b) continue;
+    if (!a || !b || a->attribute("size") != b->attribute("size")) continue;
     const auto ra = piece_role(doc, *a), rb = piece_role(doc, *b);
     if (ra.role != pattern::Role::sleeve || rb.role != pattern::Role::sleeve || ra.half == rb.half ||
         ra.half == pattern::Half::none || rb.half == pattern::Half::none)
       continue;
     const bool a_front = ra.half == pattern::Half::front;
-    const HemRef& fh = seam.hems[a_front ? 0 : 1];
-    const HemRef& bh = seam.hems[a_front ? 1 : 0];
-    Longest& l = shift[bh.pattern];
-    if (fh.length <= l.length) continue;
-    l.length = fh.length;
-    l.front_drop = hem_drop(doc, fh);
-    l.back_drop = hem_drop(doc, bh);
+    const Node &fp = a_front ? *a : *b, &bp = a_front ? *b : *a;
+    half_seams.push_back({std::string(fp.attribute("piece")), std::string(bp.attribute("piece")),
+                          stretch_range(fp, seam.hems[a_front ? 0 : 1]), stretch_range(bp, seam.hems[a_front ? 1 : 0])});
   }
+  std::map<std::string, const Node*> by_piece_size;  // "piece\nsize" -> pattern
+  for (const Node* p : doc.patterns())
+    by_piece_size[std::string(p->attribute("piece")) + "\n" + std::string(p->attribute("size"))] = p;
   for (auto& [id, list] : out) {
-    const auto it = shift.find(id);
-    if (it == shift.end()) continue;
-    for (auto& a : list) a.height += it->second.front_drop - it->second.back_drop;
+    const Node* bp = doc.find(id);
+    if (!bp || list.empty()) continue;
+    double longest = 0, shift = 0;
+    for (const auto& h : half_seams) {
+      if (h.back != bp->attribute("piece")) continue;
+      const auto fit = by_piece_size.find(h.front + "\n" + std::string(bp->attribute("size")));
+      if (fit == by_piece_size.end()) continue;
+      const auto fs = boundary_stretches(*fit->second);
+      if (h.f.first >= fs.size() || h.f.second >= fs.size()) continue;
+      const double length = hem_length(doc, std::string(fit->second->id()), fs[h.f.first].id, fs[h.f.second].id);
+      if (length <= longest) continue;
+      longest = length;
+      shift = hem_drop(doc, *fit->second, h.f.first, h.f.second) - hem_drop(doc, *bp, h.b.first, h.b.second);
+    }
+    for (auto& a : list) a.height += shift;
   }
   return out;
 }

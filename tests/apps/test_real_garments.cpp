@@ -112,9 +112,12 @@ INSTANTIATE_TEST_SUITE_P(
 
         // Its sleeve cut in two (front and back half, each cut twice); the
         // back half is not graded and reaches past the shoulder point: it is
-        // hung level with the front half along their over-arm seam.
+        // hung level with the front half along their over-arm seam, in the
+        // graded size at the sample's stretches.
         RealGarment{"men_tee_50", "MEN_CLASSIC_TEE.DXF", "", 0, "left-arm left-arm right-arm right-arm torso torso",
                     "REGULAR TEESL BK sleeve (back half), REGULAR TEESL FR sleeve (front half)"},
+        RealGarment{"men_tee_54", "MEN_CLASSIC_TEE.DXF", "54", 0, "left-arm left-arm right-arm right-arm torso torso",
+                    "no SEAM sews this size: the 12 seams of size 50 are sewn at the same stretches"},
         // Not yet: each with the reason vgd gives.
         // Sewn and in place; the body shows through the crotch, where the
         // four seam ends meet.

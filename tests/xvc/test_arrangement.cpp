@@ -110,6 +110,15 @@ TEST(Arrangement, SleeveHalvesOnTheirSidesAndLevelAlongTheirSeam) {
   s.pieces.push_back(half("SLEEVE FRONT", {{-0.15, 0}, {0, 0}, {0, 0.30}, {-0.15, 0.20}}));
   // Back: its over-arm edge (0,0.30)->(0,0) on the left, a tab up to 0.35 beside it.
   s.pieces.push_back(half("SLEEVE BACK", {{0, 0}, {0.15, 0}, {0.15, 0.20}, {0.02, 0.35}, {0, 0.30}}));
+  // A graded size L with no seams of its own: 10 % longer, its tab as high.
+  s.sizes.push_back("L");
+  for (int k = 0; k < 2; ++k) {
+    pattern::Piece l = s.pieces[k];
+    l.size = "L";
+    l.block = l.name + "_L";
+    for (auto& c : l.boundary) c.p.y() *= 1.1;
+    s.pieces.push_back(l);
+  }
   Document doc = from_style(s);
   const auto f = doc.patterns()[0], b = doc.patterns()[1];
   const auto fs = boundary_stretches(*f), bs = boundary_stretches(*b);
@@ -118,7 +127,7 @@ TEST(Arrangement, SleeveHalvesOnTheirSidesAndLevelAlongTheirSeam) {
 
   // Without the seam, both hang by their tops.
   auto arranged = suggest_arrangements(doc);
-  ASSERT_EQ(arranged.size(), 2u);
+  ASSERT_EQ(arranged.size(), 4u);
   ASSERT_EQ(arranged[0].second.size(), 2u);
   ASSERT_EQ(arranged[1].second.size(), 2u);
   const double top = arranged[0].second[0].height;
@@ -144,4 +153,6 @@ TEST(Arrangement, SleeveHalvesOnTheirSidesAndLevelAlongTheirSeam) {
   EXPECT_EQ(arranged[0].second[0].height, top);
   EXPECT_NEAR(arranged[1].second[0].height, top - 0.05, 1e-12) << "5 cm further up the arm";
   EXPECT_NEAR(arranged[1].second[1].height, top - 0.05, 1e-12);
+  EXPECT_EQ(arranged[2].second[0].height, top) << "size L's front half";
+  EXPECT_NEAR(arranged[3].second[0].height, top - 0.055, 1e-12) << "size L's back half, by the sample's seam";
 }
