@@ -398,16 +398,16 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //     then the halves' runs from their hems' ends pair, alike in length (the longer
   //     pair is the over-arm seam, the shorter the underarm), the first hem forward,
   //     the other reverse; the back half's cap is, of its runs left (not on its hem,
-  //     the lowest edge, nor beside it), the one that best fits a back armhole. The hems stay open. A
-  //     half cut twice sews once per copy, the right arm's first (its first
-  //     arrangement).
+  //     the lowest edge, nor beside it), the one that best fits a back armhole. The
+  //     hems stay open. A half cut twice sews once per copy, the right arm's first
+  //     (its first arrangement).
   struct StretchRun {
     std::size_t k0, k1, edge;
     double length;
     bool curved;
   };
   const auto stretch_runs = [](const PieceInfo& p) {
-    std::vector<StretchRun> runs;
+    std::vector<StretchRun> runs;  // edge by edge, then by start, then by end
     const auto& o = *p.o;
     const std::size_t ns = o.stretches.size();
     for (std::size_t e = 0; e < p.edges.size(); ++e) {
@@ -423,6 +423,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         }
     }
     return runs;
+  };
+  std::vector<std::vector<StretchRun>> piece_runs;  // per piece of ps
+  for (const auto& p : ps) piece_runs.push_back(stretch_runs(p));
+  const auto stretch_runs_of = [&](const PieceInfo& p) -> const std::vector<StretchRun>& {
+    return piece_runs[static_cast<std::size_t>(&p - ps.data())];
   };
   const auto covers = [](const Outline& o, const StretchRun& r) {
     std::set<std::size_t> ks;
@@ -448,7 +453,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // alike, the longest pair.
   const auto sew_cap = [&](const PieceInfo& sl, const std::function<bool(const StretchRun&)>& may) {
     const bool front_half = sl.o->role.half == pattern::Half::front;
-    const auto sruns = stretch_runs(sl);
+    const auto& sruns = stretch_runs_of(sl);
     std::optional<std::size_t> cap;  // index in sruns, fixed by the first copy
     for (const int sigma : copies_of(*sl.o)) {
       std::optional<SeamSuggestion> best;
@@ -458,7 +463,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         if ((cap && c != *cap) || (!cap && !may(sruns[c]))) continue;
         for (const auto& bp : ps) {
           if (bp.role != (front_half ? Role::front : Role::back)) continue;
-          for (const auto& br : stretch_runs(bp)) {
+          for (const auto& br : stretch_runs_of(bp)) {
             const Edge& be = bp.edges[br.edge];
             if (be.side != (front_half ? sigma : -sigma) || !br.curved || used.count({bp.o, br.edge})) continue;
             const std::string name = std::string(sigma > 0 ? "left " : "right ") + (front_half ? "front" : "back") + " armhole";
@@ -492,9 +497,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // A cap is neither on the hem nor beside it: the runs from the hem's ends are the
   // over-arm and underarm seams.
   const auto off_hem = [&](const PieceInfo& p, const StretchRun& r) {
-    const Edge& hem = p.edges[hem_edge(p)];
-    const std::size_t n = p.o->stretches.size();
-    return r.edge != hem_edge(p) && r.k0 != (hem.k1 + 1) % n && (r.k1 + 1) % n != hem.k0;
+    const std::size_t h = hem_edge(p), n = p.o->stretches.size();
+    const Edge& hem = p.edges[h];
+    return r.edge != h && r.k0 != (hem.k1 + 1) % n && (r.k1 + 1) % n != hem.k0;
   };
   // The front halves' caps first: a curved run.
   for (const auto& sl : ps)
@@ -522,11 +527,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       std::set<std::size_t> bi;
       for (const bool front_leaves : {true, false}) {
         std::optional<Pair> best;
-        for (const auto& fr : stretch_runs(fh)) {
+        for (const auto& fr : stretch_runs_of(fh)) {
           if (front_leaves ? fr.k0 != (fhem.k1 + 1) % nf : (fr.k1 + 1) % nf != fhem.k0) continue;
           const auto fk = covers(*fh.o, fr);
           if (!disjoint(fk, half_cap[fh.o])) continue;
-          for (const auto& br : stretch_runs(bh)) {
+          for (const auto& br : stretch_runs_of(bh)) {
             if (front_leaves ? (br.k1 + 1) % nb != bhem.k0 : br.k0 != (bhem.k1 + 1) % nb) continue;
             auto sg = make("seam", size, {{fh.o, fr.k0, fr.k1, false}, {bh.o, br.k0, br.k1, true}}, 1.0, "", 0, 0, 0.02);
             if (sg.score < opts.min_score) continue;
@@ -580,9 +585,6 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    hems are reversed.
   for (const auto& wb : ps) {
     if (wb.role != Role::waistband) continue;
-    std::vector<Part> waist;
-    std::vector<std::pair<const Outline*, std::size_t>> waist_edges;
-    double total = 0;
     auto top_edge = [](const PieceInfo& p) -> std::optional<std::size_t> {
       std::optional<std::size_t> t;
       for (std::size_t i = 0; i < p.edges.size(); ++i)
@@ -632,13 +634,10 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     } else {
       continue;
     }
-    for (std::size_t i = 1; i < parts.size(); ++i)
-      total += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
     std::optional<SeamSuggestion> best;
     // Any run of stretches within one of the band's long edges: a button stand split
     // off by a turn point stays open.
     std::vector<std::pair<std::size_t, std::size_t>> runs;
-    const std::size_t ns = wb.o->stretches.size();
     // The band's long edges, however it is drawn: those at least half as long as its
     // longest. Of runs scoring alike, the one on the band's bottom edge as it is
     // arranged round the body (xvc/arrangement.hpp: a band drawn upright is turned a
@@ -651,14 +650,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
     const bool upright = h1 - h0 > w1 - w0;
     std::vector<double> bottomness;  // per run
-    for (const auto& e : wb.edges) {
+    for (const auto& r : stretch_runs_of(wb)) {
+      const Edge& e = wb.edges[r.edge];
       if (e.length < 0.5 * longest) continue;
-      const std::size_t m = (e.k1 + ns - e.k0) % ns + 1;
-      for (std::size_t i = 0; i < m; ++i)
-        for (std::size_t j = i; j < m; ++j) {
-          runs.emplace_back((e.k0 + i) % ns, (e.k0 + j) % ns);
-          bottomness.push_back(upright ? e.u_mid : -e.v_mean);
-        }
+      runs.emplace_back(r.k0, r.k1);
+      bottomness.push_back(upright ? e.u_mid : -e.v_mean);
     }
     std::optional<double> best_bottom;
     for (std::size_t r = 0; r < runs.size(); ++r) {
@@ -673,7 +669,6 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         best_bottom = bottomness[r];
       }
     }
-    (void)total;
     if (best && best->score >= opts.min_score) found.push_back(*best);
   }
 

@@ -264,6 +264,7 @@ pattern::RoleGuess piece_role(const Document& doc, const Node& pattern) {
     if (const auto set = pattern::role_from_name(pattern.attribute("role")); set && *set != g.role) {
       g.role = *set;
       g.word = "role=\"" + std::string(pattern.attribute("role")) + "\"";
+      if (g.role != pattern::Role::sleeve) g.half = pattern::Half::none;  // halves are of sleeves only
     }
   return g;
 }

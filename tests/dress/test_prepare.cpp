@@ -267,7 +267,7 @@ namespace vgd::dress {
 // Each pattern's role and whether it is draped are written in the document
 // (attributes role and drape) where it says nothing yet; a designer's
 // correction there is what the next run reads: a full sleeve chosen instead
-// of the short one, a piece whose name says nothing given a role.
+// of the short one.
 TEST(PrepareGarment, RolesAndPiecesToDrapeAreWrittenInTheDocumentAndCorrectedThere) {
   pattern::Style s =
       one_size("MEN shirt", "50",
@@ -328,6 +328,14 @@ TEST(PrepareGarment, ARoleSetInTheDocumentIsReadInsteadOfTheName) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("role \"elbow\""), std::string::npos) << e.what();
   }
+
+  // Half a sleeve by its name; set to a front, it is no sleeve's half.
+  xvc::Document halves = xvc::from_style(one_size("WM top", "38", {panel("SLEEVE FRONT", 0, 0.2, 0.3, "38")}));
+  EXPECT_EQ(xvc::piece_role(halves, *halves.patterns()[0]).half, pattern::Half::front);
+  xvc::SetAttribute front(std::string(halves.patterns()[0]->id()), "role", "front");
+  xvc::execute(halves, front);
+  EXPECT_EQ(xvc::piece_role(halves, *halves.patterns()[0]).role, pattern::Role::front);
+  EXPECT_EQ(xvc::piece_role(halves, *halves.patterns()[0]).half, pattern::Half::none);
 }
 
 }  // namespace vgd::dress
