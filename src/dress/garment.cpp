@@ -538,7 +538,9 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       const Hem& h = hems[s.hems[k]];
       out.length_b += hem_length(h);
       const std::vector<PieceNode> other = sewing_order(h);
-      for (std::size_t q = 0; q < other.size(); ++q) out.pairs.push_back({first.at(at + q), other[q]});
+      // A dart's legs share its tip: that node is sewn already.
+      for (std::size_t q = 0; q < other.size(); ++q)
+        if (!(first.at(at + q) == other[q])) out.pairs.push_back({first.at(at + q), other[q]});
       at += static_cast<int>(other.size()) - 1;
     }
     g.seams.push_back(std::move(out));

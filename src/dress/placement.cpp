@@ -184,13 +184,18 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   curve.build();
   const double width = nodes.empty() ? 0 : umax - umin;
   const double gap = 0.02;
-  if (width > curve.perimeter - gap) {
+  // A half of a trouser leg (front or back of a leg) goes half way round at most,
+  // so the front and back halves meet at the leg's sides instead of overlapping
+  // (a back half is cut wider than the leg's half for the seat).
+  const bool half_leg = ar.segment.find("leg") != std::string::npos && (ar.side == "front" || ar.side == "back");
+  const auto room = [&] { return half_leg ? 0.5 * curve.perimeter - 0.5 * gap : curve.perimeter - gap; };
+  if (width > room()) {
     // Wider than the body: grow the clearance until the piece fits once around.
     double lo = curve.c, hi = curve.c + width;
     for (int i = 0; i < 60; ++i) {
       curve.c = 0.5 * (lo + hi);
       curve.build();
-      (curve.perimeter - gap < width ? lo : hi) = curve.c;
+      (room() < width ? lo : hi) = curve.c;
     }
     curve.c = hi;
     curve.build();

@@ -8,6 +8,7 @@
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/pattern/roles.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -38,23 +39,28 @@ bool starts(const std::string& s, const std::string& prefix) { return s.rfind(pr
 // Ease of a garment over the body at the girth vgd matches it by (m): a
 // regular top's chest over the bust, a skirt's or trousers' hip over the hip.
 constexpr double kBustEase = 0.10, kHipEase = 0.05;
+// Trousers' inseam against the body's crotch height (m): 2 cm shorter.
+constexpr double kInseamEase = 0.02;
 
 // The pattern's girth (m): over the pieces given (its fronts and backs), each
-// piece's widest extent across its grain line between 25 % and 75 % of its
-// length along it, times the times it is cut. 0 without a piece.
-double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node*>& patterns) {
+// piece's widest extent across its grain line between `from` and `to` of its
+// length along it (from its bottom; halves of trouser legs: from their waist,
+// the wider end), times the times it is cut. 0 without a piece.
+double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node*>& patterns, double from = 0.25,
+                     double to = 0.75, bool from_wider_end = false) {
   double girth = 0;
   for (const auto* node : patterns) {
     const pattern::Piece p = xvc::to_piece(doc, node->id());
     if (p.boundary.size() < 3) continue;
     pattern::Vec2 up = pattern::Vec2::UnitY();
     if (p.grain_line && (p.grain_line->b - p.grain_line->a).norm() > 0) up = (p.grain_line->b - p.grain_line->a).normalized();
+    if (from_wider_end && pattern::wider_at_top(p.boundary, up)) up = -up;  // measured from the waist down
     const pattern::Vec2 across(up.y(), -up.x());
     double lo = 1e300, hi = -1e300;
     for (const auto& c : p.boundary) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
     double widest = 0;
     for (int k = 0; k <= 20; ++k) {
-      const double v = lo + (0.25 + 0.5 * k / 20.0) * (hi - lo);
+      const double v = lo + (from + (to - from) * k / 20.0) * (hi - lo);
       double u0 = 1e300, u1 = -1e300;
       const std::size_t n = p.boundary.size();
       for (std::size_t i = 0; i < n; ++i) {
@@ -160,6 +166,76 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
 
+  // Trousers cut as half legs (Valentina's FRONT and BACK): in a garment with no
+  // sleeve and no leg, fronts and backs as long as a leg (at least 0.8 m along
+  // their grain) and wider at the top (the seat and the crotch's extension over
+  // the hem) are the front and back halves of the legs. Written in the document
+  // as role="leg" (the name's FRONT or BACK gives the half). A half cut once
+  // that says no side and has no fold line is cut as a pair, left and right
+  // (quantity 2): one leg's half is never a garment. Said, and written.
+  {
+    constexpr double kLegLength = 0.8;  // m
+    bool other = false;
+    std::vector<const xvc::Node*> halves;  // the sample's (or the size's) fronts and backs
+    const auto here = patterns_of(!sample.empty() && !patterns_of(sample).empty() ? sample : out.size);
+    for (const auto* p : here) {
+      const pattern::RoleGuess g = xvc::piece_role(doc, *p);
+      other = other || g.role == pattern::Role::sleeve || g.role == pattern::Role::leg;
+      if ((g.role == pattern::Role::front || g.role == pattern::Role::back) && !p->has_attribute("role") &&
+          p->attribute("quantity") != "0")
+        halves.push_back(p);
+    }
+    // A lower-body garment: a waistband, or the style's name says trousers or pants.
+    bool lower = false;
+    for (const auto* p : here) lower = lower || xvc::piece_role(doc, *p).role == pattern::Role::waistband;
+    const std::string style = to_upper(doc.root().attribute("name"));
+    lower = lower || style.find("TROUSER") != std::string::npos || style.find("PANTS") != std::string::npos;
+    bool legs = lower && !other && !halves.empty();
+    for (const auto* p : halves) {
+      if (!legs) break;
+      const pattern::Piece piece = xvc::to_piece(doc, p->id());
+      pattern::Vec2 up = pattern::Vec2::UnitY();
+      if (piece.grain_line && (piece.grain_line->b - piece.grain_line->a).norm() > 0)
+        up = (piece.grain_line->b - piece.grain_line->a).normalized();
+      // Its length along the grain, and its widths across it in its top and bottom 15 %.
+      const pattern::Vec2 across(up.y(), -up.x());
+      double lo = 1e300, hi = -1e300;
+      for (const auto& c : piece.boundary) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
+      double b0 = 1e300, b1 = -1e300, t0 = 1e300, t1 = -1e300;
+      for (const auto& c : piece.boundary) {
+        const double u = c.p.dot(across), v = c.p.dot(up);
+        if (v < lo + 0.15 * (hi - lo)) b0 = std::min(b0, u), b1 = std::max(b1, u);
+        if (v > hi - 0.15 * (hi - lo)) t0 = std::min(t0, u), t1 = std::max(t1, u);
+      }
+      const double wide = std::max(t1 - t0, b1 - b0), narrow = std::min(t1 - t0, b1 - b0);
+      legs = hi - lo >= kLegLength && wide >= 1.15 * narrow;
+    }
+    if (legs) {
+      std::set<std::string> names;
+      for (const auto* p : halves) names.insert(std::string(p->attribute("piece")));
+      std::vector<std::unique_ptr<xvc::Command>> set;
+      std::set<std::string> paired;
+      for (const auto* p : doc.patterns()) {
+        const std::string name(p->attribute("piece"));
+        if (!names.count(name)) continue;
+        set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role", "leg"));
+        const pattern::Piece piece = xvc::to_piece(doc, p->id());
+        if (p->attribute("quantity") == "1" && !piece.mirror_line && xvc::piece_role(doc, *p).side == pattern::Side::none) {
+          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "quantity", "2"));
+          paired.insert(name);
+        }
+      }
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("half legs", std::move(set)));
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      out.decisions.push_back("pieces " + list + " read as the front and back halves of trouser legs: at least " +
+                              format_fixed(kLegLength, 1) + " m long, wider at one end, no sleeve (role=\"leg\" written)");
+      for (const auto& n : paired)
+        out.decisions.push_back("piece " + n + " is cut as a left and a right half (quantity 2): the file cuts it once " +
+                                "and names no side");
+    }
+  }
+
   // Seams: vgd's suggestions when the document has none.
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
@@ -234,6 +310,14 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         leave("it is sewn onto the face of its host piece, which vgd does not drape yet");
       else if (role == pattern::Role::unknown)
         leave("its name says nothing vgd reads as a role and no seam sews it (add seams with 'vgd seams add')");
+      else if (const auto alt = std::find_if(mine.begin(), mine.end(), [&](const xvc::Node* q) {
+                 const std::string other(q->attribute("piece"));
+                 return other != name && sewn.count(other) && roles[other].role == role &&
+                        roles[other].half == roles[name].half && roles[other].side == roles[name].side;
+               });
+               (role == pattern::Role::sleeve || role == pattern::Role::leg) && alt != mine.end())
+        leave("an alternative to the " + std::string(pattern::role_name(role)) + " " +
+              std::string((*alt)->attribute("piece")) + ", whose seams fit the garment's other pieces better");
       else
         leave("no seam sews it");
     } else if (!arranged.count(name)) {
@@ -252,20 +336,29 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   std::set<std::string> kept;  // pieces the document says to drape: no alternatives
   for (const auto* p : mine)
     if (xvc::drape_attribute(*p) == true) kept.insert(std::string(p->attribute("piece")));
-  for (const pattern::Role role : {pattern::Role::sleeve, pattern::Role::leg}) {
-    const std::string what(pattern::role_name(role));
+  // A sleeve or leg cut in halves has alternatives per half (three front halves
+  // of a trouser leg: plain, with a pocket, with pleats).
+  for (const auto& [role, half] : {std::pair{pattern::Role::sleeve, pattern::Half::none},
+                                   std::pair{pattern::Role::sleeve, pattern::Half::front},
+                                   std::pair{pattern::Role::sleeve, pattern::Half::back},
+                                   std::pair{pattern::Role::leg, pattern::Half::none},
+                                   std::pair{pattern::Role::leg, pattern::Half::front},
+                                   std::pair{pattern::Role::leg, pattern::Half::back}}) {
+    const std::string what = std::string(pattern::role_name(role)) +
+                             (half == pattern::Half::none ? "" : "'s " + std::string(pattern::half_name(half)));
+    const auto in_group = [&](const std::string& n) { return roles[n].role == role && roles[n].half == half; };
     std::vector<std::string> alts;  // a left and a right one are a pair, not alternatives
     for (const auto& name : out.pieces)
-      if (roles[name].role == role && roles[name].side == pattern::Side::none && !kept.count(name)) alts.push_back(name);
+      if (in_group(name) && roles[name].side == pattern::Side::none && !kept.count(name)) alts.push_back(name);
     if (alts.size() < 2) continue;
     const auto is_alt = [&](const std::string& n) { return std::find(alts.begin(), alts.end(), n) != alts.end(); };
-    std::set<std::string> on_body;  // with a seam to a piece of another role
+    std::set<std::string> on_body;  // with a seam to a piece of another role or half
     std::map<std::string, int> seams_of;
     for (const auto& s : xvc::list_seams(doc)) {
       std::set<std::string> names;
       for (const auto& h : s.hems)
         if (const auto* p = doc.find(h.pattern)) names.insert(std::string(p->attribute("piece")));
-      const bool body = std::any_of(names.begin(), names.end(), [&](const std::string& n) { return roles[n].role != role; });
+      const bool body = std::any_of(names.begin(), names.end(), [&](const std::string& n) { return !in_group(n); });
       for (const auto& n : names)
         if (is_alt(n)) {
           ++seams_of[n];
@@ -349,15 +442,29 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
     bool lower = false;
     for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
-    std::vector<const xvc::Node*> trunk;  // the fronts and backs draped
+    std::vector<const xvc::Node*> trunk, halves;  // the fronts and backs draped; halves of trouser legs
     for (const auto* p : mine) {
       const std::string name(p->attribute("piece"));
       const pattern::Role r = roles[name].role;
-      if ((r == pattern::Role::front || r == pattern::Role::back) &&
-          std::find(out.pieces.begin(), out.pieces.end(), name) != out.pieces.end())
-        trunk.push_back(p);
+      if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
+      if (r == pattern::Role::front || r == pattern::Role::back) trunk.push_back(p);
+      if (r == pattern::Role::leg && roles[name].half != pattern::Half::none) halves.push_back(p);
     }
-    const double girth = pattern_girth(doc, trunk);
+    // Trousers: their hip is the halves' width 5-20 % of their length below the
+    // waist (the seat, above the crotch's extension).
+    const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, halves, 0.05, 0.20, true);
+    // Trousers: their inseam (the longest seam named so that sews a half leg) is
+    // matched to the body's crotch height too, less kInseamEase (the hem clear of
+    // the floor): a pattern's girth alone fits a short body with a wide hip as
+    // well as a tall one, and trousers too long lie on the feet.
+    double inseam = 0;
+    if (!halves.empty())
+      for (const auto& s : xvc::list_seams(doc)) {
+        if (s.name.find("inseam") == std::string::npos || s.hems.empty()) continue;
+        if (std::none_of(halves.begin(), halves.end(), [&](const xvc::Node* h) { return h->id() == s.hems[0].pattern; }))
+          continue;
+        inseam = std::max(inseam, s.hems[0].length);
+      }
     const double ease = lower ? kHipEase : kBustEase;
     const char* where = lower ? "hip" : "bust";
     std::vector<std::string> tables;
@@ -365,7 +472,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     else tables = body::size_table_names();
     struct Pick {
       std::string table, label;
-      double body = 0, miss = 1e300;
+      double body = 0, inseam = 0, miss = 1e300;
     } best;
     std::string others;
     for (const auto& t : tables) {
@@ -373,8 +480,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       for (const auto& row : body::load_size_table(body::size_table_file(t))) {
         if (has_size && row.label != out.size) continue;
         const double b = lower ? row.hip : row.bust;
-        const double miss = std::abs(girth - b - ease);
-        if (miss < here.miss) here = {t, row.label, b, miss};
+        const double miss = std::abs(girth - b - ease) + (inseam > 0 ? std::abs(inseam - row.inseam + kInseamEase) : 0.0);
+        if (miss < here.miss) here = {t, row.label, b, row.inseam, miss};
       }
       if (here.table.empty()) continue;
       if (here.miss < best.miss) {
@@ -390,8 +497,12 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.body_size = best.label;
       why = "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
             " cm, " + format_fixed(100 * (girth - best.body), 0) + " cm of ease over the body's " +
-            format_fixed(100 * best.body, 0) + " cm (" + format_fixed(100 * ease, 0) + " cm wanted" + others +
-            "); choose with --body-table and --body-size";
+            format_fixed(100 * best.body, 0) + " cm (" + format_fixed(100 * ease, 0) + " cm wanted" +
+            (inseam > 0 ? ", its inseam " + format_fixed(100 * inseam, 1) + " cm for a crotch height of " +
+                              format_fixed(100 * best.inseam, 1) + " cm (" + format_fixed(100 * kInseamEase, 0) +
+                              " cm shorter wanted)"
+                        : std::string()) +
+            others + "); choose with --body-table and --body-size";
     } else if (!has_size) {
       const std::string table = !out.body_table.empty() ? out.body_table : body::size_table_names().front();
       const auto rows = body::load_size_table(body::size_table_file(table));

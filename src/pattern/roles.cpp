@@ -152,6 +152,9 @@ const Concept kWaist{{"WAIST", "CINTURA", "TAILLE"}};
 const Concept kSleeve{{"SLEEVE", "$SLV", "$SL", "=MANGA", "ARMEL", "AERMEL", "MANCHE", "РУКАВ", "*РУКАВ"}};
 const Concept kLeg{{"=LEG", "=LEGS", "=TIGHT", "=TIGHTS", "PIERNA", "=PERNA", "HOSENBEIN", "=BEIN", "JAMBE",
                     "ШТАНИН", "*ШТАНИН"}};
+// Trousers, pants: with a front or back word the piece is half of a leg.
+const Concept kTrouser{{"TROUSER", "TROUSERS", "=PANT", "=PANTS", "PANTALON", "PANTALONES", "=CALCA", "HOSE", "БРЮКИ",
+                        "*БРЮК"}};
 const Concept kFront{{"FRONT", "$FR", "$FRT", "=FT", "DELANTER", "*DELANTER", "FRENTE", "VORDERTEIL",
                       "VORDERHOSE", "*VORDER", "DEVANT", "=ПЕРЕД", "*ПЕРЕД", "ПОЛОЧКА", "*ПОЛОЧК"}};
 const Concept kBack{{"BACK", "$BK", "$BCK", "ESPALDA", "TRASER", "*TRASER", "COSTAS", "RUCKEN", "RUECKEN",
@@ -319,7 +322,7 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
               collar = find(toks, kCollar), placket = find(toks, kPlacket), facing = find(toks, kFacing),
               binding = find(toks, kBinding), yoke = find(toks, kYoke), hood = find(toks, kHood),
               waistband = find(toks, kWaistband), waist = find(toks, kWaist), sleeve = find(toks, kSleeve),
-              leg = find(toks, kLeg), front = find(toks, kFront), back = find(toks, kBack);
+              leg = find(toks, kLeg), trouser = find(toks, kTrouser), front = find(toks, kFront), back = find(toks, kBack);
   // The annotation says what the piece is cut from: interlining alone makes an interfacing.
   std::vector<Token> ann = tokens_of(fold_name(annotation));
   const bool cut_from_interlining = !find(ann, kInterfacing).empty() && find(ann, kFabric).empty();
@@ -372,15 +375,17 @@ RoleGuess piece_role(std::string_view name, std::string_view category, std::stri
     take(Role::sleeve, sleeve);
   else if (!leg.empty())
     take(Role::leg, leg);
+  else if (!trouser.empty())
+    take(Role::leg, trouser);
   else if (!front.empty())
     take(Role::front, front);
   else if (!back.empty())
     take(Role::back, back);
 
-  // A sleeve's front or back word makes it a half of a sleeve cut in two; the
-  // name's word over the category's (Gerber files swap the two halves'
-  // categories).
-  if (g.role == Role::sleeve) {
+  // A sleeve's or leg's front or back word makes it a half of a sleeve cut in
+  // two or of a trouser leg; the name's word over the category's (Gerber files
+  // swap the two halves' categories).
+  if (g.role == Role::sleeve || g.role == Role::leg) {
     const std::size_t name_tokens = tokens_of(n).size();
     const auto in = [&](const Found& f, bool name_part) {
       return std::any_of(f.begin(), f.end(), [&](const Hit& h) { return (h.token < name_tokens) == name_part; });

@@ -228,6 +228,28 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       r.segment = "right-leg";
       r.side = "right";
       r.flip = !front_at_plus;
+      if (role.half != pattern::Half::none) {
+        // Half a trouser leg: on the front or the back of the leg, its crotch's
+        // extension to the inside. The crotch side is the one reaching out
+        // furthest beyond the piece's top there (the crotch point against centre
+        // front or back; the outseam barely passes the waist's side at the hip).
+        // On a limb the pattern's +u runs to the body's left on the front and to
+        // its right on the back, so the inside lies on +u for the right leg's
+        // front half and the left leg's back half.
+        const bool front = role.half == pattern::Half::front;
+        l.side = r.side = front ? "front" : "back";
+        double top_v = -1e300;
+        for (const auto& c : piece.boundary) top_v = std::max(top_v, rotate(c.p, a.angle_deg).y());
+        double t0 = 1e300, t1 = -1e300, u0 = 1e300, u1 = -1e300;
+        for (const auto& c : piece.boundary) {
+          const auto q = rotate(c.p, a.angle_deg);
+          u0 = std::min(u0, q.x()), u1 = std::max(u1, q.x());
+          if (q.y() > top_v - 0.08) t0 = std::min(t0, q.x()), t1 = std::max(t1, q.x());
+        }
+        const bool crotch_plus = u1 - t1 > t0 - u0;
+        r.flip = crotch_plus != front;
+        l.flip = crotch_plus == front;
+      }
       if (role.side == pattern::Side::left) return {l};
       if (role.side == pattern::Side::right) return {r};
       return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};

@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <tuple>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -320,6 +321,51 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   }
   std::set<std::pair<const Outline*, std::size_t>> used;  // (pattern, edge index)
   std::vector<SeamSuggestion> found;
+  // A piece's copies: +1 the wearer's left, -1 the right (a piece cut twice: the right first).
+  const auto copies_of = [](const Outline& o) {
+    if (o.role.side == pattern::Side::left) return std::vector<int>{1};
+    if (o.role.side == pattern::Side::right) return std::vector<int>{-1};
+    return o.quantity >= 2 ? std::vector<int>{-1, 1} : std::vector<int>{1};
+  };
+
+  // 0. Darts: a narrow V cut into the outline (a waist dart of trousers drawn open):
+  //    two consecutive stretches of 2-15 cm, alike within 5 mm, whose shared vertex
+  //    (the tip) turns back by more than 145 degrees into the piece, their outer ends
+  //    at most 5 cm apart. The legs sew to each other (mouth to mouth, tip to tip),
+  //    once per copy; their edges take part in no other seam. Suggested for pieces
+  //    that other seams sew into the garment (not for an alternative left out).
+  std::vector<SeamSuggestion> darts;
+  for (const auto& p : ps) {
+    const auto& o = *p.o;
+    const auto& b = o.shape.boundary;
+    const std::size_t ns = o.stretches.size(), n = b.size();
+    if (ns < 4) continue;
+    double area = 0;
+    for (std::size_t i = 0; i < n; ++i) area += b[i].p.x() * b[(i + 1) % n].p.y() - b[(i + 1) % n].p.x() * b[i].p.y();
+    for (std::size_t k = 0; k < ns; ++k) {
+      const std::size_t k2 = (k + 1) % ns;
+      const Vec2 a = b[o.stretches[k].first].p, tip = b[o.stretches[k2].first].p, c = b[o.stretches[(k + 2) % ns].first].p;
+      const double la = arc_range(o, k, k).second, lc = arc_range(o, k2, k2).second;
+      const Vec2 in = tip - a, outv = c - tip;
+      if (la < 0.02 || lc < 0.02 || la > 0.15 || lc > 0.15 || std::abs(la - lc) > 0.005 || (c - a).norm() > 0.05) continue;
+      if (in.norm() == 0 || outv.norm() == 0) continue;
+      const double turn = std::acos(std::clamp(in.normalized().dot(outv.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+      const double cross = in.x() * outv.y() - in.y() * outv.x();
+      if (turn < 145.0 || (area > 0) == (cross > 0)) continue;  // not sharp, or a spike out of the piece
+      for (const int copy : copies_of(o)) {
+        auto d = make(std::string(copy > 0 ? "left " : "right ") + "dart", size, {{p.o, k, k, false}, {p.o, k2, k2, true}},
+                      1.0, "dart of " + o.piece + ": a V of " + format_fixed(1000 * (c - a).norm(), 0) + " mm by " +
+                               format_fixed(1000 * la, 0) + " mm cut into its outline",
+                      0, 0, 0.02);
+        if (o.quantity < 2 && o.role.side == pattern::Side::none) d.name = "dart";
+        if (d.score >= opts.min_score) darts.push_back(d);
+      }
+      for (std::size_t e = 0; e < p.edges.size(); ++e) {
+        const Edge& ed = p.edges[e];
+        if ((ed.k0 == k || ed.k0 == k2) && (ed.k1 == k || ed.k1 == k2)) used.insert({p.o, e});
+      }
+    }
+  }
 
   // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
   for (const auto& sl : ps) {
@@ -436,11 +482,6 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       if (k == r.k1) break;
     }
     return ks;
-  };
-  const auto copies_of = [](const Outline& o) {
-    if (o.role.side == pattern::Side::left) return std::vector<int>{1};
-    if (o.role.side == pattern::Side::right) return std::vector<int>{-1};
-    return o.quantity >= 2 ? std::vector<int>{-1, 1} : std::vector<int>{1};
   };
   std::map<const Outline*, std::set<std::size_t>> half_cap;   // the cap's stretches of each half
   std::map<const Outline*, std::set<std::size_t>> half_sewn;  // stretches sewn to the other half
@@ -599,7 +640,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
     const PieceInfo* lg = nullptr;
     for (const auto& p : ps)
-      if (p.role == Role::leg && p.o->quantity >= 2 && p.edges.size() >= 5 && !lg) lg = &p;
+      if (p.role == Role::leg && p.o->role.half == pattern::Half::none && p.o->quantity >= 2 && p.edges.size() >= 5 && !lg)
+        lg = &p;
     std::vector<Part> parts{{wb.o, 0, 0, false}};
     if (fr && bk) {
       const auto tf = top_edge(*fr), tb = top_edge(*bk);
@@ -680,7 +722,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    mirrored pattern laid face up, docs/xvc.md), so the crotch point meets the
   //    crotch point when its rise is written reversed.
   for (const auto& lg : ps) {
-    if (lg.role != Role::leg || lg.o->quantity < 2 || lg.edges.size() < 5) continue;
+    if (lg.role != Role::leg || lg.o->role.half != pattern::Half::none || lg.o->quantity < 2 || lg.edges.size() < 5)
+      continue;
     const std::size_t n = lg.edges.size();
     const std::size_t hem = leg_ends(lg).first;
     const Edge &ia = lg.edges[(hem + 1) % n], &ib = lg.edges[(hem + n - 1) % n];
@@ -698,6 +741,117 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
                         "s (the " + (e == &front ? "shorter" : "longer") + " rise)",
                     0, 0, 0.02);
       if (s.score >= opts.min_score) found.push_back(s);
+    }
+  }
+
+  // 3b. Trouser legs cut as a front and a back half (role leg, half front/back, cut
+  //     as a left and a right copy): each half's outline from its hem runs up one
+  //     side to the waist (the outseam) and up the other to the crotch point, where
+  //     the rise turns in to the centre front or back. Stretches from the hem's ends
+  //     are followed while they run more along the leg than across it; of the two
+  //     runs, the one reaching out furthest beyond its top end holds the crotch
+  //     point (the stretch boundary reaching furthest out): the inseam below it,
+  //     the rise above. The front half's outseam and inseam sew to the back
+  //     half's (first forward, second reversed, per copy: the front and back of one
+  //     leg are a copy as drawn and a flipped one), each copy's front rise to the
+  //     other's and the back rises likewise. Of several front halves (a plain
+  //     front, one with a pocket, one with pleats: alternatives) the one whose
+  //     outseam and inseam fit the back's best.
+  struct HalfLeg {
+    std::size_t in0, in1, rise0, rise1, out0, out1;  // stretch ranges in contour order
+  };
+  const auto half_leg = [&](const PieceInfo& p) -> std::optional<HalfLeg> {
+    const auto& o = *p.o;
+    const std::size_t ns = o.stretches.size();
+    if (p.edges.size() < 4 || ns < 4) return std::nullopt;
+    const auto& b = o.shape.boundary;
+    const auto vertex = [&](std::size_t k) { return b[o.stretches[k % ns].first].p; };  // start of stretch k
+    const auto along = [&](std::size_t k) {
+      const Vec2 d = vertex(k + 1) - vertex(k);
+      return std::abs(d.dot(p.frame.up)) >= std::abs(d.dot(p.frame.right));
+    };
+    const Edge& hem = p.edges[leg_ends(p).first];
+    const double u_hem = 0.5 * (vertex(hem.k0).dot(p.frame.right) + vertex(hem.k1 + 1).dot(p.frame.right));
+    // The run forward from the hem's end and the run backward from its start.
+    std::vector<std::size_t> fwd, bwd;
+    for (std::size_t k = (hem.k1 + 1) % ns; fwd.size() < ns && along(k) && k != hem.k0; k = (k + 1) % ns) fwd.push_back(k);
+    for (std::size_t k = (hem.k0 + ns - 1) % ns; bwd.size() < ns && along(k) && k != hem.k1; k = (k + ns - 1) % ns)
+      bwd.push_back(k);
+    if (fwd.empty() || bwd.empty()) return std::nullopt;
+    // How far out the run reaches beyond its top end, and at which stretch boundary.
+    struct Reach {
+      double beyond = 0;
+      std::size_t at = 0;  // the run's stretches before it: 1..size-1
+    };
+    const auto reach = [&](const std::vector<std::size_t>& run, bool forward) {
+      const auto boundary_after = [&](std::size_t i) { return forward ? run[i] + 1 : run[i]; };  // vertex index (stretch)
+      const double top = vertex(boundary_after(run.size() - 1)).dot(p.frame.right);
+      const double outward = vertex(boundary_after(0)).dot(p.frame.right) > u_hem ? 1.0 : -1.0;
+      Reach r;
+      for (std::size_t i = 0; i + 1 < run.size(); ++i) {
+        const double d = outward * (vertex(boundary_after(i)).dot(p.frame.right) - top);
+        if (d > r.beyond) r = {d, i + 1};
+      }
+      return r;
+    };
+    const Reach rf = reach(fwd, true), rb = reach(bwd, false);
+    const bool crotch_fwd = rf.beyond > rb.beyond;
+    const Reach& rc = crotch_fwd ? rf : rb;
+    if (rc.at == 0 || rc.beyond < 0.03) return std::nullopt;  // no crotch's extension
+    const auto& crotch = crotch_fwd ? fwd : bwd;
+    const auto& side = crotch_fwd ? bwd : fwd;
+    // Ranges in contour order: a forward run from its first stretch, a backward run
+    // from its last.
+    const auto range = [&](const std::vector<std::size_t>& run, std::size_t i0, std::size_t i1, bool forward) {
+      return forward ? std::pair{run[i0], run[i1]} : std::pair{run[i1], run[i0]};
+    };
+    HalfLeg h{};
+    std::tie(h.in0, h.in1) = range(crotch, 0, rc.at - 1, crotch_fwd);
+    std::tie(h.rise0, h.rise1) = range(crotch, rc.at, crotch.size() - 1, crotch_fwd);
+    std::tie(h.out0, h.out1) = range(side, 0, side.size() - 1, !crotch_fwd);
+    return h;
+  };
+  for (const auto& bk : ps) {
+    if (bk.role != Role::leg || bk.o->role.half != pattern::Half::back) continue;
+    const auto hb = half_leg(bk);
+    if (!hb) continue;
+    struct Pick {
+      const PieceInfo* fr;
+      HalfLeg hf;
+      SeamSuggestion out, in;
+    };
+    std::optional<Pick> best;
+    for (const auto& fr : ps) {
+      if (fr.role != Role::leg || fr.o->role.half != pattern::Half::front || fr.o->quantity != bk.o->quantity ||
+          fr.o->role.side != bk.o->role.side)
+        continue;
+      const auto hf = half_leg(fr);
+      if (!hf) continue;
+      auto outseam = make("outseam", size, {{fr.o, hf->out0, hf->out1, false}, {bk.o, hb->out0, hb->out1, true}}, 1.0,
+                      "outseam of the trouser leg's halves " + fr.o->piece + " and " + bk.o->piece, 0, 0, kSideSeamTolerance);
+      auto inseam = make("inseam", size, {{fr.o, hf->in0, hf->in1, false}, {bk.o, hb->in0, hb->in1, true}}, 1.0,
+                     "inseam of the trouser leg's halves " + fr.o->piece + " and " + bk.o->piece, 0, 0, kSideSeamTolerance);
+      // Of fronts fitting alike, the plainest: the least cloth (pleats add some).
+      const double fit = outseam.score * inseam.score, best_fit = best ? best->out.score * best->in.score : 0;
+      if (!best || fit > best_fit + 1e-9 ||
+          (fit > best_fit - 1e-9 && std::abs(pattern::signed_area(fr.o->shape.boundary)) < std::abs(pattern::signed_area(best->fr->o->shape.boundary))))
+        best = Pick{&fr, *hf, outseam, inseam};
+    }
+    if (!best || best->out.score < opts.min_score || best->in.score < opts.min_score) continue;
+    for (const int sigma : copies_of(*bk.o))
+      for (const SeamSuggestion* s : {&best->out, &best->in}) {
+        SeamSuggestion c = *s;
+        c.name = std::string(sigma > 0 ? "left " : "right ") + c.name;
+        found.push_back(std::move(c));
+      }
+    if (bk.o->quantity >= 2 && bk.o->role.side == pattern::Side::none) {
+      const PieceInfo& fr = *best->fr;
+      for (const auto& [which, piece, r0, r1] :
+           {std::tuple{"front rise", &fr, best->hf.rise0, best->hf.rise1}, std::tuple{"back rise", &bk, hb->rise0, hb->rise1}}) {
+        auto s = make(which, size, {{piece->o, r0, r1, false}, {piece->o, r0, r1, true}}, 1.0,
+                      std::string("crotch seam of the two copies of ") + piece->o->piece + ": their rises", 0, 0, 0.02);
+        if (s.score >= opts.min_score) found.push_back(s);
+      }
     }
   }
 
@@ -763,6 +917,13 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     used.insert(c.a.begin(), c.a.end());
     used.insert(c.b.begin(), c.b.end());
     found.push_back(c.s);
+  }
+  {
+    std::set<std::string> sewn;
+    for (const auto& s : found)
+      for (const auto& h : s.hems) sewn.insert(h.pattern);
+    for (auto& d : darts)
+      if (sewn.count(d.hems[0].pattern)) found.push_back(std::move(d));
   }
   std::stable_sort(found.begin(), found.end(), [](const SeamSuggestion& x, const SeamSuggestion& y) { return x.score > y.score; });
   for (auto& s : found) out.push_back(std::move(s));

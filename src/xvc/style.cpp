@@ -262,9 +262,14 @@ pattern::RoleGuess piece_role(const Document& doc, const Node& pattern) {
                                              pattern.attribute("annotation"), doc.root().attribute("name"));
   if (pattern.has_attribute("role"))
     if (const auto set = pattern::role_from_name(pattern.attribute("role")); set && *set != g.role) {
+      // A sleeve or leg set on a piece the name calls a front or back is that half of it.
+      const pattern::Role named = g.role;
       g.role = *set;
       g.word = "role=\"" + std::string(pattern.attribute("role")) + "\"";
-      if (g.role != pattern::Role::sleeve) g.half = pattern::Half::none;  // halves are of sleeves only
+      if (g.role != pattern::Role::sleeve && g.role != pattern::Role::leg)
+        g.half = pattern::Half::none;  // halves are of sleeves and legs only
+      else if (g.half == pattern::Half::none && (named == pattern::Role::front || named == pattern::Role::back))
+        g.half = named == pattern::Role::front ? pattern::Half::front : pattern::Half::back;
     }
   return g;
 }

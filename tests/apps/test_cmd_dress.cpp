@@ -7,6 +7,7 @@
 
 #include "support/json_file.hpp"
 #include "support/split_sleeve.hpp"
+#include "support/trousers.hpp"
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
@@ -116,6 +117,44 @@ TEST(CliDress, ASleeveCutInTwoDrapesOnBothArms) {
       for (const auto& [k, v] : on) n += k.rfind(half, 0) == 0 && k.find(arm) != std::string::npos ? v : 0;
       EXPECT_EQ(n, 1) << half << " on the " << arm;
     }
+}
+
+// Trousers cut as half legs, each cut once and named FRONT and BACK only (as
+// Valentina writes them): read as the halves of trouser legs by their length
+// and shape, cut as a left and a right copy, their outseams, inseams, rises and
+// waist darts sewn, each half on its side of each leg with its crotch to the
+// inside, on the body whose hip and crotch height fit; the drape passes with
+// every seam closed.
+TEST(CliDress, TrousersCutAsHalfLegsDrapeOnBothLegs) {
+  const auto out = scratch_dir("dress-trousers");
+  const auto xvc = out / "trousers.xvc";
+  vgd::xvc::save_file(vgd::xvc::from_style(trousers_in_halves()), xvc);
+  const auto r = run_vgd({"dress", xvc.string(), "-o", (out / "d").string(), "--no-previews"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("pieces BACK, FRONT read as the front and back halves of trouser legs"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("piece FRONT is cut as a left and a right half (quantity 2)"), std::string::npos) << r.err;
+  const json c = read_json(out / "d" / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  std::map<std::string, int> seams;
+  for (const auto& s : c["seams"]) {
+    EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
+    ++seams[s["name"].get<std::string>()];
+  }
+  EXPECT_EQ(seams, (std::map<std::string, int>{{"back rise", 1},
+                                               {"front rise", 1},
+                                               {"left dart", 2},
+                                               {"left inseam", 1},
+                                               {"left outseam", 1},
+                                               {"right dart", 2},
+                                               {"right inseam", 1},
+                                               {"right outseam", 1}}));
+  std::map<std::string, int> on;
+  for (const auto& p : c["placement"]) ++on[p["piece"].get<std::string>() + " " + p["segment"].get<std::string>()];
+  EXPECT_EQ(on, (std::map<std::string, int>{{"FRONT_M left-leg", 1},
+                                            {"FRONT_M right-leg", 1},
+                                            {"BACK_M left-leg", 1},
+                                            {"BACK_M right-leg", 1}}));
 }
 
 }  // namespace vgd::test

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 
+#include "support/trousers.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/prepare.hpp"
@@ -338,4 +339,43 @@ TEST(PrepareGarment, ARoleSetInTheDocumentIsReadInsteadOfTheName) {
   EXPECT_EQ(xvc::piece_role(halves, *halves.patterns()[0]).half, pattern::Half::none);
 }
 
+// Fronts and backs as long as legs and wider at the waist, in trousers (the
+// style's name, or a waistband), are the halves of trouser legs: role="leg"
+// written, the half from the name, each cut as a left and a right copy. The
+// same pieces in a dress stay a front and a back; a trouser half the file
+// already cuts twice keeps its quantity.
+TEST(PrepareGarment, FrontsAndBacksAsLongAsLegsAreTheHalvesOfTrouserLegs) {
+  xvc::Document doc = xvc::from_style(vgd::test::trousers_in_halves());
+  const Preparation p = prepare_garment(doc);
+  for (const auto* pat : doc.patterns()) {
+    SCOPED_TRACE(std::string(pat->attribute("piece")));
+    EXPECT_EQ(pat->attribute("role"), "leg");
+    EXPECT_EQ(pat->attribute("quantity"), "2");
+    EXPECT_EQ(xvc::piece_role(doc, *pat).half,
+              pat->attribute("piece") == "FRONT" ? pattern::Half::front : pattern::Half::back);
+  }
+  EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
+  const Diagnostics v = xvc::validate_string(xvc::save_string(doc), "trousers.xvc", xvc::default_schema_path());
+  for (const auto& d : v.items()) ADD_FAILURE() << d.format();
+  // The body: by hip and crotch height.
+  const bool said = std::any_of(p.decisions.begin(), p.decisions.end(),
+                                [](const std::string& d) { return d.find("its inseam 62.3 cm") != std::string::npos; });
+  EXPECT_TRUE(said) << "the body chosen by the trousers' inseam too";
+
+  pattern::Style dress = vgd::test::trousers_in_halves();
+  dress.name = "LONG DRESS";
+  doc = xvc::from_style(dress);
+  EXPECT_THROW(prepare_garment(doc), Error) << "a front and a back that no seam vgd finds sews";
+  for (const auto* pat : doc.patterns()) {
+    SCOPED_TRACE(std::string(pat->attribute("piece")));
+    EXPECT_NE(xvc::piece_role(doc, *pat).role, pattern::Role::leg);
+    EXPECT_EQ(pat->attribute("quantity"), "1");
+  }
+
+  doc = xvc::from_style(vgd::test::trousers_in_halves("FRONT", "BACK", 4));
+  prepare_garment(doc);
+  for (const auto* pat : doc.patterns()) EXPECT_EQ(pat->attribute("quantity"), "4");
+}
+
 }  // namespace vgd::dress
+

@@ -140,9 +140,31 @@ TEST(PieceRole, SleeveHalvesFromTheirFrontOrBackWord) {
   EXPECT_EQ(piece_role("Manga delantera").half, Half::front);
   EXPECT_EQ(piece_role("SLEEVE").half, Half::none);
   EXPECT_EQ(piece_role("REGULAR TEESL1", "SLEEVE SHORT", "", "MEN CLASSIC TEE").half, Half::none);
-  EXPECT_EQ(piece_role("FRONT").half, Half::none) << "only sleeves are cut in halves";
+  EXPECT_EQ(piece_role("FRONT").half, Half::none) << "only sleeves and legs are cut in halves";
   EXPECT_EQ(piece_role("LEFT SLEEVE FRONT").side, Side::left);
   EXPECT_EQ(half_name(Half::back), "back half");
+}
+
+// A trouser word with a front or back word is half a leg; a leg word likewise.
+TEST(PieceRole, TrouserLegHalvesFromTheirWords) {
+  struct Named {
+    const char* name;
+    Half half;
+  };
+  for (const auto& [name, half] : {Named{"TROUSER FRONT", Half::front}, Named{"Pants back", Half::back},
+                                   Named{"PANTALON DELANTERO", Half::front}, Named{"Pantalón trasero", Half::back},
+                                   Named{"Calça frente", Half::front}, Named{"Vorderhose", Half::front},
+                                   Named{"Hinterhose", Half::back}, Named{"Брюки перед", Half::front},
+                                   Named{"FRONT LEG", Half::front}, Named{"PANTS", Half::none},
+                                   Named{"TIGHT LEG SHORT", Half::none}}) {
+    SCOPED_TRACE(name);
+    const RoleGuess g = piece_role(name);
+    EXPECT_EQ(g.role, Role::leg);
+    EXPECT_EQ(g.half, half);
+  }
+  EXPECT_EQ(piece_role("LEFT TROUSER BACK").side, Side::left);
+  EXPECT_EQ(piece_role("TROUSER POCKET").role, Role::pocket);
+  EXPECT_EQ(piece_role("TROUSER WAISTBAND").role, Role::waistband);
 }
 
 // An annotation makes an interfacing only when interlining is all that is cut.

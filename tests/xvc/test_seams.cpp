@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "support/split_sleeve.hpp"
+#include "support/trousers.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -440,3 +441,54 @@ TEST(SeamSuggestions, ASleeveCutInTwoSewsItsHalvesToEachOtherAndToTheirArmholes)
                                                 {"right over-arm seam", 1},
                                                 {"right underarm", 1}}));
 }
+
+// Trousers cut as a front and a back half of each leg (named with the trouser
+// word, cut twice): the outseams and inseams of the halves sewn to each other
+// per leg, the front rises of the two front copies to each other and the back
+// rises likewise, each half's waist dart closed per copy. The inseam runs from
+// the hem to the crotch point, the rise from there to the centre line.
+TEST(SeamSuggestions, TrouserLegsCutInHalvesSewTheirOutseamsInseamsRisesAndDarts) {
+  const pattern::Style style = vgd::test::trousers_in_halves("TROUSER FRONT", "TROUSER BACK", 2);
+  const Document doc = from_style(style);
+  std::map<std::string, int> count;
+  const auto length = [](double x0, double y0, double x1, double y1) { return std::hypot(x1 - x0, y1 - y0); };
+  for (const auto& s : at_size(doc, "M")) {
+    SCOPED_TRACE(s.name + ": " + s.reason);
+    ++count[s.name];
+    ASSERT_EQ(s.hems.size(), 2u);
+    EXPECT_NEAR(s.length_a, s.length_b, 1e-9) << "drafted to sew without ease";
+    std::set<std::string> pieces;
+    for (const auto& h : s.hems) pieces.insert(std::string(doc.find(h.pattern)->attribute("piece")));
+    if (s.name.find("outseam") != std::string::npos || s.name.find("inseam") != std::string::npos) {
+      EXPECT_EQ(pieces, (std::set<std::string>{"TROUSER FRONT", "TROUSER BACK"}));
+      EXPECT_EQ(doc.find(s.hems[0].pattern)->attribute("piece"), "TROUSER FRONT");
+      EXPECT_FALSE(s.hems[0].reverse);
+      EXPECT_TRUE(s.hems[1].reverse);
+    }
+    if (s.name.find("inseam") != std::string::npos) {
+      EXPECT_NEAR(s.length_a, length(0.19, 0, 0.25, 0.62), 1e-9);
+    }
+    if (s.name.find("outseam") != std::string::npos) {
+      EXPECT_NEAR(s.length_a, length(-0.04, 0.89, -0.05, 0.70) + length(-0.05, 0.70, 0.02, 0), 1e-9);
+    }
+    if (s.name.find("rise") != std::string::npos || s.name.find("dart") != std::string::npos) {
+      EXPECT_EQ(pieces.size(), 1u);
+      EXPECT_EQ(s.hems[0].pattern, s.hems[1].pattern);
+      EXPECT_NE(s.hems[0].reverse, s.hems[1].reverse);
+      EXPECT_EQ(*pieces.begin(), s.name == "front rise" ? "TROUSER FRONT" : s.name == "back rise" ? "TROUSER BACK"
+                                                                                                : *pieces.begin());
+    }
+    if (s.name.find("dart") != std::string::npos) {
+      EXPECT_NE(s.hems[0].from, s.hems[1].from) << "one leg to the other";
+    }
+  }
+  EXPECT_EQ(count, (std::map<std::string, int>{{"back rise", 1},
+                                                {"front rise", 1},
+                                                {"left dart", 2},
+                                                {"left inseam", 1},
+                                                {"left outseam", 1},
+                                                {"right dart", 2},
+                                                {"right inseam", 1},
+                                                {"right outseam", 1}}));
+}
+

@@ -51,14 +51,15 @@ enum class Role {
 
 enum class Side { none, left, right };
 
-// A sleeve cut in two along the arm (Gerber's TEESL FR and TEESL BK): the
-// half on the front of the arm or on its back.
+// A sleeve cut in two along the arm (Gerber's TEESL FR and TEESL BK), or a
+// trouser leg cut as a front and a back (FRONT LEG, TROUSER BACK): the half
+// on the front of the limb or on its back.
 enum class Half { none, front, back };
 
 struct RoleGuess {
   Role role = Role::unknown;
   Side side = Side::none;
-  Half half = Half::none;            // sleeves only: FRONT/FR or BACK/BK beside the sleeve word
+  Half half = Half::none;            // sleeves and legs only: FRONT/FR or BACK/BK beside the sleeve or leg word
   std::string word;                  // the word that decided the role ("" when unknown)
   std::vector<std::string> variant;  // the name's other words (SHORT, LONG, HALF, ...):
                                      // what tells alternatives of one role apart
