@@ -1,4 +1,7 @@
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
@@ -31,6 +34,28 @@ TEST(AtomicWrite, FailedRenameKeepsWhatWasThereAndCleansUp) {
     EXPECT_NE(std::string(e.what()).find("garment.xvc"), std::string::npos) << e.what();
   }
   EXPECT_EQ(vgd::read_file(target / "keep.txt"), "precious");
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1) << "a temporary file was left behind";
+}
+
+// A pipe (as /dev/null or a terminal) named as the output is written into,
+// not replaced by a file: renaming over /dev/null as root replaced the device.
+TEST(AtomicWrite, APipeIsWrittenIntoNotReplaced) {
+  const auto dir = vgd::test::scratch_dir("atomic_fifo");
+  const auto fifo = dir / "out.pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // The reading end, open before the write (the content fits the pipe's buffer).
+  const int in = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(in, 0);
+  vgd::write_file_atomic(fifo, "through the pipe");
+  char buf[64] = {};
+  const ssize_t n = ::read(in, buf, sizeof buf);
+  ::close(in);
+  EXPECT_EQ(std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0), "through the pipe");
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the pipe was replaced";
   int entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
   EXPECT_EQ(entries, 1) << "a temporary file was left behind";

@@ -15,7 +15,9 @@ namespace vgd {
 std::string read_file(const std::filesystem::path& path);
 
 // Writes `content` to `path` atomically (temporary file + fsync + rename).
-// Creates missing parent directories. Throws vgd::Error on failure.
+// Creates missing parent directories. A path that names something other than a
+// regular file or directory (/dev/null, a FIFO) is written in place, never
+// replaced. Throws vgd::Error on failure.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 }  // namespace vgd
