@@ -412,7 +412,7 @@ std::string to_json(const Certificate& c) {
   for (const auto& [k, v] : c.settings) settings[k] = v;
   j["settings"] = settings;
   j["stop"] = {{"reason", c.stop_reason}, {"message", c.stop_message}, {"simulated_s", c.simulated_s},
-               {"wall_s", c.wall_s}, {"frames", c.frames}};
+               {"wall_s", c.wall_s}, {"frames", c.frames}, {"frames_on_fewer_threads", c.frames_on_fewer_threads}};
   json stages = json::array();
   for (const auto& s : c.stages) stages.push_back({{"name", s.name}, {"wall_s", s.wall_s}, {"simulated_s", s.simulated_s}});
   j["stages"] = stages;

@@ -1,11 +1,14 @@
 #include "vgd/sim/run.hpp"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <limits>
 
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/sim/threads.hpp"
 
 namespace vgd::sim {
 
@@ -69,6 +72,9 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
     for (auto* sink : sinks) sink->merged(index, copy_of);
   };
   int calm = 0;  // frames in a row below the rest energy
+  // As many threads as the machine has cores free, up to those asked for
+  // (threads.hpp): the result does not depend on it.
+  ThreadGovernor threads(settings.adapt_threads ? omp_get_max_threads() : 1);
   try {
     sys.apply_prescribed(s);
     merge(false, 0);
@@ -77,6 +83,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
     emit(0);
     for (int k = 1; k <= frames; ++k) {
       // A failing step throws before its frame is emitted: sinks only ever see checked states.
+      threads.before_frame();
       integrator.advance(sys, s, t0 + k / settings.fps);
       merge(true, k);
       emit(k);
@@ -98,6 +105,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   summary.simulated_s = s.t - t0;
   summary.wall_s = wall();
   summary.stats = integrator.stats();
+  summary.frames_on_fewer_threads = threads.frames_reduced();
   for (auto* sink : sinks) sink->end(summary.ok);
   return summary;
 }

@@ -131,11 +131,12 @@ constexpr Reference kBlenderSelf[] = {{"drape-sphere", 13.9, 9.4}};
 
 }  // namespace
 
-SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision) {
+SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision, bool adapt_threads) {
   SceneRecord r;
   r.scene = name;
   r.threads = threads;
   r.self_collision = self_collision;
+  r.adapt_threads = adapt_threads;
   omp_set_num_threads(threads);
   scene::SceneDef def = scene::load_scene(shipped_scene(name));
   if (duration > 0) def.run.duration = duration;
@@ -148,7 +149,9 @@ SceneRecord run_scene(const std::string& name, int threads, double duration, boo
   r.body_triangles = s.avatar ? s.avatar->surface.num_triangles() : 0;
   sim::State st = sim::initial_state(sys.model());
   sim::MemorySink frames;
+  s.run.adapt_threads = adapt_threads;
   const sim::RunSummary sum = sim::run(sys, *integ, st, s.run, {&frames});
+  r.frames_on_fewer_threads = sum.frames_on_fewer_threads;
   r.wall_s = sum.wall_s;
   r.simulated_s = sum.simulated_s;
   r.steps = sum.stats.steps;

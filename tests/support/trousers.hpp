@@ -5,6 +5,7 @@
 // on the front, 7 cm on the back) and a back that rises 4 cm higher at centre
 // back. Cropped: 62 cm inseam, the hem 2 cm narrower on each side than the
 // leg's line. Metres, drawn upright (the warp along +y).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,13 @@ inline pattern::Style trousers_in_halves(const std::string& front_name = "FRONT"
        V(-0.05, 0.70)},
       quantity));
   return s;
+}
+
+// The seams vgd suggests for these trousers cut twice: name -> how many (a
+// waist dart per half, on each leg).
+inline std::map<std::string, int> trousers_seams() {
+  return {{"back rise", 1},   {"front rise", 1},  {"left dart", 2},  {"left inseam", 1},
+          {"left outseam", 1}, {"right dart", 2}, {"right inseam", 1}, {"right outseam", 1}};
 }
 
 }  // namespace vgd::test

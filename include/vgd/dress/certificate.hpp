@@ -89,6 +89,7 @@ struct Certificate {
   std::string stop_message;
   double simulated_s = 0, wall_s = 0;
   int frames = 0;
+  int frames_on_fewer_threads = 0;  // frames run on fewer threads than asked, cores being busy (sim/threads.hpp)
   std::vector<StageTime> stages;
   // Where the time went: seconds per effect (System::profile, all verbs) and
   // the integrator's counts.

@@ -46,6 +46,10 @@ struct RunSettings {
   // closed). 0 = off (the run lasts `duration`).
   double rest_energy = 0.0;
   int rest_frames = 10;
+  // Use fewer OpenMP threads than asked for while other processes keep cores
+  // busy (sim/threads.hpp); false: exactly the number asked for (benchmarks of
+  // a fixed team). The trajectory is the same either way.
+  bool adapt_threads = true;
 };
 
 struct Progress {
@@ -65,6 +69,7 @@ struct RunSummary {
   bool at_rest = false;                // ended by rest detection (before `duration`)
   std::vector<double> times;           // s, per emitted frame
   std::vector<double> kinetic_energy;  // J per particle, per emitted frame (motion since the last frame)
+  int frames_on_fewer_threads = 0;     // frames run on fewer threads than asked for (threads.hpp)
 };
 
 // Runs from s to s.t + settings.duration. s is in the system's current

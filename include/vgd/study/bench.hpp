@@ -61,14 +61,18 @@ struct SceneRecord {
   int seam_pairs = 0, seams_closed = 0;
   bool self_collision = false;
   int crossings = -1;  // cloth triangle pairs passing through each other at the last frame (sewn topology)
+  bool adapt_threads = true;        // fewer threads while cores are busy (sim/threads.hpp)
+  int frames_on_fewer_threads = 0;  // frames it ran on fewer than `threads`
   double per_simulated_s() const { return simulated_s > 0 ? wall_s / simulated_s : 0.0; }
 };
 
 // Runs the shipped scene `name` (drape-sphere, sew-cylinder) on `threads`;
 // frames are kept in memory and measured after the clock stops (exact
 // penetration against the body's triangles). `duration` > 0 replaces the
-// scene's; `self_collision` adds the effect.
-SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision);
+// scene's; `self_collision` adds the effect; `adapt_threads` false keeps all
+// `threads` however busy the machine is.
+SceneRecord run_scene(const std::string& name, int threads, double duration, bool self_collision,
+                      bool adapt_threads = true);
 
 // ---- effects on demand ----------------------------------------------------------------
 

@@ -56,7 +56,7 @@ namespace vgd::sim {
 struct BendingOptions {
   // Forces are computed by OpenMP threads when omp_get_max_threads() > 1 and
   // the model has at least this many hinges; identical to serial, bit for bit.
-  // On a machine shared with other busy processes set OMP_WAIT_POLICY=passive.
+  // A run uses fewer threads while other processes keep cores busy (sim/threads.hpp).
   int parallel_min_hinges = 1000;
 };
 

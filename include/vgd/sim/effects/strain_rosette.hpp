@@ -53,8 +53,8 @@ struct RosetteOptions {
   // Forces are computed by OpenMP threads when omp_get_max_threads() > 1 and
   // the model has at least this many triangles; below, threads cost more than
   // they save. The result is identical to the serial one, bit for bit
-  // (per-element buffers gathered per particle). On a machine shared with
-  // other busy processes set OMP_WAIT_POLICY=passive (docs/fabric-model.md).
+  // (per-element buffers gathered per particle). A run uses fewer threads
+  // while other processes keep cores busy (sim/threads.hpp).
   int parallel_min_triangles = 1000;
 };
 
