@@ -166,11 +166,13 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
 
-  // Trousers cut as half legs (Valentina's FRONT and BACK): in a garment with no
-  // sleeve and no leg, fronts and backs as long as a leg (at least 0.8 m along
-  // their grain) and wider at the top (the seat and the crotch's extension over
-  // the hem) are the front and back halves of the legs. Written in the document
-  // as role="leg" (the name's FRONT or BACK gives the half). A half cut once
+  // Trousers cut as half legs (Valentina's FRONT and BACK): in a garment for the
+  // lower body (a waistband, or its name says trousers or pants) with no sleeve
+  // and no leg, fronts and backs as long as a leg (at least 0.8 m along their
+  // grain) and 15 % wider at one end than at the other (the waist, with the seat
+  // and the crotch's extension, against the hem) are the front and back halves
+  // of the legs. Written in the document as role="leg" (the name's FRONT or BACK
+  // gives the half). A half cut once
   // that says no side and has no fold line is cut as a pair, left and right
   // (quantity 2): one leg's half is never a garment. Said, and written.
   {

@@ -338,10 +338,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   for (const auto& p : ps) {
     const auto& o = *p.o;
     const auto& b = o.shape.boundary;
-    const std::size_t ns = o.stretches.size(), n = b.size();
-    if (ns < 4) continue;
-    double area = 0;
-    for (std::size_t i = 0; i < n; ++i) area += b[i].p.x() * b[(i + 1) % n].p.y() - b[(i + 1) % n].p.x() * b[i].p.y();
+    const std::size_t ns = o.stretches.size();
+    if (ns < 4 || b.size() < 3) continue;
+    const double area = pattern::signed_area(b);
     for (std::size_t k = 0; k < ns; ++k) {
       const std::size_t k2 = (k + 1) % ns;
       const Vec2 a = b[o.stretches[k].first].p, tip = b[o.stretches[k2].first].p, c = b[o.stretches[(k + 2) % ns].first].p;
