@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <ctime>
 #include <thread>
 
 #include "vgd/sim/threads.hpp"
@@ -25,20 +26,21 @@ TEST(ThreadsFor, AsManyThreadsAsCoresTheOthersLeaveFree) {
   EXPECT_EQ(threads_for(-0.3, 2, 2, 1), 2) << "measurement noise below zero counts as idle";
 }
 
-// The machine's counters move forward and the process's CPU time counts its work.
+// The machine's counters move forward and the process's CPU time counts its
+// work: 60 ms of CPU by the C library's clock (however busy the machine).
 TEST(SampleCpu, CountersAdvanceWithWork) {
   const auto a = sample_cpu();
   ASSERT_TRUE(a.has_value()) << "/proc/stat could not be read";
   volatile double x = 0;
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
-  while (std::chrono::steady_clock::now() < until) x = x + 1.0;
+  const std::clock_t start = std::clock();
+  while (static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC < 0.06) x = x + 1.0;
   const auto b = sample_cpu();
   ASSERT_TRUE(b.has_value());
   EXPECT_GE(b->total, a->total);
   EXPECT_GE(b->busy, a->busy);
   EXPECT_LE(b->busy, b->total);
-  EXPECT_GT(b->own_s - a->own_s, 0.03) << "60 ms of spinning used the CPU";
-  EXPECT_GT(b->wall_s - a->wall_s, 0.05);
+  EXPECT_GE(b->own_s - a->own_s, 0.06);
+  EXPECT_GT(b->wall_s - a->wall_s, 0.0);
 }
 
 // One thread asked: nothing changes. Two: the first frame runs on one, and the
