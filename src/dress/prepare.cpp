@@ -199,18 +199,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       pattern::Vec2 up = pattern::Vec2::UnitY();
       if (piece.grain_line && (piece.grain_line->b - piece.grain_line->a).norm() > 0)
         up = (piece.grain_line->b - piece.grain_line->a).normalized();
-      // Its length along the grain, and its widths across it in its top and bottom 15 %.
-      const pattern::Vec2 across(up.y(), -up.x());
-      double lo = 1e300, hi = -1e300;
-      for (const auto& c : piece.boundary) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
-      double b0 = 1e300, b1 = -1e300, t0 = 1e300, t1 = -1e300;
-      for (const auto& c : piece.boundary) {
-        const double u = c.p.dot(across), v = c.p.dot(up);
-        if (v < lo + 0.15 * (hi - lo)) b0 = std::min(b0, u), b1 = std::max(b1, u);
-        if (v > hi - 0.15 * (hi - lo)) t0 = std::min(t0, u), t1 = std::max(t1, u);
-      }
-      const double wide = std::max(t1 - t0, b1 - b0), narrow = std::min(t1 - t0, b1 - b0);
-      legs = hi - lo >= kLegLength && wide >= 1.15 * narrow;
+      const pattern::EndWidths w = pattern::end_widths(piece.boundary, up);
+      legs = w.length >= kLegLength && std::max(w.top, w.bottom) >= 1.15 * std::min(w.top, w.bottom);
     }
     if (legs) {
       std::set<std::string> names;

@@ -346,7 +346,8 @@ int mark_corners(std::vector<ContourPoint>& outline, double min_angle_deg, doubl
   return marked;
 }
 
-bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up) {
+EndWidths end_widths(const std::vector<ContourPoint>& outline, const Vec2& up) {
+  if (outline.empty()) return {};
   const Vec2 across(up.y(), -up.x());
   double lo = 1e300, hi = -1e300;
   for (const auto& c : outline) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
@@ -356,7 +357,12 @@ bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up) {
     if (v < lo + 0.15 * (hi - lo)) b0 = std::min(b0, u), b1 = std::max(b1, u);
     if (v > hi - 0.15 * (hi - lo)) t0 = std::min(t0, u), t1 = std::max(t1, u);
   }
-  return t1 - t0 > b1 - b0;
+  return {b1 - b0, t1 - t0, hi - lo};
+}
+
+bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up) {
+  const EndWidths w = end_widths(outline, up);
+  return w.top > w.bottom;
 }
 
 }  // namespace vgd::pattern

@@ -3,6 +3,7 @@
 
 #include <omp.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -39,7 +40,17 @@ int threads_for(double others, int cores, int asked, int current) {
   return std::clamp(n, 1, std::max(1, asked));
 }
 
-ThreadGovernor::ThreadGovernor(int asked) : asked_(std::max(1, asked)), current_(1), cores_(omp_get_num_procs()) {
+namespace {
+
+// The cores /proc/stat sums over: every online one (the process may be allowed fewer).
+int machine_cores() {
+  const long n = ::sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? static_cast<int>(n) : omp_get_num_procs();
+}
+
+}  // namespace
+
+ThreadGovernor::ThreadGovernor(int asked) : asked_(std::max(1, asked)), current_(1), cores_(machine_cores()) {
   if (asked_ > 1) {
     last_ = sample_cpu();
     current_ = last_ ? 1 : asked_;  // nothing to measure with: as asked

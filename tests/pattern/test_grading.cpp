@@ -181,4 +181,12 @@ TEST(WiderAtTop, TellsTheWaistEndOfALegFromItsHem) {
   for (auto& c : sideways) c.p = Vec2(c.p.y(), -c.p.x());
   EXPECT_TRUE(wider_at_top(sideways, Vec2(1, 0)));
   EXPECT_FALSE(wider_at_top(sideways, Vec2(-1, 0)));
+  // The widths among the vertices of each end's 15 %, and the length.
+  const EndWidths w = end_widths(leg, Vec2(0, 1));
+  EXPECT_NEAR(w.bottom, 0.15, 1e-12);
+  EXPECT_NEAR(w.top, 0.40, 1e-12);
+  EXPECT_NEAR(w.length, 1.0, 1e-12);
+  const EndWidths s = end_widths(sideways, Vec2(-1, 0));
+  EXPECT_NEAR(s.bottom, 0.40, 1e-12) << "up reversed: the waist is the bottom end";
+  EXPECT_NEAR(s.top, 0.15, 1e-12);
 }

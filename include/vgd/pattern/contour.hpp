@@ -81,8 +81,15 @@ bool unfold_about_mirror_line(Piece& piece, double tol_m = 1e-4);
 // Returns the number of loops removed; the outline stays counter-clockwise.
 int remove_small_self_loops(std::vector<ContourPoint>& outline, double max_loop_fraction = 0.05);
 
-// Whether the outline, measured across `up` (unit), is wider among its vertices in
-// its top 15 % along `up` than in its bottom 15 %: a leg's waist end against its hem.
+// The outline's widths across `up` (unit) among its vertices in its bottom 15 %
+// and its top 15 % along `up`, and its length along `up` (m).
+struct EndWidths {
+  double bottom = 0, top = 0, length = 0;
+};
+EndWidths end_widths(const std::vector<ContourPoint>& outline, const Vec2& up);
+
+// Whether the outline is wider at its top end than at its bottom one
+// (end_widths): a leg's waist end against its hem.
 bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up);
 
 }  // namespace vgd::pattern

@@ -12,8 +12,10 @@
 // choice changes the wall time only, never the result.
 //
 // Cores left = cores − (busy cores measured over the frame − this process's
-// own CPU use over it), from /proc/stat and the process CPU clock (Linux);
-// elsewhere, or when they cannot be read, the number asked for is used.
+// own CPU use over it), from /proc/stat and the process CPU clock (Linux),
+// over every online core: a process confined to fewer cores (CPU affinity, a
+// container's quota) is not told apart from one that may use them all.
+// Elsewhere, or when they cannot be read, the number asked for is used.
 #include <cstdint>
 #include <optional>
 
