@@ -104,6 +104,7 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
   // settles in about a second instead of swinging for ten).
   e.viscosity = sim::ViscosityDef{0.0, 2.0};
   e.collision = sim::BodyCollisionDef{};
+  if (o.between_particles) e.collision->vertex_clearance = 0.001;
   // Seams pull hard enough to slide cloth over the body against friction: a
   // pair pulls with 200 N/m near closing and at most 1 N; implicit Euler keeps
   // that stable. Pairs merge at 2 mm. Measured on the shipped garments
@@ -218,6 +219,8 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
   }
   c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
+  c.settings.emplace_back("between_particles",
+                          def.effects.collision && def.effects.collision->vertex_clearance > 0.0 ? "on" : "off");
   c.stop_reason = !r.summary.ok ? "error" : r.summary.at_rest ? "rest" : "time limit";
   c.stop_message = r.summary.error;
   c.simulated_s = r.summary.simulated_s;

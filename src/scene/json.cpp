@@ -453,6 +453,8 @@ EffectsDef read_effects(Object o) {
     c.number("grid_spacing", d.grid.spacing, dim::length);
     c.number("grid_band", d.grid.band, dim::length);
     c.vector("body_velocity", d.velocity, dim::velocity);
+    c.number("vertex_clearance", d.vertex_clearance, dim::length);
+    c.number("vertex_reach", d.vertex_reach, dim::length);
     c.string("seam_response", e.collision_seam_response);
     if (e.collision_seam_response != "seed" && e.collision_seam_response != "slide" &&
         e.collision_seam_response != "glide" &&

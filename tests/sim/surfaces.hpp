@@ -1,5 +1,5 @@
 #pragma once
-// Closed colliders built inside the collision tests: a UV sphere and a box,
+// Closed colliders built inside the collision tests: a UV sphere, a box and a rod,
 // counter-clockwise seen from outside (vgd::mesh::SurfaceMesh).
 #include <cmath>
 
@@ -52,6 +52,33 @@ inline mesh::SurfaceMesh box(const Vec3& h, const Mat3& rotation = Mat3::Identit
   for (const auto& q : quads) {
     m.triangles.push_back({q[0], q[1], q[2]});
     m.triangles.push_back({q[0], q[2], q[3]});
+  }
+  orient_outward(m, centre);
+  return m;
+}
+
+// A closed rod along x (a capped cylinder of `segments` sides), `length` long,
+// centred on `centre`, its side cut every `ring` metres along its length.
+inline mesh::SurfaceMesh rod(double radius, double length, int segments = 16, double ring = 0.01,
+                             const Vec3& centre = Vec3::Zero()) {
+  mesh::SurfaceMesh m;
+  const int rings = std::max(1, static_cast<int>(std::ceil(length / ring)));
+  for (int i = 0; i <= rings; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const double a = 2.0 * M_PI * k / segments;
+      m.vertices.push_back(centre + Vec3(-0.5 * length + length * i / rings, radius * std::cos(a), radius * std::sin(a)));
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const int a = i * segments + k, b = i * segments + (k + 1) % segments;
+      m.triangles.push_back({a, b, b + segments});
+      m.triangles.push_back({a, b + segments, a + segments});
+    }
+  for (int end = 0; end <= 1; ++end) {
+    const int c = static_cast<int>(m.vertices.size());
+    m.vertices.push_back(centre + Vec3(end ? 0.5 * length : -0.5 * length, 0, 0));
+    const int base = end * rings * segments;
+    for (int k = 0; k < segments; ++k) m.triangles.push_back({c, base + k, base + (k + 1) % segments});
   }
   orient_outward(m, centre);
   return m;

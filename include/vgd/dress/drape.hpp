@@ -36,6 +36,10 @@ struct DrapeOptions {
   std::string material_id;               // MATERIAL id in material_xvc; "" = its first
   double spacing = 0.0;                  // m; 0 = the document's mesh.spacing, else 0.015
   bool self_collision = true;  // cloth kept from passing through cloth (docs/drape.md)
+  // The body kept out of the cloth between particles as well (sharp body
+  // parts and the cloth's edge midpoints and triangle centres;
+  // docs/collisions.md, "Between particles").
+  bool between_particles = false;
   double time_limit = 8.0;               // s of simulated time
   double rest_energy = 5e-9;             // J: mean kinetic energy per particle counted as rest (~1.5 cm/s at 40 mg)
   int rest_frames = 10;                  // consecutive frames below it

@@ -22,6 +22,22 @@
 // Sticky particles (seed 002's belt and sleeve points): once they touch the
 // body they stay where they touched, on the surface, with zero velocity.
 //
+// The body between particles: a particle kept outside the body does not keep
+// the body out of the cloth between particles. Where the body is sharper than
+// the mesh (toes, heels, the crotch under a seam junction) it would pass
+// through the triangles. After the particles, two more rules
+// (docs/collisions.md, "Between particles"):
+//  - cloth points: every edge's midpoint and triangle's centre found inside
+//    the body is moved out to its surface along the body's normal;
+//  - body points: every point of a sharp part of the body (its vertices of a
+//    radius of curvature under 3 cm, and points 6 mm apart on their
+//    triangles) whose projection falls inside a nearby cloth triangle and
+//    that lies less than `vertex_clearance` under the triangle's plane (seen
+//    along the body's normal) pushes the triangle out.
+// Both share the push among the particles by barycentric weight, stop the
+// approach, take off slip by Coulomb friction (provot), and mark the
+// particles as touching the body along the push.
+//
 // Prescribed (pinned) particles are left alone only if listed in `fixed`: an
 // effect cannot see the other effects' prescribed particles.
 #include <memory>
@@ -75,6 +91,21 @@ struct BodyCollisionDef {
   // frame, and the response acts on the velocity relative to the body.
   // Deforming bodies (an animated avatar) are not supported.
   Vec3 velocity = Vec3::Zero();
+  // The body between particles (above). m: a cloth triangle's plane is kept
+  // this far out from every sharp body point under it (0.001 when on); 0,
+  // the default, turns both rules off. Off by default: on the shared real
+  // garments they keep the body from showing through the tights' and
+  // leggings' crotch and the trousers' heels, but the drapes' outcome moves
+  // with them (docs/collisions.md, "Between particles").
+  // Smaller than the particles' clearance, so that a chord lying over a
+  // convex body (sag L²/8R: 0.6 mm for a 1.5 cm edge over a 5 cm radius) is
+  // left alone and only a body sharper than the mesh is pushed against.
+  double vertex_clearance = 0.0;
+  // m: a vertex deeper than this through a triangle's plane is taken to be on
+  // the far side of something (a limb between), not through the triangle: a
+  // step moves cloth by millimetres, so a vertex kept out at every step is
+  // never found deeper.
+  double vertex_reach = 0.01;
 };
 
 struct BodyCollisionStats {
@@ -84,6 +115,10 @@ struct BodyCollisionStats {
   double max_clearance_violation = 0.0;  // m: largest (clearance − distance) found before correction, whole run
   long queries = 0;                // distance queries made
   long contacts = 0;               // particle-step contacts handled, whole run
+  long vertex_contacts = 0;        // body vertex-triangle corrections, whole run
+  double max_vertex_depth = 0.0;   // m: deepest a body vertex was found past a triangle's plane (before correction)
+  long sample_contacts = 0;        // cloth edge-midpoint and triangle-centre corrections, whole run
+  double max_sample_depth = 0.0;   // m: deepest such a point was found inside the body (before correction)
 };
 
 std::unique_ptr<Effect> make_body_collision(const Model& model, const BodyCollisionDef& def);
