@@ -32,6 +32,16 @@ double max_speed(const VecX& v) {
   return s;
 }
 
+// A light fabric on 2 g particles (seed-like springs, N/m), gravity and air
+// drag, with the collision given.
+std::vector<std::unique_ptr<Effect>> light_cloth(const Model& m, std::unique_ptr<Effect> collision) {
+  MassSpringMaterial mat;
+  mat.warp = mat.weft = 60.0;
+  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
+  mat.damping = 0.02;
+  return effects(make_mass_spring(m, {mat}), make_gravity({}), make_viscosity({0.0, 2.0}), std::move(collision));
+}
+
 struct Drape {
   double max_depth, top_height, speed, centre_speed, max_pen_seen;
   int in_contact;
@@ -48,13 +58,9 @@ Drape drape(ContactResponse response, BodyQuery query, Method method) {
   def.body = test::uv_sphere(r);
   def.response = response;
   def.query = query;
-  MassSpringMaterial mat;
-  mat.warp = mat.weft = 60.0;  // N/m: a light fabric on 2 g particles
-  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
-  mat.damping = 0.02;
   auto coll = make_body_collision(m, def);
   Effect* c = coll.get();
-  System sys(m, effects(make_mass_spring(m, {mat}), make_gravity({}), make_viscosity({0.0, 2.0}), std::move(coll)));
+  System sys(m, light_cloth(m, std::move(coll)));
   IntegratorSettings st;
   st.method = method;
   st.step = method == Method::implicit_euler ? 0.005 : 0.002;
@@ -158,13 +164,9 @@ Towel drop_on_rod(double vertex_clearance) {
   BodyCollisionDef def;
   def.body = test::rod(r, 0.5);
   def.vertex_clearance = vertex_clearance;
-  MassSpringMaterial mat;
-  mat.warp = mat.weft = 60.0;
-  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
-  mat.damping = 0.02;
   auto coll = make_body_collision(m, def);
   Effect* c = coll.get();
-  System sys(m, effects(make_mass_spring(m, {mat}), make_gravity({}), make_viscosity({0.0, 2.0}), std::move(coll)));
+  System sys(m, light_cloth(m, std::move(coll)));
   IntegratorSettings st;
   st.method = Method::implicit_euler;
   st.step = 0.005;

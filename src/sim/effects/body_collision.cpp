@@ -41,6 +41,27 @@ constexpr double kSharpRadius = 0.03;
 // unless the body is thinner than it: a particle within a triangle's edge).
 constexpr double kSampleNear = 0.02;
 
+// Runs visit(i, mine) for i in [0, n), on OpenMP threads when `parallel`,
+// each thread appending to its own list, and joins the lists in thread
+// order: with the static schedule that is the order of i, as on one thread,
+// so what is found does not depend on the threads.
+template <class T, class Visit>
+std::vector<T> gather_in_order(int n, bool parallel, Visit&& visit) {
+  std::vector<std::vector<T>> by_thread;
+#pragma omp parallel if (parallel)
+  {
+#pragma omp single
+    by_thread.resize(omp_get_num_threads());
+    std::vector<T> mine;
+#pragma omp for schedule(static) nowait
+    for (int i = 0; i < n; ++i) visit(i, mine);
+    by_thread[omp_get_thread_num()] = std::move(mine);
+  }
+  std::vector<T> out;
+  for (auto& list : by_thread) out.insert(out.end(), list.begin(), list.end());
+  return out;
+}
+
 
 class BodyCollision final : public Effect {
  public:
@@ -423,26 +444,15 @@ class BodyCollision final : public Effect {
     const double cv = 0.0;  // m: the surface itself (see above)
     double* x = s.x.data();
     double* v = s.v.data();
-    inside_.clear();
-    std::vector<std::vector<int>> by_thread;
-#pragma omp parallel if (ns >= 2 * kParallelMinParticles)
-    {
-#pragma omp single
-      by_thread.resize(omp_get_num_threads());
-      std::vector<int> mine;
-#pragma omp for schedule(static) nowait
-      for (int i = 0; i < ns; ++i) {
-        const Sample& sm = samples_[i];
-        // Only where a particle is near the body: the others cannot have it between them.
-        bool near = false;
-        for (int k = 0; k < 3 && !near; ++k) near = sm.p[k] >= 0 && dist_[rep_[sm.p[k]]] < kSampleNear;
-        if (!near) continue;
-        Vec3 nrm;
-        if (query(sample_at(sm, x) - offset, nrm) < cv) mine.push_back(i);
-      }
-      by_thread[omp_get_thread_num()] = std::move(mine);
-    }
-    for (const auto& f : by_thread) inside_.insert(inside_.end(), f.begin(), f.end());
+    inside_ = gather_in_order<int>(ns, ns >= 2 * kParallelMinParticles, [&](int i, std::vector<int>& mine) {
+      const Sample& sm = samples_[i];
+      // Only where a particle is near the body: the others cannot have it between them.
+      bool near = false;
+      for (int k = 0; k < 3 && !near; ++k) near = sm.p[k] >= 0 && dist_[rep_[sm.p[k]]] < kSampleNear;
+      if (!near) return;
+      Vec3 nrm;
+      if (query(sample_at(sm, x) - offset, nrm) < cv) mine.push_back(i);
+    });
     long pushed = 0;
     double deepest = stats_.max_sample_depth;
     for (int i : inside_) {
@@ -530,41 +540,28 @@ class BodyCollision final : public Effect {
     const auto& bv = bpoint_;
     const double* x = s.x.data();
     auto pos = [&](int p) { return Vec3(Eigen::Map<const Vec3>(x + 3 * rep_[p]) - offset); };
-    // Contacts per thread, joined in thread order: with the static schedule
-    // that is triangle order, as with one thread.
-    std::vector<std::vector<VertexContact>> by_thread;
-#pragma omp parallel if (nt >= kParallelMinParticles)
-    {
-#pragma omp single
-      by_thread.resize(omp_get_num_threads());
-      std::vector<VertexContact> mine;
-#pragma omp for schedule(static) nowait
-      for (int t = 0; t < nt; ++t) {
-        const auto& tri = tris_[t];
-        // A triangle whose corners are all further from the body than its
-        // longest edge and the reach has no body point under it.
-        const double near = std::min({dist_[rep_[tri[0]]], dist_[rep_[tri[1]]], dist_[rep_[tri[2]]]});
-        const Vec3 a = pos(tri[0]), b = pos(tri[1]), c = pos(tri[2]);
-        const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-        if (near > longest + reach) continue;
-        const Frame f(a, b, c);
-        if (!f.valid) continue;
-        Vec3 nrm;
-        double height;
-        const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - reach, hi = a.cwiseMax(b).cwiseMax(c).array() + reach;
-        const auto c0 = cell_coord(lo), c1 = cell_coord(hi);
-        for (int k = c0[2]; k <= c1[2]; ++k)
-          for (int j = c0[1]; j <= c1[1]; ++j) {
-            const int row = cell_index({c0[0], j, k});
-            for (int q = cells_[row]; q < cells_[row + c1[0] - c0[0] + 1]; ++q)
-              if (f.under(bv[q], vnormal_[q], cv, reach, &nrm, nullptr, &height) && through(bv[q], nrm, height))
-                mine.push_back({t, q});
-          }
-      }
-      by_thread[omp_get_thread_num()] = std::move(mine);
-    }
-    found_.clear();
-    for (const auto& f : by_thread) found_.insert(found_.end(), f.begin(), f.end());
+    found_ = gather_in_order<VertexContact>(nt, nt >= kParallelMinParticles, [&](int t, std::vector<VertexContact>& mine) {
+      const auto& tri = tris_[t];
+      // A triangle whose corners are all further from the body than its
+      // longest edge and the reach has no body point under it.
+      const double near = std::min({dist_[rep_[tri[0]]], dist_[rep_[tri[1]]], dist_[rep_[tri[2]]]});
+      const Vec3 a = pos(tri[0]), b = pos(tri[1]), c = pos(tri[2]);
+      const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+      if (near > longest + reach) return;
+      const Frame f(a, b, c);
+      if (!f.valid) return;
+      Vec3 nrm;
+      double height;
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - reach, hi = a.cwiseMax(b).cwiseMax(c).array() + reach;
+      const auto c0 = cell_coord(lo), c1 = cell_coord(hi);
+      for (int k = c0[2]; k <= c1[2]; ++k)
+        for (int j = c0[1]; j <= c1[1]; ++j) {
+          const int row = cell_index({c0[0], j, k});
+          for (int q = cells_[row]; q < cells_[row + c1[0] - c0[0] + 1]; ++q)
+            if (f.under(bv[q], vnormal_[q], cv, reach, &nrm, nullptr, &height) && through(bv[q], nrm, height))
+              mine.push_back({t, q});
+        }
+    });
     if (found_.empty()) return;
     long pushed = 0;
     double deepest = stats_.max_vertex_depth;
