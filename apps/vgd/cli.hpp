@@ -71,4 +71,14 @@ void print_json(const nlohmann::json& j);
 // Prints a summary line to stderr unless quiet.
 void say(const Common& common, const std::string& line);
 
+// `vgd bench robustness` (cmd_bench_robustness.cpp): the sweep, or the parts
+// of it the options name.
+struct RobustnessArgs {
+  bool quick = false, json = false, between_particles = false;
+  double time_limit = 8.0;
+  std::vector<std::string> garments, sizes, fabrics, models;
+  std::vector<double> spacings;
+  int jitters = -1;  // -1: the sweep's
+};
+
 }  // namespace vgd::cli

@@ -21,6 +21,7 @@ namespace vgd::cli {
 int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
 // cmd_bench_dress.cpp
 int bench_dress(double spacing, const std::string& size, double time_limit, bool json);
+int bench_robustness(const RobustnessArgs& args);
 }  // namespace vgd::cli
 
 namespace {
@@ -203,6 +204,26 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
   dress->add_option("--time-limit", *dress_limit, "Simulated seconds at most")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  auto* robust = sub->add_subcommand(
+      "robustness", "The T-shirt and the A-line skirt draped over a sweep of mesh spacings (1.2-2.5 cm), sizes "
+                    "(34-42), fabrics, cloth models and 1 um jitters of the start, one thread: clean runs, failure "
+                    "classes and how far jittered runs end apart (hours; --quick: 8 runs, a few minutes)");
+  robust->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
+  robust->add_flag("--quick", o->quick, "The T-shirt and the skirt at 1.5 and 1.9 cm, size 38, one jitter");
+  auto ra = std::make_shared<vgd::cli::RobustnessArgs>();
+  robust->add_option("--time-limit", ra->time_limit, "Simulated seconds at most per run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  robust->add_flag("--between-particles", ra->between_particles, "Drape with vgd drape --between-particles");
+  robust->add_option("--garments", ra->garments, "Only these garment documents (default: data/garments/t-shirt.xvc and a-line-skirt.xvc)")
+      ->delimiter(',');
+  robust->add_option("--spacings", ra->spacings, "Only these mesh spacings, m")->delimiter(',')->check(CLI::PositiveNumber);
+  robust->add_option("--sizes", ra->sizes, "Only these sizes")->delimiter(',');
+  robust->add_option("--fabrics", ra->fabrics, "Only these files of data/materials ('own': the garment's)")->delimiter(',');
+  robust->add_option("--models", ra->models, "Only these cloth models")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"mass-spring", "strain-rosette"}));
+  robust->add_option("--jitters", ra->jitters, "Jittered runs per case (default 2; --quick 1)")->check(CLI::NonNegativeNumber);
   std::vector<CLI::App*> scene_cmds;
   for (const auto& [name, what] :
        {std::pair{"drape-sphere", "A 71 x 71 cloth dropped on a 4 992-triangle sphere, 2.4 s (data/scenes/drape-sphere.json)"},
@@ -218,7 +239,12 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
     scene_cmds.push_back(c);
   }
   return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, accuracy_problems, scene_cmds,
-                                 scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit]() -> int {
+                                 scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit, robust, ra]() -> int {
+    if (robust->parsed()) {
+      ra->quick = o->quick;
+      ra->json = o->json;
+      return vgd::cli::bench_robustness(*ra);
+    }
     if (effects->parsed()) return effects_bench(o->json, o->quick);
     if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, o->json);
     if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out, *accuracy_problems);

@@ -648,6 +648,10 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
     fr.number("duration", def.run.duration, dim::time);
     fr.number("rest_energy", def.run.rest_energy, dim::energy);
     fr.integer("rest_frames", def.run.rest_frames);
+    fr.number("start_jitter", def.run.start_jitter, dim::length);
+    int seed = static_cast<int>(def.run.start_jitter_seed);
+    fr.integer("start_jitter_seed", seed);
+    def.run.start_jitter_seed = static_cast<unsigned>(std::max(seed, 0));
     fr.finish();
   }
   if (const json* o = top.find("output")) def.outputs = read_outputs(*o, "output", c);

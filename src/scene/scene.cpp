@@ -79,6 +79,8 @@ class Checker {
     non_negative("frames.duration", def_.run.duration);
     non_negative("frames.rest_energy", def_.run.rest_energy);
     if (def_.run.rest_frames < 1) fail("frames.rest_frames", "must be >= 1");
+    if (!(def_.run.start_jitter >= 0.0) || def_.run.start_jitter > 0.01)
+      fail("frames.start_jitter", "must be between 0 and 1 cm");
     for (std::size_t i = 0; i < def_.outputs.size(); ++i)
       if (def_.outputs[i].kind == OutputDef::Kind::obj && def_.outputs[i].directory.empty())
         fail("output[" + std::to_string(i) + "].directory", "an OBJ sequence needs a directory");

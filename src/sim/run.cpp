@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/sim/threads.hpp"
@@ -26,6 +27,11 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
 
   VGD_ASSERT(s.x.size() == sys.num_dofs() && s.v.size() == sys.num_dofs(),
              "sim::run takes the state in the system's current (reduced) particle set");
+  if (settings.start_jitter > 0.0) {
+    std::mt19937 rng(settings.start_jitter_seed);
+    std::uniform_real_distribution<double> offset(-settings.start_jitter, settings.start_jitter);
+    for (Eigen::Index k = 0; k < s.x.size(); ++k) s.x[k] += offset(rng);
+  }
   for (auto* sink : sinks) sink->begin(sys.model());
   // Sinks see the model's original particles (seed 002 §3.3: E-Fabric's client
   // keeps an eliminated particle with its survivor's attributes), so every

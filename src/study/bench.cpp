@@ -307,4 +307,87 @@ std::vector<DressRecord> dress_study(double spacing, const std::string& size, do
   return records;
 }
 
+// ---- robustness ---------------------------------------------------------------------
+
+RobustnessOptions robustness_sweep(bool quick) {
+  RobustnessOptions o;
+  o.garments = {data_file("garments/t-shirt.xvc"), data_file("garments/a-line-skirt.xvc")};
+  if (quick) {
+    o.spacings = {0.015, 0.019};
+    o.sizes = {"38"};
+    o.materials = {""};
+    o.models = {scene::ClothModel::mass_spring};
+    o.jitters = 1;
+    return o;
+  }
+  o.spacings = {0.012, 0.015, 0.019, 0.025};
+  o.sizes = {"34", "36", "38", "40", "42"};
+  o.materials = {"", "cotton-jersey.xvc", "denim.xvc"};
+  o.models = {scene::ClothModel::mass_spring, scene::ClothModel::strain_rosette};
+  return o;
+}
+
+namespace {
+
+// The record of one run, and where its particles ended (m, every original particle).
+std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const RobustnessOptions& o) {
+  dress::DrapeOptions d;
+  d.garment = k.garment;
+  d.size = k.size;
+  d.spacing = k.spacing;
+  d.time_limit = o.time_limit;
+  d.between_particles = o.between_particles;
+  if (!k.material.empty()) d.material_xvc = data_file("materials/" + k.material);
+  scene::SceneDef def = dress::drape_scene(d);
+  for (auto& c : def.cloth) c.model = k.model;
+  def.run.start_jitter = k.jitter;
+  def.run.start_jitter_seed = k.seed;
+  RobustnessRecord r;
+  r.run = k;
+  dress::DrapeResult res = dress::run_drape(def, {});
+  r.certificate = std::move(res.certificate);
+  const auto failures = r.certificate.failures();
+  for (const auto& f : failures) {
+    if (r.failure.find(f.kind) != std::string::npos) continue;
+    r.failure += (r.failure.empty() ? "" : ", ") + f.kind;
+  }
+  r.clean = failures.empty();
+  for (const auto& s : r.certificate.strain) r.max_strain = std::max({r.max_strain, s.warp.p95, s.weft.p95});
+  for (const auto& p : r.certificate.placement) r.max_moved = std::max(r.max_moved, p.moved.norm());
+  return {std::move(r), std::move(res.positions)};
+}
+
+}  // namespace
+
+std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& o,
+                                               const std::function<void(const RobustnessRecord&)>& on_record) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  std::vector<RobustnessRecord> records;
+  for (const auto& garment : o.garments)
+    for (const double spacing : o.spacings)
+      for (const auto& size : o.sizes)
+        for (const auto& material : o.materials)
+          for (const auto model : o.models) {
+            if (!scene::model_available(model)) continue;
+            sim::VecX reference;
+            for (int j = 0; j <= o.jitters; ++j) {
+              RobustnessCase k{garment, spacing, size, material, model, j == 0 ? 0.0 : o.jitter,
+                               static_cast<unsigned>(j)};
+              auto [r, x] = drape_case(k, o);
+              if (j == 0) {
+                reference = x;
+              } else if (reference.size() == x.size()) {
+                r.spread = 0.0;
+                for (Eigen::Index i = 0; i + 2 < x.size(); i += 3)
+                  r.spread = std::max(r.spread, (x.segment<3>(i) - reference.segment<3>(i)).norm());
+              }
+              if (on_record) on_record(r);
+              records.push_back(std::move(r));
+            }
+          }
+  omp_set_num_threads(threads);
+  return records;
+}
+
 }  // namespace vgd::study

@@ -31,6 +31,28 @@ TEST(Run, EmitsOneFramePerFrameTimeIncludingTheStart) {
   EXPECT_EQ(r.stats.steps, 30 * 9);  // 1/30 s in steps of at most 4 ms
 }
 
+// The start moved by a jitter: every coordinate within it, the same seed the
+// same start, another seed another one.
+TEST(Run, StartJitterMovesEachCoordinateWithinItBySeed) {
+  auto frame0 = [](double jitter, unsigned seed) {
+    System sys(particles(50), effects(make_gravity({})));
+    auto integ = make_integrator({});
+    State s = initial_state(sys.model());
+    MemorySink mem;
+    RunSettings rs{30.0, 0.0};
+    rs.start_jitter = jitter;
+    rs.start_jitter_seed = seed;
+    EXPECT_TRUE(run(sys, *integ, s, rs, {&mem}).ok);
+    return VecX(mem.frames.front() - sys.model().x0);
+  };
+  const VecX a = frame0(1e-6, 1), b = frame0(1e-6, 1), c = frame0(1e-6, 2), none = frame0(0.0, 1);
+  EXPECT_LE(a.cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_GT(a.cwiseAbs().maxCoeff(), 5e-7);  // 150 uniform draws: one lands in the outer half
+  EXPECT_EQ(a, b);
+  EXPECT_GT((a - c).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(none.cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(Run, ABlowUpStopsTheRunAndNoNaNReachesASink) {
   auto probe = std::make_unique<Probe>();
   probe->force = [](const Eval& e, VecX& f) {

@@ -50,6 +50,12 @@ struct RunSettings {
   // busy (sim/threads.hpp); false: exactly the number asked for (benchmarks of
   // a fixed team). The trajectory is the same either way.
   bool adapt_threads = true;
+  // m: every coordinate of the start moved by a uniform random offset in
+  // [-start_jitter, start_jitter] (seeded by start_jitter_seed) before the
+  // first frame: robustness studies compare runs that differ by that much
+  // (vgd bench robustness). 0 = the start as given.
+  double start_jitter = 0.0;
+  unsigned start_jitter_seed = 1;
 };
 
 struct Progress {

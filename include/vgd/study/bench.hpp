@@ -12,6 +12,7 @@
 // its wall-time budget as partial (rates are per simulated second reached).
 // Each run sets the OpenMP thread count it is asked for; the functions that
 // run several restore the count they found.
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <utility>
@@ -106,5 +107,56 @@ struct DressRecord {
 // particles), on 1 thread and every core. `on_record` sees each record.
 std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
                                      const std::function<void(const DressRecord&)>& on_record = {});
+
+// ---- robustness ---------------------------------------------------------------------
+
+// One drape of the robustness sweep: a garment at a mesh spacing, a size, a
+// fabric and a cloth model, from its start moved by `jitter` (m; 0 = as
+// placed) with seed `seed`.
+struct RobustnessCase {
+  std::filesystem::path garment;
+  double spacing = 0.015;     // m
+  std::string size;           // "" = the document's sample size
+  std::string material;       // a file of data/materials ("" = the garment's own, else shirting)
+  scene::ClothModel model = scene::ClothModel::mass_spring;
+  double jitter = 0.0;        // m
+  unsigned seed = 1;
+};
+
+struct RobustnessRecord {
+  RobustnessCase run;
+  dress::Certificate certificate;
+  bool clean = false;        // passed: rest, seams closed, no penetration, no crossing, no failure
+  std::string failure;       // the failure classes, comma-separated ("" when clean)
+  double max_strain = 0.0;   // the largest warp or weft strain p95 over the pieces (1)
+  double max_moved = 0.0;    // m: the largest placement displacement
+  // m: the largest distance of a particle from where the same case's run
+  // without jitter ended (jittered runs; -1 for that run itself or when its
+  // particles differ).
+  double spread = -1.0;
+};
+
+struct RobustnessOptions {
+  std::vector<std::filesystem::path> garments;
+  std::vector<double> spacings;          // m
+  std::vector<std::string> sizes;        // "" = the sample size
+  std::vector<std::string> materials;    // files of data/materials; "" = the garment's own
+  std::vector<scene::ClothModel> models;
+  int jitters = 2;                       // jittered runs per case, besides the one as placed
+  double jitter = 1e-6;                  // m
+  double time_limit = 8.0;               // s simulated
+  bool between_particles = false;        // DrapeOptions::between_particles
+};
+
+// The sweep docs/drape.md reports: the project's T-shirt and A-line skirt at
+// spacings 1.2, 1.5, 1.9 and 2.5 cm, sizes 34–42, shirting, jersey and denim,
+// both cloth models, two jitters of 1 µm. `quick`: the T-shirt and the skirt
+// at 1.5 and 1.9 cm, size 38, shirting, mass-spring, one jitter.
+RobustnessOptions robustness_sweep(bool quick);
+
+// Drapes every case on one thread (cases in order; a case's jittered runs
+// right after its run as placed). `on_record` sees each record as it is made.
+std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& options,
+                                               const std::function<void(const RobustnessRecord&)>& on_record = {});
 
 }  // namespace vgd::study
