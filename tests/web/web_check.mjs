@@ -88,7 +88,9 @@ try {
         return res;
       }, p.lengths);
     }
-    // A live scene moves by itself: compare a field now and `after_s` later.
+    // A live scene moves by itself: compare a field now with it at six
+    // moments over the next `after_s` (the largest move of each point; one
+    // sample could fall where a looped animation is back where it began).
     if (p.motion) {
       const read = () => page.evaluate(({ node, field }) => {
         const v = document.querySelector('x3d-canvas').browser.currentScene.getNamedNode(node)[field];
@@ -98,10 +100,16 @@ try {
       }, p.motion);
       await page.waitForTimeout(300);
       const first = await read();
-      await page.waitForTimeout(1000 * p.motion.after_s);
-      const second = await read();
+      const moved = first.map(() => 0);
+      let second = first;
+      for (let k = 0; k < 6; k++) {
+        await page.waitForTimeout((1000 * p.motion.after_s) / 6);
+        second = await read();
+        first.forEach((q, i) => {
+          if (second[i]) moved[i] = Math.max(moved[i], Math.hypot(q[0] - second[i][0], q[1] - second[i][1], q[2] - second[i][2]));
+        });
+      }
       let maxMoved = 0;
-      const moved = first.map((q, i) => (second[i] ? Math.hypot(q[0] - second[i][0], q[1] - second[i][1], q[2] - second[i][2]) : 0));
       for (const d of moved) maxMoved = Math.max(maxMoved, d);
       r.motion = { count: first.length, count_later: second.length, max_moved: maxMoved,
         pinned_moved: (p.motion.pinned || []).map((i) => moved[i] ?? -1) };
