@@ -62,6 +62,7 @@ int bench_robustness(const RobustnessArgs& a) {
     for (const auto& m : a.models) o.models.push_back(scene::parse_cloth_model(m));
   }
   if (a.jitters >= 0) o.jitters = a.jitters;
+  study::check_robustness(o);
   const bool json = a.json, between_particles = a.between_particles;
   const double time_limit = a.time_limit;
   const std::size_t runs = o.garments.size() * o.spacings.size() * o.sizes.size() * o.materials.size() *

@@ -329,8 +329,9 @@ RobustnessOptions robustness_sweep(bool quick) {
 
 namespace {
 
-// The record of one run, and where its particles ended (m, every original particle).
-std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const RobustnessOptions& o) {
+// The drape scene of one case (throws vgd::Error naming a garment or a
+// material file that is not there).
+scene::SceneDef case_scene(const RobustnessCase& k, const RobustnessOptions& o) {
   dress::DrapeOptions d;
   d.garment = k.garment;
   d.size = k.size;
@@ -338,7 +339,12 @@ std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const
   d.time_limit = o.time_limit;
   d.between_particles = o.between_particles;
   if (!k.material.empty()) d.material_xvc = data_file("materials/" + k.material);
-  scene::SceneDef def = dress::drape_scene(d);
+  return dress::drape_scene(d);
+}
+
+// The record of one run, and where its particles ended (m, every original particle).
+std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const RobustnessOptions& o) {
+  scene::SceneDef def = case_scene(k, o);
   for (auto& c : def.cloth) c.model = k.model;
   def.run.start_jitter = k.jitter;
   def.run.start_jitter_seed = k.seed;
@@ -359,8 +365,18 @@ std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const
 
 }  // namespace
 
+void check_robustness(const RobustnessOptions& o) {
+  for (const auto model : o.models)
+    if (!scene::model_available(model))
+      throw Error("vgd bench robustness", "", std::string("the cloth model ") + scene::to_string(model) +
+                                              " is not in this build");
+  for (const auto& garment : o.garments)
+    for (const auto& material : o.materials) case_scene({garment, 0.015, "", material}, o);
+}
+
 std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& o,
                                                const std::function<void(const RobustnessRecord&)>& on_record) {
+  check_robustness(o);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   std::vector<RobustnessRecord> records;
@@ -369,7 +385,6 @@ std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& o,
       for (const auto& size : o.sizes)
         for (const auto& material : o.materials)
           for (const auto model : o.models) {
-            if (!scene::model_available(model)) continue;
             sim::VecX reference;
             for (int j = 0; j <= o.jitters; ++j) {
               RobustnessCase k{garment, spacing, size, material, model, j == 0 ? 0.0 : o.jitter,

@@ -45,6 +45,8 @@ class MeshNormals {
   // normal inside, an edge's on an edge, a vertex's at a corner.
   Vec3 pseudo_normal(int t, const Vec3& b) const;
   const Vec3& face_normal(int t) const { return face_[t]; }
+  // Vertex v's angle-weighted pseudo-normal (zero for a vertex of no triangle).
+  const Vec3& vertex_normal(int v) const { return vertex_[v]; }
 
  private:
   std::vector<Vec3> face_, vertex_;
@@ -97,6 +99,7 @@ class TriangleBvh {
   Closest closest(const Vec3& p, double max_distance = std::numeric_limits<double>::infinity()) const;
 
   int num_nodes() const { return static_cast<int>(nodes_.size()); }
+  const MeshNormals& normals() const { return normals_; }
 
  private:
   struct Node {

@@ -154,8 +154,13 @@ struct RobustnessOptions {
 // at 1.5 and 1.9 cm, size 38, shirting, mass-spring, one jitter.
 RobustnessOptions robustness_sweep(bool quick);
 
+// Throws vgd::Error naming a garment or material file that is not there, or
+// a cloth model this build lacks, before any drape is run.
+void check_robustness(const RobustnessOptions& options);
+
 // Drapes every case on one thread (cases in order; a case's jittered runs
-// right after its run as placed). `on_record` sees each record as it is made.
+// right after its run as placed; check_robustness first). `on_record` sees
+// each record as it is made.
 std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& options,
                                                const std::function<void(const RobustnessRecord&)>& on_record = {});
 

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include <omp.h>
@@ -101,8 +102,8 @@ class BodyCollision final : public Effect {
       build_cloth_samples();
     }
     rep_.resize(n_);
+    std::iota(rep_.begin(), rep_.end(), 0);
     dist_.assign(n_, 0.0);
-    for (int i = 0; i < n_; ++i) rep_[i] = i;
     constrains_ = d.response == ContactResponse::slide || !d.sticky_particles.empty() ||
                   (!d.seam_particles.empty() && d.seam_contact != SeamContact::glide);
   }
@@ -309,63 +310,61 @@ class BodyCollision final : public Effect {
   // compressed rows.
   void build_vertex_grid() {
     const auto& bv0 = def_.body.vertices;
-    if (bv0.empty()) return;
-    // Area-weighted vertex normals (the sim library does not link the mesh
-    // library's CGAL code, which has its own).
+    const auto& tris = def_.body.triangles;
     const int nv = static_cast<int>(bv0.size());
-    std::vector<Vec3> vn(bv0.size(), Vec3::Zero());
-    auto valid = [&](const std::array<int, 3>& t) {
-      return t[0] >= 0 && t[1] >= 0 && t[2] >= 0 && t[0] < nv && t[1] < nv && t[2] < nv;
-    };
-    for (const auto& t : def_.body.triangles) {
-      if (!valid(t)) continue;
-      const Vec3 n = (bv0[t[1]] - bv0[t[0]]).cross(bv0[t[2]] - bv0[t[0]]);  // twice the area
-      for (int k : t) vn[k] += n;
-    }
-    for (Vec3& n : vn)
-      if (n.squaredNorm() > 0.0) n.normalize();
-    // The points: the sharp vertices, and on the triangles that have one,
-    // points on a lattice kBodySample apart (their normals interpolated), so
-    // that a coarse body's faces and ridges between vertices push as well as
-    // its corners.
-    // Sharp: a convex part of radius R lies under a
-    // chord of length L between particles kept `clearance` out by the sag
-    // L²/8R, which reaches the vertex clearance only where R < L²/8(c − cv)
-    // (2.5 cm for a 2 cm edge; kSharpRadius = 3 cm); flatter and concave parts stay under the
+    const MeshNormals& normals = bvh_.normals();
+    // The points: the sharp vertices, and over the triangles that have one,
+    // points on a lattice kBodySample apart (inside each triangle, and on
+    // each of its edges once), their normals interpolated, so that a coarse
+    // body's faces and ridges between vertices push as well as its corners.
+    // Sharp: a convex part of radius R lies under a chord of length L
+    // between particles kept `clearance` out by the sag L²/8R, which reaches
+    // the vertex clearance only where R < L²/8(c − cv) (2.5 cm for a 2 cm
+    // edge; kSharpRadius = 3 cm); flatter and concave parts stay under the
     // cloth by themselves. A vertex's sharpness is its largest normal
     // curvature towards a neighbour, 2 n·(p − q)/|p − q|².
-    std::vector<double> sharp(bv0.size(), 0.0);
-    for (const auto& t : def_.body.triangles) {
-      if (!valid(t)) continue;
+    std::vector<double> sharp(nv, 0.0);
+    for (const auto& t : tris)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
-          if (a == b) continue;
           const Vec3 e = bv0[t[a]] - bv0[t[b]];
           const double l2 = e.squaredNorm();
-          if (l2 > 0.0) sharp[t[a]] = std::max(sharp[t[a]], 2.0 * vn[t[a]].dot(e) / l2);
+          if (a != b && l2 > 0.0)
+            sharp[t[a]] = std::max(sharp[t[a]], 2.0 * normals.vertex_normal(t[a]).dot(e) / l2);
         }
-    }
-    std::vector<char> keep(bv0.size(), 0);
+    std::vector<char> keep(nv, 0);
     for (int k = 0; k < nv; ++k)
-      if (vn[k].squaredNorm() > 0.0 && sharp[k] * kSharpRadius > 1.0) {
+      if (normals.vertex_normal(k).allFinite() && normals.vertex_normal(k).squaredNorm() > 0.0 &&
+          sharp[k] * kSharpRadius > 1.0) {
         keep[k] = 1;
         bpoint_.push_back(bv0[k]);
-        vnormal_.push_back(vn[k]);
+        vnormal_.push_back(normals.vertex_normal(k));
       }
-    for (const auto& t : def_.body.triangles) {
-      if (!valid(t) || !(keep[t[0]] || keep[t[1]] || keep[t[2]])) continue;
-      const Vec3 &A = bv0[t[0]], &B = bv0[t[1]], &C = bv0[t[2]];
-      const double longest = std::max({(B - A).norm(), (C - B).norm(), (A - C).norm()});
-      const int m = std::min(kMaxLattice, static_cast<int>(std::ceil(longest / kBodySample)));
-      for (int i = 0; i <= m; ++i)
-        for (int j = 0; i + j <= m; ++j) {
-          if ((i == 0 && j == 0) || i == m || j == m) continue;  // the corners
-          const double wb = static_cast<double>(i) / m, wc = static_cast<double>(j) / m, wa = 1.0 - wb - wc;
-          const Vec3 n = wa * vn[t[0]] + wb * vn[t[1]] + wc * vn[t[2]];
-          if (!(n.squaredNorm() > 0.0)) continue;
-          bpoint_.push_back(wa * A + wb * B + wc * C);
-          vnormal_.push_back(n.normalized());
-        }
+    // Lattice point i, j of m over corners A, B, C (weights 1 − (i + j)/m, i/m, j/m).
+    auto add = [&](const std::array<int, 3>& t, int i, int j, int m) {
+      const double wb = static_cast<double>(i) / m, wc = static_cast<double>(j) / m, wa = 1.0 - wb - wc;
+      const Vec3 n = wa * normals.vertex_normal(t[0]) + wb * normals.vertex_normal(t[1]) +
+                     wc * normals.vertex_normal(t[2]);
+      if (!(n.squaredNorm() > 0.0) || !n.allFinite()) return;
+      bpoint_.push_back(wa * bv0[t[0]] + wb * bv0[t[1]] + wc * bv0[t[2]]);
+      vnormal_.push_back(n.normalized());
+    };
+    auto divisions = [&](int u, int v) {
+      return std::clamp(static_cast<int>(std::ceil((bv0[u] - bv0[v]).norm() / kBodySample)), 1, kMaxLattice);
+    };
+    std::vector<std::array<int, 2>> edges;
+    for (const auto& t : tris) {
+      if (!(keep[t[0]] || keep[t[1]] || keep[t[2]])) continue;
+      const int m = std::max({divisions(t[0], t[1]), divisions(t[1], t[2]), divisions(t[2], t[0])});
+      for (int i = 1; i < m; ++i)
+        for (int j = 1; i + j < m; ++j) add(t, i, j, m);
+      for (int k = 0; k < 3; ++k) edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (const auto& e : edges) {
+      const int m = divisions(e[0], e[1]);
+      for (int i = 1; i < m; ++i) add({e[0], e[1], e[1]}, i, 0, m);
     }
     const auto& bv = bpoint_;
     if (bv.empty()) return;
@@ -442,8 +441,7 @@ class BodyCollision final : public Effect {
   void push_cloth_samples_out(State& s, const Vec3& offset, const Vec3& vb) {
     const int ns = static_cast<int>(samples_.size());
     const double cv = 0.0;  // m: the surface itself (see above)
-    double* x = s.x.data();
-    double* v = s.v.data();
+    const double* x = s.x.data();
     inside_ = gather_in_order<int>(ns, ns >= 2 * kParallelMinParticles, [&](int i, std::vector<int>& mine) {
       const Sample& sm = samples_[i];
       // Only where a particle is near the body: the others cannot have it between them.
@@ -462,32 +460,41 @@ class BodyCollision final : public Effect {
       if (d >= cv || nrm.squaredNorm() == 0.0) continue;
       deepest = std::max(deepest, -d);
       const int k = sm.p[2] < 0 ? 2 : 3;
-      const double w = 1.0 / k;
-      double im[3] = {0, 0, 0}, sum = 0.0;
-      int p[3];
-      for (int j = 0; j < k; ++j) {
-        p[j] = rep_[sm.p[j]];
-        im[j] = (role_[p[j]] & kFixed) || contact_[p[j]] == kStuckContact ? 0.0 : 1.0;
-        sum += w * w * im[j];
-      }
-      if (sum <= 0.0) continue;
-      const double lift = (cv - d) / sum;
-      Vec3 vel = Vec3::Zero();
-      for (int j = 0; j < k; ++j) vel += w * (Eigen::Map<const Vec3>(v + 3 * p[j]) - vb);
-      const double vn = vel.dot(nrm);
-      const double stop = vn < 0.0 ? -vn / sum : 0.0;
-      const Vec3 slip = friction_change(vel, nrm, vn, cv - d);
-      for (int j = 0; j < k; ++j) {
-        if (im[j] == 0.0) continue;
-        Eigen::Map<Vec3>(x + 3 * p[j]) += (w * lift) * nrm - (h_ * w / sum) * slip;
-        Eigen::Map<Vec3>(v + 3 * p[j]) += (w * stop) * nrm - (w / sum) * slip;
-        touch(p[j], nrm);
-      }
-      ++pushed;
+      const int p[3] = {rep_[sm.p[0]], rep_[sm.p[1]], k == 3 ? rep_[sm.p[2]] : rep_[sm.p[0]]};
+      const Vec3 w = k == 3 ? Vec3::Constant(1.0 / 3.0) : Vec3(0.5, 0.5, 0.0);
+      pushed += push_out(s, p, w, nrm, cv - d, vb);
     }
     if (pushed > 0) follow_representatives(s);
     stats_.sample_contacts += pushed;
     stats_.max_sample_depth = deepest;
+  }
+  // Moves the point of the cloth with barycentric weights w on particles p
+  // out by `gap` (m) along the body's normal `nrm`, shared by weight and
+  // inverse mass (pinned and stuck particles do not move; a zero weight
+  // takes nothing), stops its approach, takes slip off it by friction, and
+  // marks its particles as touching. False when none of them can move.
+  bool push_out(State& s, const int p[3], const Vec3& w, const Vec3& nrm, double gap, const Vec3& vb) {
+    double* x = s.x.data();
+    double* v = s.v.data();
+    double im[3], sum = 0.0;
+    Vec3 vel = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      im[k] = (role_[p[k]] & kFixed) || contact_[p[k]] == kStuckContact ? 0.0 : 1.0;
+      sum += w[k] * w[k] * im[k];
+      vel += w[k] * (Eigen::Map<const Vec3>(v + 3 * p[k]) - vb);
+    }
+    if (sum <= 0.0) return false;
+    const double vn = vel.dot(nrm);
+    const double lift = gap / sum, stop = vn < 0.0 ? -vn / sum : 0.0;
+    const Vec3 slip = friction_change(vel, nrm, vn, gap);
+    for (int k = 0; k < 3; ++k) {
+      const double share = w[k] * im[k];
+      if (share == 0.0) continue;
+      Eigen::Map<Vec3>(x + 3 * p[k]) += (share * lift) * nrm - (h_ * share / sum) * slip;
+      Eigen::Map<Vec3>(v + 3 * p[k]) += (share * stop) * nrm - (share / sum) * slip;
+      touch(p[k], nrm);
+    }
+    return true;
   }
   // Coulomb friction at a point of the cloth between particles that the body
   // pushed out by `gap` (m) and whose approach `vn` (m/s, < 0 approaching)
@@ -565,8 +572,7 @@ class BodyCollision final : public Effect {
     if (found_.empty()) return;
     long pushed = 0;
     double deepest = stats_.max_vertex_depth;
-    double* xs = s.x.data();
-    double* vs = s.v.data();
+    const double* xs = s.x.data();
     for (const VertexContact& vc : found_) {
       const auto& tri = tris_[vc.triangle];
       int p[3];
@@ -581,26 +587,7 @@ class BodyCollision final : public Effect {
           !through(bv[vc.vertex], nrm, height))
         continue;  // an earlier push lifted it
       deepest = std::max(deepest, -height);
-      // Inverse masses: pinned corners do not move.
-      double im[3], sum = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        im[k] = (role_[p[k]] & kFixed) || contact_[p[k]] == kStuckContact ? 0.0 : 1.0;
-        sum += w[k] * w[k] * im[k];
-      }
-      if (sum <= 0.0) continue;
-      const double lift = (cv - height) / sum;
-      Vec3 vel = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) vel += w[k] * (Eigen::Map<const Vec3>(vs + 3 * p[k]) - vb);
-      const double vn = vel.dot(nrm);
-      const double stop = vn < 0.0 ? -vn / sum : 0.0;
-      const Vec3 slip = friction_change(vel, nrm, vn, cv - height);
-      for (int k = 0; k < 3; ++k) {
-        if (im[k] == 0.0) continue;
-        Eigen::Map<Vec3>(xs + 3 * p[k]) += (w[k] * im[k] * lift) * nrm - (h_ * w[k] * im[k] / sum) * slip;
-        Eigen::Map<Vec3>(vs + 3 * p[k]) += (w[k] * im[k] * stop) * nrm - (w[k] * im[k] / sum) * slip;
-        touch(p[k], nrm);
-      }
-      ++pushed;
+      pushed += push_out(s, p, w, nrm, cv - height, vb);
     }
     if (pushed > 0) follow_representatives(s);
     stats_.vertex_contacts += pushed;
