@@ -710,7 +710,21 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         best_bottom = bottomness[r];
       }
     }
-    if (best && best->score >= opts.min_score) found.push_back(*best);
+    if (!best || best->score < opts.min_score) continue;
+    found.push_back(*best);
+    // On legs cut twice (leggings: no opening, pulled on), the band is a loop:
+    // its two ends, the edges shorter than half its longest, meet at centre
+    // back and are sewn to each other (left open, the body showed through a
+    // slit there). In contour order one end runs up and the other down, so
+    // the second is reversed: bottom corner to bottom corner.
+    if (!lg || wb.o->quantity != 1) continue;
+    std::vector<const Edge*> ends;
+    for (const auto& e : wb.edges)
+      if (e.length < 0.5 * longest) ends.push_back(&e);
+    if (ends.size() != 2) continue;
+    auto s = make("waistband ends", size, {{wb.o, ends[0]->k0, ends[0]->k1, false}, {wb.o, ends[1]->k0, ends[1]->k1, true}},
+                  1.0, "waistband " + wb.o->piece + " closed into a loop: its two ends, at centre back", 0, 0, 0.02);
+    if (s.score >= opts.min_score) found.push_back(s);
   }
 
   // 3. Legs cut twice (tights, leggings: one piece per leg, no side seam): the hem is

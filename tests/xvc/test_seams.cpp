@@ -485,3 +485,37 @@ TEST(SeamSuggestions, TrouserLegsCutInHalvesSewTheirOutseamsInseamsRisesAndDarts
   EXPECT_EQ(count, vgd::test::trousers_seams());
 }
 
+
+// Leggings (Gerber ORILEGWB): a leg cut twice and a rectangular waistband cut
+// once. The band is sewn to both legs' waists and closed into a loop, its two
+// ends (the short edges) to each other, bottom corner to bottom corner; a
+// skirt's waistband, with its opening, keeps its ends apart
+// (ReproduceTheDraftedSkirtSeams lists the skirt's seams exactly).
+TEST(SeamSuggestions, ALeggingsWaistbandIsClosedIntoALoop) {
+  VGD_REQUIRE_SHARED();
+  Document doc = shared_document("ORILEGWB_AAMA.DXF");
+  // The leg is read as a leg by elimination (vgd dress writes it in the
+  // document); its name says nothing.
+  Journal journal;
+  Editor ed(doc, journal);
+  for (const auto* p : std::vector<const Node*>(doc.patterns()))
+    if (p->attribute("piece") == "ORILEG WB LL") ed.set_attribute(*doc.path_of(p->id()), "role", "leg");
+  std::map<std::string, int> count;
+  for (const auto& s : at_size(doc, "36")) {
+    ++count[s.name];
+    if (s.name != "waistband ends") continue;
+    ASSERT_EQ(s.hems.size(), 2u);
+    EXPECT_EQ(s.hems[0].pattern, s.hems[1].pattern);
+    EXPECT_EQ(doc.find(s.hems[0].pattern)->attribute("piece"), "ORILEG WB WB");
+    EXPECT_NE(s.hems[0].from, s.hems[1].from) << "the two ends, not one edge twice";
+    EXPECT_NE(s.hems[0].reverse, s.hems[1].reverse) << "one end read up, the other down";
+    EXPECT_NEAR(s.length_a, s.length_b, 1e-4);
+    EXPECT_GT(s.score, 0.9);
+  }
+  EXPECT_EQ(count, (std::map<std::string, int>{{"back rise", 1},
+                                               {"front rise", 1},
+                                               {"left inseam", 1},
+                                               {"right inseam", 1},
+                                               {"waist seam", 1},
+                                               {"waistband ends", 1}}));
+}
