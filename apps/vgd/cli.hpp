@@ -36,7 +36,7 @@ enum Exit : int {
 struct Common {
   bool quiet = false;    // no progress or summaries on stderr
   bool verbose = false;  // also print informational diagnostics
-  int threads = 1;       // OpenMP threads for the engine's force kernels (0 = all cores)
+  int threads = 0;       // OpenMP threads for the engine's force kernels (0 = all cores)
 };
 
 struct Command {
@@ -74,7 +74,7 @@ void say(const Common& common, const std::string& line);
 // `vgd bench robustness` (cmd_bench_robustness.cpp): the sweep, or the parts
 // of it the options name.
 struct RobustnessArgs {
-  bool quick = false, json = false, between_particles = false;
+  bool quick = false, json = false, between_particles = true;
   double time_limit = 8.0;
   std::vector<std::string> garments, sizes, fabrics, models;
   std::vector<double> spacings;

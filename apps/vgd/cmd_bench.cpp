@@ -214,7 +214,8 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
   robust->add_option("--time-limit", ra->time_limit, "Simulated seconds at most per run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  robust->add_flag("--between-particles", ra->between_particles, "Drape with vgd drape --between-particles");
+  robust->add_flag("--between-particles,!--no-between-particles", ra->between_particles,
+                   "Drape with vgd drape --between-particles (the default) or --no-between-particles");
   robust->add_option("--garments", ra->garments, "Only these garment documents (default: data/garments/t-shirt.xvc and a-line-skirt.xvc)")
       ->delimiter(',');
   robust->add_option("--spacings", ra->spacings, "Only these mesh spacings, m")->delimiter(',')->check(CLI::PositiveNumber);

@@ -69,7 +69,7 @@ int bench_robustness(const RobustnessArgs& a) {
                            o.models.size() * static_cast<std::size_t>(o.jitters + 1);
   if (!json) {
     std::printf("%zu runs, 1 thread, %s s simulated at most%s\n", runs, vgd::format_fixed(time_limit, 1).c_str(),
-                between_particles ? ", --between-particles" : "");
+                between_particles ? "" : ", --no-between-particles");
     std::printf("%-13s %6s %5s %-18s %-15s %8s %7s %7s %8s %7s %6s %7s %7s %9s  %s\n", "garment", "mesh", "size",
                 "fabric", "model", "jitter", "rest s", "wall s", "seams", "pen mm", "cross", "strain", "moved",
                 "spread", "outcome");

@@ -23,7 +23,7 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
-  bool self_collision = true, frames = false, json = false, between = false;
+  bool self_collision = true, frames = false, json = false, between = true;
 };
 
 vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
@@ -62,9 +62,9 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("--self-collision,!--no-self-collision", o->self_collision,
                 "Keep the cloth from passing through itself (default on, off for --quality preview; "
                 "--no-self-collision is about 3x faster and may leave cloth crossing cloth)");
-  sub->add_flag("--between-particles", o->between,
-                "Also keep the body out of the cloth between particles (sharp parts: toes, heels, a crotch "
-                "under a seam junction; docs/collisions.md)");
+  sub->add_flag("--between-particles,!--no-between-particles", o->between,
+                "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
+                "heels, a crotch under a seam junction; docs/collisions.md)");
   sub->add_flag("--frames", o->frames, "Also write every frame as OBJ into OUTPUT/frames/");
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");

@@ -27,7 +27,7 @@ struct Options {
   std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter", trj;
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
-  bool previews = true, json = false, between = false;
+  bool previews = true, json = false, between = true;
 };
 
 vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common) {
@@ -54,8 +54,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
   sub->add_option("--views", o->views, "Preview views (vgd render --views)")->capture_default_str();
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
-  sub->add_flag("--between-particles", o->between,
-                "Also keep the body out of the cloth between particles (vgd drape --between-particles)");
+  sub->add_flag("--between-particles,!--no-between-particles", o->between,
+                "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");

@@ -20,9 +20,12 @@ int main(int argc, char** argv) {
   Common common;
   app.add_flag("-q,--quiet", common.quiet, "No progress, summaries or warnings on stderr (errors still shown)");
   app.add_flag("-v,--verbose", common.verbose, "Also show informational messages (units found, repairs made)");
-  // One thread unless asked: OpenMP's spinning barriers make small scenes much
-  // slower when the cores are shared with other work (docs/performance.md).
-  app.add_option("--threads", common.threads, "Threads for the simulation's force kernels (0 = all cores)")
+  // Every core by default: a simulation run uses fewer threads while other
+  // processes keep cores busy (sim/threads.hpp), so more threads are never
+  // slower than one on a shared machine (docs/performance.md, "Threads").
+  app.add_option("--threads", common.threads,
+                 "Threads for the simulation's force kernels (0 = all cores, fewer while other processes keep "
+                 "them busy)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 

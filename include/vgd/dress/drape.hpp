@@ -38,8 +38,9 @@ struct DrapeOptions {
   bool self_collision = true;  // cloth kept from passing through cloth (docs/drape.md)
   // The body kept out of the cloth between particles as well (sharp body
   // parts and the cloth's edge midpoints and triangle centres;
-  // docs/collisions.md, "Between particles").
-  bool between_particles = false;
+  // docs/collisions.md, "Between particles"). Off, a crotch or a heel shows
+  // through the cloth between particles that all stay outside the body.
+  bool between_particles = true;
   double time_limit = 8.0;               // s of simulated time
   double rest_energy = 5e-9;             // J: mean kinetic energy per particle counted as rest (~1.5 cm/s at 40 mg)
   int rest_frames = 10;                  // consecutive frames below it

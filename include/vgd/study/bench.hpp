@@ -145,7 +145,7 @@ struct RobustnessOptions {
   int jitters = 2;                       // jittered runs per case, besides the one as placed
   double jitter = 1e-6;                  // m
   double time_limit = 8.0;               // s simulated
-  bool between_particles = false;        // DrapeOptions::between_particles
+  bool between_particles = true;         // DrapeOptions::between_particles
 };
 
 // The sweep docs/drape.md reports: the project's T-shirt and A-line skirt at
