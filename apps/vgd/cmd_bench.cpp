@@ -20,7 +20,7 @@ namespace vgd::cli {
 // cmd_accuracy.cpp
 int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
 // cmd_bench_dress.cpp
-int bench_dress(double spacing, const std::string& size, double time_limit, bool json);
+int bench_dress(double spacing, const std::string& size, double time_limit, bool between_particles, bool json);
 int bench_robustness(const RobustnessArgs& args);
 }  // namespace vgd::cli
 
@@ -201,6 +201,9 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   dress->add_option("--size", *dress_size, "Garment and mannequin size")->capture_default_str();
+  auto dress_between = std::make_shared<bool>(true);
+  dress->add_flag("--between-particles,!--no-between-particles", *dress_between,
+                  "Keep the body out of the cloth between particles (the drape's default) or not");
   dress->add_option("--time-limit", *dress_limit, "Simulated seconds at most")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -240,14 +243,15 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
     scene_cmds.push_back(c);
   }
   return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, accuracy_problems, scene_cmds,
-                                 scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit, robust, ra]() -> int {
+                                 scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit, dress_between, robust,
+                                 ra]() -> int {
     if (robust->parsed()) {
       ra->quick = o->quick;
       ra->json = o->json;
       return vgd::cli::bench_robustness(*ra);
     }
     if (effects->parsed()) return effects_bench(o->json, o->quick);
-    if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, o->json);
+    if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, *dress_between, o->json);
     if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out, *accuracy_problems);
     for (auto* c : scene_cmds)
       if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self);

@@ -43,13 +43,13 @@ nlohmann::json to_json(const study::DressRecord& r) {
 
 }  // namespace
 
-int bench_dress(double spacing, const std::string& size, double time_limit, bool json) {
+int bench_dress(double spacing, const std::string& size, double time_limit, bool between_particles, bool json) {
   if (!json)
-    std::printf("dress: a-line-skirt.xvc + t-shirt.xvc, size %s, spacing %s m, to rest or %s s simulated; target < %s s wall\n",
+    std::printf("dress: a-line-skirt.xvc + t-shirt.xvc, size %s, spacing %s m, to rest or %s s simulated%s; target < %s s wall\n",
                 size.c_str(), format_fixed(spacing, 3).c_str(), format_fixed(time_limit, 1).c_str(),
-                format_fixed(kTargetWallS, 0).c_str());
+                between_particles ? "" : ", --no-between-particles", format_fixed(kTargetWallS, 0).c_str());
   bool all_passed = true;
-  const auto records = study::dress_study(spacing, size, time_limit, [&](const study::DressRecord& rec) {
+  const auto records = study::dress_study(spacing, size, time_limit, between_particles, [&](const study::DressRecord& rec) {
     all_passed = all_passed && rec.certificate.passed();
     if (json) return;
     const auto& c = rec.certificate;

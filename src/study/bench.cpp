@@ -285,13 +285,14 @@ std::vector<EffectsRecord> effects_study(bool quick, const std::function<void(co
 }
 
 std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
-                                     const std::function<void(const DressRecord&)>& on_record) {
+                                     bool between_particles, const std::function<void(const DressRecord&)>& on_record) {
   dress::DrapeOptions o;
   o.garment = data_file("garments/a-line-skirt.xvc");
   o.over = {data_file("garments/t-shirt.xvc")};
   o.size = size;
   o.spacing = spacing;
   o.time_limit = time_limit;
+  o.between_particles = between_particles;
   const scene::SceneDef def = dress::drape_scene(o);
   const int threads = omp_get_max_threads();
   std::vector<DressRecord> records;

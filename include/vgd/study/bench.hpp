@@ -104,8 +104,10 @@ struct DressRecord {
 
 // The project's A-line skirt with the T-shirt over it, from flat pieces to
 // rest on the mannequin of `size`, at `spacing` (m; 0.019 gives about 5 000
-// particles), on 1 thread and every core. `on_record` sees each record.
+// particles), on 1 thread and every core, the body kept out between
+// particles or not (DrapeOptions::between_particles). `on_record` sees each record.
 std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
+                                     bool between_particles = true,
                                      const std::function<void(const DressRecord&)>& on_record = {});
 
 // ---- robustness ---------------------------------------------------------------------
