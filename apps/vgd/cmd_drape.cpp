@@ -53,15 +53,15 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
   sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
   sub->add_option("--quality", o->quality,
-                  "Quality preset: preview (no self-collision unless asked), standard (the default: 4 implicit "
-                  "steps per frame) or precise (8 steps per frame); measured cost and difference in "
-                  "docs/accuracy-vs-time.md")
+                  "Quality preset: preview (stops at 10x the rest threshold: sooner, less settled), standard "
+                  "(the default: 4 implicit steps per frame) or precise (8 steps per frame); measured cost and "
+                  "difference in docs/accuracy-vs-time.md")
       ->check(CLI::IsMember({"preview", "standard", "precise"}));
   sub->add_option("--spacing", o->spacing, "Mesh spacing, m (default: the document's mesh.spacing, else 0.015)")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--self-collision,!--no-self-collision", o->self_collision,
-                "Keep the cloth from passing through itself (default on, off for --quality preview; "
-                "--no-self-collision is about 3x faster and may leave cloth crossing cloth)");
+                "Keep the cloth from passing through itself (default on; --no-self-collision is about 3x "
+                "faster and leaves cloth crossing cloth)");
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
                 "heels, a crotch under a seam junction; docs/collisions.md)");
@@ -92,10 +92,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.time_limit = o->time_limit;
     d.spacing = o->spacing;
     d.quality = scene::parse_quality(o->quality);
-    // Preview drapes without self-collision unless told otherwise: about 4x
-    // faster, cloth may end through cloth (docs/accuracy-vs-time.md).
-    const bool told = sub->get_option("--self-collision")->count() > 0;
-    d.self_collision = told ? o->self_collision : d.quality != scene::Quality::preview;
+    d.self_collision = o->self_collision;
     d.between_particles = o->between;
     if (!o->avatar.empty()) {
       d.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);

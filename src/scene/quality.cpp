@@ -31,7 +31,7 @@ IntegratorDef quality_integrator(Quality q, bool contact) {
     s.method = sim::Method::implicit_euler;
     // 20 ms steps (2 per frame) were measured slower to settle than 10 ms
     // and rode a skirt 24 cm up the body: preview keeps 10 ms (vgd drape's
-    // preview drops self-collision instead).
+    // preview stops sooner instead).
     d.iterations_per_frame = q == Quality::precise ? 8 : 4;
     // A 1 % residual is what a picture needs (Baraff & Witkin stop early
     // too); the Newton acceptance test still rejects a step that makes things worse.

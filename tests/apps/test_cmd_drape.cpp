@@ -482,17 +482,18 @@ TEST(CliDrape, DraftedTShirtInSize34SewsItsArmpitsAndComesToRest) {
 }
 
 // --quality: the preset lands in the certificate with its settings; preview
-// drops self-collision unless asked for it, precise halves the step.
-TEST(CliDrape, QualityPresetsSetTheStepAndSelfCollision) {
+// keeps self-collision and stops at ten times the rest threshold, precise
+// halves the step; --no-self-collision is the user's choice, whatever the preset.
+TEST(CliDrape, QualityPresetsSetTheStepAndTheRestThreshold) {
   const auto garment = (source_dir() / "data/garments/a-line-skirt.xvc").string();
   struct Case {
     std::vector<std::string> extra;
-    std::string quality, step, self_collision;
+    std::string quality, step, self_collision, rest;
   };
-  for (const auto& k : {Case{{"--quality", "preview"}, "preview", "0.01 s", "off"},
-                        Case{{"--quality", "preview", "--self-collision"}, "preview", "0.01 s", "on"},
-                        Case{{}, "standard", "0.01 s", "on"},
-                        Case{{"--quality", "precise"}, "precise", "0.005 s", "on"}}) {
+  for (const auto& k : {Case{{"--quality", "preview"}, "preview", "0.01 s", "on", "5e-08 J per particle"},
+                        Case{{"--quality", "preview", "--no-self-collision"}, "preview", "0.01 s", "off", "5e-08 J per particle"},
+                        Case{{}, "standard", "0.01 s", "on", "5e-09 J per particle"},
+                        Case{{"--quality", "precise"}, "precise", "0.005 s", "on", "5e-09 J per particle"}}) {
     const auto out = scratch_dir("drape-quality-" + k.quality + k.self_collision);
     std::vector<std::string> args{"drape", garment, "--time-limit", "0.02", "-q", "-o", out.string()};
     args.insert(args.end(), k.extra.begin(), k.extra.end());
@@ -502,6 +503,7 @@ TEST(CliDrape, QualityPresetsSetTheStepAndSelfCollision) {
     EXPECT_EQ(c["settings"]["quality"], k.quality);
     EXPECT_EQ(c["settings"]["step"], k.step) << k.quality;
     EXPECT_EQ(c["settings"]["self_collision"], k.self_collision) << k.quality;
+    EXPECT_EQ(c["settings"]["rest_energy"], k.rest) << k.quality;
   }
   EXPECT_EQ(run_vgd({"drape", garment, "--quality", "ultra", "-q"}).code, 2);  // a usage error
 }

@@ -105,24 +105,22 @@ TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
     h.click("quality");
     h.click("quality:" + name);
     EXPECT_EQ(o.quality, q) << name;
-    // Preview drapes without self-collision unless ticked, as vgd drape does.
-    EXPECT_EQ(o.self_collision, q != vgd::scene::Quality::preview) << name;
+    // Every preset keeps self-collision, as vgd drape does.
+    EXPECT_TRUE(o.self_collision) << name;
     vgd::dress::DrapeOptions d = o;
     d.garment = kSkirt;
     const auto def = vgd::dress::drape_scene(d);
     ASSERT_TRUE(def.integrator.preset);
     EXPECT_EQ(*def.integrator.preset, q) << name;
   }
-  // Ticking self-collision by hand outlasts a preset change.
+  // Unticking self-collision by hand outlasts a preset change.
+  h.click("self-collision");
+  EXPECT_FALSE(o.self_collision);
   h.click("quality");
   h.click("quality:preview");
-  h.click("self-collision");
-  EXPECT_TRUE(o.self_collision);
   h.click("quality");
   h.click("quality:precise");
-  h.click("quality");
-  h.click("quality:preview");
-  EXPECT_TRUE(o.self_collision);
+  EXPECT_FALSE(o.self_collision);
 }
 
 TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {

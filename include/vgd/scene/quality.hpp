@@ -11,7 +11,7 @@
 //   with contact — implicit Euler (the explicit methods' step limits fall to
 //   microseconds under contact springs), CG to a 1 % residual, steps per
 //   25 fps frame:
-//     preview   4 (10 ms); `vgd drape --quality preview` also drops self-collision
+//     preview   4 (10 ms); `vgd drape --quality preview` stops at 10x the rest threshold
 //     standard  4 (10 ms), vgd drape's default
 //     precise   8 (5 ms)
 //   (20 ms steps settled slower than 10 ms and let a skirt ride up the body;
