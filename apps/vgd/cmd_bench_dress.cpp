@@ -23,8 +23,7 @@ nlohmann::json to_json(const study::DressRecord& r) {
   nlohmann::json stages = nlohmann::json::object(), effects = nlohmann::json::object();
   for (const auto& s : r.certificate.stages) stages[s.name] = {{"wall_s", s.wall_s}, {"simulated_s", s.simulated_s}};
   for (const auto& [name, sec] : r.certificate.effect_seconds) effects[name] = sec;
-  int closed = 0, pairs = 0;
-  for (const auto& s : r.certificate.seams) closed += s.closed, pairs += s.pairs;
+  const auto [closed, pairs] = r.certificate.seam_totals();
   return {{"threads", r.threads},
           {"particles", r.certificate.particles},
           {"body_triangles", r.body_triangles},
@@ -54,8 +53,7 @@ int bench_dress(double spacing, const std::string& size, double time_limit, bool
     if (json) return;
     const auto& c = rec.certificate;
     const int t = rec.threads;
-    int closed = 0, pairs = 0;
-    for (const auto& s : c.seams) closed += s.closed, pairs += s.pairs;
+    const auto [closed, pairs] = c.seam_totals();
     std::printf("\n%d thread%s: %d particles on a %d-triangle body; %s after %s s simulated, %s s wall (%s)\n", t,
                 t == 1 ? "" : "s", c.particles, rec.body_triangles, c.stop_reason.c_str(),
                 format_fixed(c.simulated_s, 2).c_str(), format_fixed(c.wall_s, 2).c_str(),

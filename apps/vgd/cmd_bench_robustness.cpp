@@ -19,8 +19,7 @@ constexpr double kTargetClean = 0.99;  // share of clean runs
 
 nlohmann::json to_json(const study::RobustnessRecord& r) {
   const auto& c = r.certificate;
-  int closed = 0, pairs = 0;
-  for (const auto& s : c.seams) closed += s.closed, pairs += s.pairs;
+  const auto [closed, pairs] = c.seam_totals();
   nlohmann::json j{{"garment", r.run.garment.stem().string()},
                    {"spacing_m", r.run.spacing},
                    {"size", r.run.size},
@@ -82,8 +81,7 @@ int bench_robustness(const RobustnessArgs& a) {
     if (r.spread > widest) widest = r.spread;
     if (json) return;
     const auto& c = r.certificate;
-    int closed = 0, pairs = 0;
-    for (const auto& s : c.seams) closed += s.closed, pairs += s.pairs;
+    const auto [closed, pairs] = c.seam_totals();
     std::printf("%-13s %6s %5s %-18s %-15s %8s %7s %7.1f %8s %7.2f %6d %6.0f%% %5.1fcm %9s  %s%s\n",
                 r.run.garment.stem().string().c_str(), (vgd::format_fixed(r.run.spacing * 100, 1) + "cm").c_str(),
                 r.run.size.empty() ? "-" : r.run.size.c_str(),

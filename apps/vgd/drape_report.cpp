@@ -118,8 +118,7 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
   if (run.json) {
     std::fputs(cert.c_str(), stdout);
   } else if (!common.quiet) {
-    int pairs = 0, closed = 0;
-    for (const auto& s : c.seams) pairs += s.pairs, closed += s.closed;
+    const auto [closed, pairs] = c.seam_totals();
     std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", run.names.c_str(),
                 c.stop_reason.c_str(), fixed(c.simulated_s, 2).c_str(), fixed(c.wall_s, 2).c_str());
     for (const auto& st : c.stages)

@@ -221,6 +221,12 @@ std::vector<Failure> Certificate::warnings() const {
 
 bool Certificate::passed() const { return failures().empty(); }
 
+Certificate::SeamTotals Certificate::seam_totals() const {
+  SeamTotals t;
+  for (const auto& s : seams) t.closed += s.closed, t.pairs += s.pairs;
+  return t;
+}
+
 void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_distance, double contact_distance,
                    bool intersections, Certificate& out) {
   const sim::Model& m = scene.system->model();

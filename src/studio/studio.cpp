@@ -664,8 +664,7 @@ struct Studio::Impl {
     track("progress");
     if (cert) {
       const auto& c = *cert;
-      int pairs = 0, closed = 0;
-      for (const auto& st : c.seams) pairs += st.pairs, closed += st.closed;
+      const auto [closed, pairs] = c.seam_totals();
       const auto warnings = c.warnings();
       ImGui::Text("%s after %.2f s (%.1f s wall), %s%s; seams %d/%d; %d crossings; penetration %.2f mm",
                   c.stop_reason.c_str(), c.simulated_s, c.wall_s, c.passed() ? "checks passed" : "a check failed",

@@ -717,7 +717,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     // back and are sewn to each other (left open, the body showed through a
     // slit there). In contour order one end runs up and the other down, so
     // the second is reversed: bottom corner to bottom corner.
-    if (!lg || wb.o->quantity != 1) continue;
+    if ((fr && bk) || wb.o->quantity != 1) continue;  // sewn to a front and a back: it has an opening
     std::vector<const Edge*> ends;
     for (const auto& e : wb.edges)
       if (e.length < 0.5 * longest) ends.push_back(&e);

@@ -157,6 +157,11 @@ struct Certificate {
   std::vector<Failure> warnings() const;
   // No failure.
   bool passed() const;
+  // Seam pairs closed and in all, over every seam.
+  struct SeamTotals {
+    int closed = 0, pairs = 0;
+  };
+  SeamTotals seam_totals() const;
 };
 
 // Measures the scene's state at full positions x (3N of the original
