@@ -493,8 +493,17 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
     if (uses(ClothModel::strain_rosette)) {
       std::vector<sim::OrthotropicMaterial> per_piece;
       for (const auto& p : s.pieces) per_piece.push_back(orthotropic_of(p.material));
-      effects.push_back(sim::make_strain_rosette(model, per_piece));
-      if (def.cloth.front().bending) effects.push_back(sim::make_bending(model, per_piece));
+      // Against a body (drapes, the contact cases) cloth is compressed as a
+      // matter of course: implicit steps take the Jacobians made definite
+      // (docs/fabric-model.md, 4a). Free cloth (flags, hanging cloth, the
+      // accuracy studies) keeps the exact ones, and Newton's convergence.
+      const bool definite = def.avatar.has_value();
+      sim::RosetteOptions ro;
+      ro.definite_jacobian = definite;
+      effects.push_back(sim::make_strain_rosette(model, per_piece, ro));
+      sim::BendingOptions bo;
+      bo.definite_jacobian = definite;
+      if (def.cloth.front().bending) effects.push_back(sim::make_bending(model, per_piece, bo));
     }
     const auto& e = def.effects;
     if (e.gravity) effects.push_back(sim::make_gravity(*e.gravity));

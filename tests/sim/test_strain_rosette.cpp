@@ -275,7 +275,7 @@ TEST(StrainRosette, ForceIsMinusEnergyGradientAndJacobianMatchesFiniteDifference
   for (const auto& mat : {reference(), measured()}) {
     const bool linear = mat.curve_warp.empty();
     const Model m = sheet(4, 3, 0.05, 0.04);
-    auto eff = make_strain_rosette(m, {mat});
+    auto eff = make_strain_rosette(m, {mat}, RosetteOptions{.definite_jacobian = false});  // the exact one
     const VecX x = random_state(m, 0.002, 7);
     const VecX f = forces(*eff, m, x);
     const Eigen::MatrixXd J = jacobian(*eff, m, x);
@@ -297,6 +297,40 @@ TEST(StrainRosette, ForceIsMinusEnergyGradientAndJacobianMatchesFiniteDifference
       // Jacobian is exact but not symmetric.
       EXPECT_GT((J - J.transpose()).norm(), 1e-3 * J.norm());
     }
+  }
+}
+
+// The Jacobian implicit steps get (RosetteOptions::definite_jacobian): on a
+// sheet compressed 10 % along both yarns and crumpled, where the exact one
+// has positive eigenvalues of −J (the stiffness) below zero, it has none
+// (within rounding) and is symmetric; stretched 5 % along both yarns, every
+// gauge in tension and each triangle's Hessian definite, it is the exact one.
+TEST(StrainRosette, ImplicitStepsGetADefiniteJacobianThatIsExactInTension) {
+  for (const auto& mat : {reference(), measured()}) {
+    const bool linear = mat.curve_warp.empty();
+    const Model m = sheet(5, 4, 0.05, 0.04);
+    auto exact = make_strain_rosette(m, {mat}, RosetteOptions{.definite_jacobian = false});
+    auto definite = make_strain_rosette(m, {mat}, RosetteOptions{.definite_jacobian = true});
+    Mat2 F = 0.9 * Mat2::Identity();
+    VecX x = place(m, tilted_frame(), F, Vec3(0.1, 0.2, 0.3));
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.004, 0.004);
+    for (int k = 0; k < x.size(); ++k) x[k] += u(rng);
+    const Eigen::MatrixXd Ke = -jacobian(*exact, m, x), Kd = -jacobian(*definite, m, x);
+    const double scale = Kd.norm();
+    const auto lowest = [](const Eigen::MatrixXd& K) {
+      return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (K + K.transpose())).eigenvalues().minCoeff();
+    };
+    EXPECT_LT(lowest(Ke), -1e-3 * scale) << (linear ? "linear" : "curves") << ": the exact stiffness is indefinite";
+    EXPECT_GT(lowest(Kd), -1e-12 * scale) << (linear ? "linear" : "curves");
+    EXPECT_LT((Kd - Kd.transpose()).norm(), 1e-12 * scale);
+    F = 1.05 * Mat2::Identity();
+    x = place(m, tilted_frame(), F, Vec3(0.1, 0.2, 0.3));
+    const Eigen::MatrixXd Je = jacobian(*exact, m, x), Jd = jacobian(*definite, m, x);
+    if (linear) EXPECT_LT((Jd - Je).norm(), 1e-10 * Je.norm());
+    // Curves: the exact Jacobian is unsymmetric (no potential); the definite
+    // one is its symmetric part.
+    else EXPECT_LT((Jd - 0.5 * (Je + Je.transpose())).norm(), 1e-10 * Je.norm());
   }
 }
 

@@ -6,12 +6,15 @@
 // [SECTION] curvatures for tests and the lab
 #include "vgd/sim/effects/bending.hpp"
 
+#include "vgd/sim/system.hpp"  // BlockJacobianEffect
+
 #include <omp.h>
 
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 namespace vgd::sim {
 
@@ -162,7 +165,7 @@ Mat3 plate_rigidity(const OrthotropicMaterial& m) {
 // [SECTION] the effect
 // =============================================================================
 
-class Bending final : public Effect {
+class Bending final : public Effect, public BlockJacobianEffect {
  public:
   Bending(const Model& m, const std::vector<OrthotropicMaterial>& per_piece, const BendingOptions& o)
       : n_(m.num_particles()), options_(o) {
@@ -288,9 +291,34 @@ class Bending final : public Effect {
     }
   }
 
-  // −[Σ_T A (C_T ∇θ)ᵀ D (C_T ∇θ) + Σ_h M_h ∇²θ_h], exact.
+  // −[Σ_T A (C_T ∇θ)ᵀ D (C_T ∇θ) + Σ_h M_h ∇²θ_h], exact, or the first sum
+  // alone (BendingOptions::definite_jacobian).
   bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets&) override {
-    assemble_hessian(e.x.data(), dfdx, -1.0);
+    assemble_hessian(
+        e.x.data(), -1.0, [&](int i, int j, const Mat3& b) { add_block(dfdx, i, j, b); }, !options_.definite_jacobian);
+    return true;
+  }
+
+  // The same blocks, in the same order, straight into the System's block
+  // pattern. The blocks come in an order fixed by the mesh (a hinge without
+  // moment still takes its 16 places), so their slots are looked up once per
+  // pattern version and then read in turn.
+  bool add_jacobian_blocks(const Eval& e, JacobianAssembler& out) override {
+    const bool record = blocks_version_ != out.version();
+    if (record) blocks_.clear();
+    std::size_t k = 0;
+    assemble_hessian(e.x.data(), -1.0, [&](int i, int j, const Mat3* b) {
+      int q;
+      if (record)
+        blocks_.push_back(q = out.slot(i, j));
+      else
+        q = blocks_[k++];
+      if (q < 0 || b == nullptr) return;  // prescribed, or a place kept
+      double* d = out.dfdx(q);  // row-major
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) d[3 * r + c] += (*b)(r, c);
+    }, !options_.definite_jacobian);
+    if (record) blocks_version_ = out.version();
     return true;
   }
 
@@ -524,8 +552,18 @@ class Bending final : public Effect {
     return th;
   }
 
-  // scale × Hessian of U as triplets.
-  void assemble_hessian(const double* x, Triplets& out, double scale) const {
+  // scale × Hessian of U, block by block: sink(i, j, block) with a Mat3, or
+  // (for a sink taking a pointer) also sink(i, j, nullptr) for each block of
+  // a hinge without moment, so that the sequence of (i, j) is the mesh's.
+  template <class Sink>
+  void assemble_hessian(const double* x, double scale, Sink&& sink, bool exact = true) const {
+    constexpr bool by_pointer = std::is_invocable_v<Sink, int, int, const Mat3*>;
+    auto put = [&](int i, int j, const Mat3& b) {
+      if constexpr (by_pointer)
+        sink(i, j, &b);
+      else
+        sink(i, j, b);
+    };
     const int nh = hinges(), nt = static_cast<int>(sign_.size());
     const std::vector<double> th = angles(x);
     std::vector<double> grad(12 * nh), M(nh, 0.0);
@@ -533,39 +571,46 @@ class Bending final : public Effect {
       const int* v = &hv_[4 * h];
       dihedral_gradient(v3(x + 3 * v[0]), v3(x + 3 * v[1]), v3(x + 3 * v[2]), v3(x + 3 * v[3]), &grad[12 * h]);
     }
-    // A (C_T ∇θ)ᵀ D (C_T ∇θ) on each triangle's stencil, and the moments M_h.
-    std::vector<int> nodes;
-    Eigen::MatrixXd G, K;
+    // A (C_T ∇θ)ᵀ D (C_T ∇θ) on each triangle's stencil, and the moments M_h:
+    // G = C_T ∇θ in 3 × 3 blocks, one per node of the stencil (its hinges'
+    // corners, at most 4 per hinge), K_ij = A G_iᵀ D G_j.
+    int cap = 0;
+    for (int t = 0; t < nt; ++t) cap = std::max(cap, 4 * (st_off_[t + 1] - st_off_[t]));
+    std::vector<int> nodes(cap);
+    std::vector<Mat3> G(cap), DG(cap);
     for (int t = 0; t < nt; ++t) {
       if (st_off_[t] == st_off_[t + 1]) continue;
       const Mat3& D = D_[mat_[t]];
       const Vec3 mu = area_[t] * (D * curvature(t, th));
-      nodes.clear();
-      for (int s = st_off_[t]; s < st_off_[t + 1]; ++s) {
-        M[st_hinge_[s]] += Eigen::Map<const Vec3>(&st_coef_[3 * s]).dot(mu);
-        for (int role = 0; role < 4; ++role) {
-          const int p = hv_[4 * st_hinge_[s] + role];
-          if (std::find(nodes.begin(), nodes.end(), p) == nodes.end()) nodes.push_back(p);
-        }
-      }
-      const int ns = static_cast<int>(nodes.size());
-      G.setZero(3, 3 * ns);
+      int ns = 0;
+      auto node = [&](int p) {
+        for (int k = 0; k < ns; ++k)
+          if (nodes[k] == p) return k;
+        nodes[ns] = p;
+        G[ns].setZero();
+        return ns++;
+      };
       for (int s = st_off_[t]; s < st_off_[t + 1]; ++s) {
         const int h = st_hinge_[s];
         const Vec3 c = Eigen::Map<const Vec3>(&st_coef_[3 * s]);
-        for (int role = 0; role < 4; ++role) {
-          const int col = static_cast<int>(std::find(nodes.begin(), nodes.end(), hv_[4 * h + role]) - nodes.begin());
-          G.block<3, 3>(0, 3 * col) += c * Eigen::Map<const Vec3>(&grad[12 * h + 3 * role]).transpose();
-        }
+        M[h] += c.dot(mu);
+        for (int role = 0; role < 4; ++role)
+          G[node(hv_[4 * h + role])] += c * Eigen::Map<const Vec3>(&grad[12 * h + 3 * role]).transpose();
       }
-      K = area_[t] * G.transpose() * D * G;
+      for (int j = 0; j < ns; ++j) DG[j] = (scale * area_[t]) * (D * G[j]);
       for (int i = 0; i < ns; ++i)
-        for (int j = 0; j < ns; ++j) add_block(out, nodes[i], nodes[j], scale * K.block<3, 3>(3 * i, 3 * j));
+        for (int j = 0; j < ns; ++j) put(nodes[i], nodes[j], G[i].transpose() * DG[j]);
     }
-    // Σ_h M_h ∇²θ_h: the derivative of the gradient, by dual numbers.
-    for (int h = 0; h < nh; ++h) {
-      if (M[h] == 0.0) continue;
+    // Σ_h M_h ∇²θ_h: the derivative of the gradient, by dual numbers (the
+    // exact Hessian only: BendingOptions::definite_jacobian).
+    for (int h = 0; h < nh && exact; ++h) {
       const int* v = &hv_[4 * h];
+      if (M[h] == 0.0) {
+        if constexpr (by_pointer)
+          for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) sink(v[i], v[j], nullptr);
+        continue;
+      }
       V3<Dual> p[4];
       for (int role = 0; role < 4; ++role) {
         const double* q = x + 3 * v[role];
@@ -582,7 +627,7 @@ class Bending final : public Effect {
       for (int r = 0; r < 12; ++r) Hh.row(r) = g[r].d.transpose();
       Hh = 0.5 * (Hh + Hh.transpose()).eval();
       for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) add_block(out, v[i], v[j], scale * M[h] * Hh.block<3, 3>(3 * i, 3 * j));
+        for (int j = 0; j < 4; ++j) put(v[i], v[j], scale * M[h] * Hh.block<3, 3>(3 * i, 3 * j));
     }
   }
 
@@ -593,7 +638,7 @@ class Bending final : public Effect {
     VecX xr(3 * n_);
     for (int i = 0; i < n_; ++i) at(xr, i) = Vec3(m.uv[i].x(), m.uv[i].y(), 0.0);
     Triplets trip;
-    assemble_hessian(xr.data(), trip, 1.0);
+    assemble_hessian(xr.data(), 1.0, [&](int i, int j, const Mat3& b) { add_block(trip, i, j, b); });
     k_bound_ = particle_row_sums(trip, n_);
   }
 
@@ -620,6 +665,8 @@ class Bending final : public Effect {
   // the step's scratch
   std::vector<double> normal_, theta_, mu_, hf_;
   VecX k_bound_;
+  std::vector<int> blocks_;  // the Hessian's block slots in assembly order (add_jacobian_blocks)
+  long blocks_version_ = -1;
 };
 
 }  // namespace

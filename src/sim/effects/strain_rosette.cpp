@@ -6,7 +6,11 @@
 // [SECTION] public kernels
 #include "vgd/sim/effects/strain_rosette.hpp"
 
+#include "vgd/sim/system.hpp"
+
 #include <omp.h>
+
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -209,7 +213,8 @@ inline void gauge_gradient(const Gauges& g, const Vec3& s, const double* Ti, dou
 //   K = Σ_kl H_kl ∇q_k ∇q_lᵀ + Σ_k g_k ∇²q_k,
 //   H = A Tinvᵀ (Jᵀ D J + Σ_m σ_m ∇²_C ε_m) Tinv,   J = ∂(ε_x, ε_y, γ)/∂(C11, C22, C12),
 //   ∇_{k+1} q_k = 2 d_k = −∇_k q_k,   ∇²q_k = 2 [I −I; −I I] on its two vertices.
-void hessian_blocks(const Gauges& g, const Vec3& s, const Mat3& D, const double* Ti, double A, Mat3 K[3][3]) {
+void hessian_blocks(const Gauges& g, const Vec3& s, const Mat3& D, const double* Ti, double A, Mat3 K[3][3],
+                    bool definite = false) {
   const double gam = g.eps[2], sxy = g.sx * g.sy;
   Mat3 J;
   J << 0.5 / g.sx, 0, 0,                                   //
@@ -226,9 +231,17 @@ void hessian_blocks(const Gauges& g, const Vec3& s, const Mat3& D, const double*
   HC(0, 2) += h02, HC(2, 0) += h02;
   HC(1, 2) += h12, HC(2, 1) += h12;
   const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> T(Ti);
-  const Mat3 H = A * T.transpose() * HC * T;
+  Mat3 H = A * T.transpose() * HC * T;
   double gq[3];
   gauge_gradient(g, s, Ti, A, gq);
+  if (definite) {
+    // Symmetrised, its negative eigenvalues to 0; the gauges' stress terms in
+    // tension only (RosetteOptions::definite_jacobian). Then K = Σ H_kl ∇q_k
+    // ∇q_lᵀ + Σ g_k ∇²q_k is a sum of positive semi-definite terms.
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (H + H.transpose()));
+    H = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    for (double& v : gq) v = std::max(v, 0.0);
+  }
   // a[i][k] = ∇_i q_k.
   Vec3 a[3][3];
   for (int i = 0; i < 3; ++i)
@@ -256,7 +269,7 @@ void hessian_blocks(const Gauges& g, const Vec3& s, const Mat3& D, const double*
 // [SECTION] the effect
 // =============================================================================
 
-class StrainRosette final : public Effect {
+class StrainRosette final : public Effect, public BlockJacobianEffect {
  public:
   StrainRosette(const Model& m, const std::vector<OrthotropicMaterial>& per_piece, const RosetteOptions& o)
       : n_(m.num_particles()), options_(o) {
@@ -339,9 +352,43 @@ class StrainRosette final : public Effect {
       Vec3 s;
       Mat3 D;
       law_stress(laws_[law_[t]], g.eps, s, &D);
-      hessian_blocks(g, s, D, Ti, area_[t], K);
+      hessian_blocks(g, s, D, Ti, area_[t], K, options_.definite_jacobian);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) add_block(dfdx, v[i], v[j], -K[i][j]);
+    }
+    return true;
+  }
+
+  // The same blocks as add_jacobian, in the same order, straight into the
+  // System's block pattern: each triangle's nine slots looked up once per
+  // pattern version (through triplets, assembly took 45 % of a drape).
+  bool add_jacobian_blocks(const Eval& e, JacobianAssembler& out) override {
+    const double* x = e.x.data();
+    const int nt = static_cast<int>(area_.size());
+    if (blocks_version_ != out.version()) {
+      blocks_.resize(9 * static_cast<std::size_t>(nt));
+      for (int t = 0; t < nt; ++t)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) blocks_[9 * t + 3 * i + j] = out.slot(tv_[3 * t + i], tv_[3 * t + j]);
+      blocks_version_ = out.version();
+    }
+    Mat3 K[3][3];
+    for (int t = 0; t < nt; ++t) {
+      Gauges g;
+      const double* Ti = &ti_[9 * t];
+      read_gauges(Ti, x, &tv_[3 * t], g);
+      Vec3 s;
+      Mat3 D;
+      law_stress(laws_[law_[t]], g.eps, s, &D);
+      hessian_blocks(g, s, D, Ti, area_[t], K, options_.definite_jacobian);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int q = blocks_[9 * t + 3 * i + j];
+          if (q < 0) continue;  // a prescribed particle
+          double* b = out.dfdx(q);  // row-major
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) b[3 * r + c] -= K[i][j](r, c);
+        }
     }
     return true;
   }
@@ -476,6 +523,8 @@ class StrainRosette final : public Effect {
   std::vector<double> ti_, area_;
   std::vector<int> law_;
   std::vector<double> gq_;  // 3 per triangle: ∂U/∂q_k (N/m), the step's scratch
+  std::vector<int> blocks_;  // 9 per triangle: block slots (i, j) of its corners (add_jacobian_blocks)
+  long blocks_version_ = -1;
   // per edge: its gauge slots (CSR)
   std::vector<int> slot_off_, slots_;
   // per particle (CSR): incident edges and the particle at their other end

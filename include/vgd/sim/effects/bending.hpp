@@ -58,6 +58,14 @@ struct BendingOptions {
   // the model has at least this many hinges; identical to serial, bit for bit.
   // A run uses fewer threads while other processes keep cores busy (sim/threads.hpp).
   int parallel_min_hinges = 1000;
+  // The Jacobian implicit steps get: exact (false), or made definite (true;
+  // scenes with a body: scene/build.cpp). The exact Hessian is
+  // Σ_T A (C_T ∇θ)ᵀ D (C_T ∇θ) + Σ_h M_h ∇²θ_h; the second sum, the moments
+  // times the angles' curvature, is indefinite (a strain-rosette T-shirt's
+  // drape was refused at 4.6 s for it). Definite: the first sum alone
+  // (Gauss–Newton), positive semi-definite. The forces are exact either way;
+  // only the step's linearisation differs.
+  bool definite_jacobian = false;
 };
 
 // The effect for a model: one material per piece (by Model::triangle_piece) or

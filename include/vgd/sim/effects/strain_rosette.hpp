@@ -56,6 +56,17 @@ struct RosetteOptions {
   // (per-element buffers gathered per particle). A run uses fewer threads
   // while other processes keep cores busy (sim/threads.hpp).
   int parallel_min_triangles = 1000;
+  // The Jacobian implicit steps get: exact (false), or made definite (true;
+  // scenes with a body: scene/build.cpp). Compressed, a triangle's exact
+  // Hessian is indefinite (a gauge in compression has negative stiffness
+  // across it, and the strain measures' curvature weighs by stress of either
+  // sign), and M − h²K stopped being positive definite at 30 ms of a skirt's
+  // drape. Definite: per triangle the Hessian in its three gauges symmetrised
+  // with its negative eigenvalues set to 0, and each gauge's stress term
+  // taken only in tension (as the mass-spring clamps a compressed spring's
+  // transverse stiffness, Choi & Ko 2002). The forces are exact either way;
+  // only the step's linearisation differs (docs/fabric-model.md, 4a).
+  bool definite_jacobian = false;
 };
 
 // The effect for a model: one material per piece (by Model::triangle_piece), or
