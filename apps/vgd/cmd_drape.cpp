@@ -19,7 +19,8 @@ namespace {
 
 struct Options {
   std::vector<std::string> garments;
-  std::string size, avatar, output = "out", material, material_id, table, trj, quality = "standard";
+  std::string size, avatar, output = "out", material, material_id, table, trj, quality = "standard",
+      model = "mass-spring";
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
@@ -59,6 +60,11 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::IsMember({"preview", "standard", "precise"}));
   sub->add_option("--spacing", o->spacing, "Mesh spacing, m (default: the document's mesh.spacing, else 0.015)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--model", o->model,
+                  "Cloth model: mass-spring (the default) or strain-rosette (seed 002's orthotropic membrane with "
+                  "bending, about 4x slower; docs/fabric-model.md, docs/drape.md)")
+      ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
+      ->capture_default_str();
   sub->add_flag("--self-collision,!--no-self-collision", o->self_collision,
                 "Keep the cloth from passing through itself (default on; --no-self-collision is about 3x "
                 "faster and leaves cloth crossing cloth)");
@@ -94,6 +100,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.quality = scene::parse_quality(o->quality);
     d.self_collision = o->self_collision;
     d.between_particles = o->between;
+    d.model = scene::parse_cloth_model(o->model);
     if (!o->avatar.empty()) {
       d.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);
     }

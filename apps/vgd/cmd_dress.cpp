@@ -28,6 +28,7 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
   bool previews = true, json = false, between = true;
+  std::string model = "mass-spring";
 };
 
 vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common) {
@@ -56,6 +57,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
+  sub->add_option("--model", o->model, "Cloth model: mass-spring (the default) or strain-rosette (vgd drape --model)")
+      ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
+      ->capture_default_str();
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
@@ -117,6 +121,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.mannequin_table = prep.body_table;
     run.options.time_limit = o->time_limit;
     run.options.between_particles = o->between;
+    run.options.model = vgd::scene::parse_cloth_model(o->model);
     if (o->avatar.empty() && prep.body_size != prep.size) {
       vgd::scene::AvatarDef a;
       a.kind = vgd::scene::AvatarDef::Kind::mannequin;

@@ -93,7 +93,7 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
     if (k == 0) g.pieces = o.pieces;
     g.layer = static_cast<int>(k);
     cloth.garment = g;
-    cloth.model = scene::ClothModel::mass_spring;
+    cloth.model = o.model;
     cloth.material = mat;
     def.cloth.push_back(cloth);
   }
@@ -205,6 +205,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
   for (const auto& [k, m] : def.materials)
     if (!m.xvc.empty()) c.inputs.emplace_back(k == "fabric" ? "material" : "material_" + k.substr(6), m.xvc.string() + "#" + m.id);
   if (def.integrator.preset) c.settings.emplace_back("quality", to_string(*def.integrator.preset));
+  if (!def.cloth.empty()) c.settings.emplace_back("model", scene::to_string(def.cloth.front().model));
   c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
   c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
   c.settings.emplace_back("fps", format_double(def.run.fps));

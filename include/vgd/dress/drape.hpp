@@ -35,6 +35,10 @@ struct DrapeOptions {
   std::filesystem::path material_xvc;    // "" = the garment's own MATERIAL if it has one, else data/materials/shirting.xvc
   std::string material_id;               // MATERIAL id in material_xvc; "" = its first
   double spacing = 0.0;                  // m; 0 = the document's mesh.spacing, else 0.015
+  // The cloth model of every garment: the mass-spring (the default: measured
+  // on every shared garment, docs/drape.md) or the strain rosette (seed 002's
+  // orthotropic membrane with bending; slower, docs/fabric-model.md).
+  scene::ClothModel model = scene::ClothModel::mass_spring;
   bool self_collision = true;  // cloth kept from passing through cloth (docs/drape.md)
   // The body kept out of the cloth between particles as well (sharp body
   // parts and the cloth's edge midpoints and triangle centres;
