@@ -511,6 +511,7 @@ class Bending final : public Effect, public BlockJacobianEffect {
         st_coef_.insert(st_coef_.end(), {vv.x(), vv.y(), vv.z()});
       }
       st_off_[t + 1] = static_cast<int>(st_hinge_.size());
+      max_stencil_nodes_ = std::max(max_stencil_nodes_, 4 * (st_off_[t + 1] - st_off_[t]));
     }
     // The transpose: per hinge, the (triangle, stencil slot) pairs that use it, by triangle.
     std::vector<int> count(hinges() + 1, 0);
@@ -574,10 +575,8 @@ class Bending final : public Effect, public BlockJacobianEffect {
     // A (C_T ∇θ)ᵀ D (C_T ∇θ) on each triangle's stencil, and the moments M_h:
     // G = C_T ∇θ in 3 × 3 blocks, one per node of the stencil (its hinges'
     // corners, at most 4 per hinge), K_ij = A G_iᵀ D G_j.
-    int cap = 0;
-    for (int t = 0; t < nt; ++t) cap = std::max(cap, 4 * (st_off_[t + 1] - st_off_[t]));
-    std::vector<int> nodes(cap);
-    std::vector<Mat3> G(cap), DG(cap);
+    std::vector<int> nodes(max_stencil_nodes_);
+    std::vector<Mat3> G(max_stencil_nodes_), DG(max_stencil_nodes_);
     for (int t = 0; t < nt; ++t) {
       if (st_off_[t] == st_off_[t + 1]) continue;
       const Mat3& D = D_[mat_[t]];
@@ -665,6 +664,7 @@ class Bending final : public Effect, public BlockJacobianEffect {
   // the step's scratch
   std::vector<double> normal_, theta_, mu_, hf_;
   VecX k_bound_;
+  int max_stencil_nodes_ = 0;  // at most 4 per hinge of the largest stencil (assemble_hessian's scratch)
   std::vector<int> blocks_;  // the Hessian's block slots in assembly order (add_jacobian_blocks)
   long blocks_version_ = -1;
 };

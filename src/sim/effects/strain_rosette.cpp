@@ -341,21 +341,11 @@ class StrainRosette final : public Effect, public BlockJacobianEffect {
   }
 
   bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets&) override {
-    const double* x = e.x.data();
-    const int nt = static_cast<int>(area_.size());
-    Mat3 K[3][3];
-    for (int t = 0; t < nt; ++t) {
-      Gauges g;
-      const double* Ti = &ti_[9 * t];
+    element_hessians(e.x.data(), [&](int t, const Mat3 (&K)[3][3]) {
       const int* v = &tv_[3 * t];
-      read_gauges(Ti, x, v, g);
-      Vec3 s;
-      Mat3 D;
-      law_stress(laws_[law_[t]], g.eps, s, &D);
-      hessian_blocks(g, s, D, Ti, area_[t], K, options_.definite_jacobian);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) add_block(dfdx, v[i], v[j], -K[i][j]);
-    }
+    });
     return true;
   }
 
@@ -363,7 +353,6 @@ class StrainRosette final : public Effect, public BlockJacobianEffect {
   // System's block pattern: each triangle's nine slots looked up once per
   // pattern version (through triplets, assembly took 45 % of a drape).
   bool add_jacobian_blocks(const Eval& e, JacobianAssembler& out) override {
-    const double* x = e.x.data();
     const int nt = static_cast<int>(area_.size());
     if (blocks_version_ != out.version()) {
       blocks_.resize(9 * static_cast<std::size_t>(nt));
@@ -372,15 +361,7 @@ class StrainRosette final : public Effect, public BlockJacobianEffect {
           for (int j = 0; j < 3; ++j) blocks_[9 * t + 3 * i + j] = out.slot(tv_[3 * t + i], tv_[3 * t + j]);
       blocks_version_ = out.version();
     }
-    Mat3 K[3][3];
-    for (int t = 0; t < nt; ++t) {
-      Gauges g;
-      const double* Ti = &ti_[9 * t];
-      read_gauges(Ti, x, &tv_[3 * t], g);
-      Vec3 s;
-      Mat3 D;
-      law_stress(laws_[law_[t]], g.eps, s, &D);
-      hessian_blocks(g, s, D, Ti, area_[t], K, options_.definite_jacobian);
+    element_hessians(e.x.data(), [&](int t, const Mat3 (&K)[3][3]) {
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
           const int q = blocks_[9 * t + 3 * i + j];
@@ -389,8 +370,25 @@ class StrainRosette final : public Effect, public BlockJacobianEffect {
           for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) b[3 * r + c] -= K[i][j](r, c);
         }
-    }
+    });
     return true;
+  }
+
+  // Each triangle's Hessian blocks K[i][j] of U at x (made definite if the
+  // options say so), in triangle order: sink(t, K).
+  template <class Sink>
+  void element_hessians(const double* x, Sink&& sink) const {
+    Mat3 K[3][3];
+    for (int t = 0; t < static_cast<int>(area_.size()); ++t) {
+      Gauges g;
+      const double* Ti = &ti_[9 * t];
+      read_gauges(Ti, x, &tv_[3 * t], g);
+      Vec3 s;
+      Mat3 D;
+      law_stress(laws_[law_[t]], g.eps, s, &D);
+      hessian_blocks(g, s, D, Ti, area_[t], K, options_.definite_jacobian);
+      sink(t, K);
+    }
   }
 
   double energy(const Eval& e) const override {
