@@ -34,7 +34,10 @@ nlohmann::json to_json(const Diagnostics& d) {
   return arr;
 }
 
-void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << "\n"; }
+// Invalid UTF-8 (a name read from a file) is printed as U+FFFD, never refused.
+void print_json(const nlohmann::json& j) {
+  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+}
 
 void say(const Common& common, const std::string& line) {
   std::fflush(stdout);  // keep reports and summaries in the order they were made

@@ -20,6 +20,7 @@ struct Options {
   double threshold = 0.99;
   int pixel_threshold = 8;
   bool json = false, luminance_only = false;
+  std::uint64_t max_pixels = vgd::render::kMaxImagePixels;
 };
 
 vgd::cli::Registrar reg{"compare", 76, [](CLI::App& app, vgd::cli::Common& common) {
@@ -37,12 +38,17 @@ vgd::cli::Registrar reg{"compare", 76, [](CLI::App& app, vgd::cli::Common& commo
   sub->add_option("--diff", o->diff, "Write a diff image: A in light grey, differing pixels in red");
   sub->add_flag("--luminance-only", o->luminance_only,
                 "Judge by the luminance SSIM alone (blind to a change of hue at equal brightness)");
+  sub->add_option("--max-pixels", o->max_pixels,
+                  "Refuse an image with more pixels than this (8192 x 8192 by default)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_flag("--json", o->json, "Print the result as JSON on stdout");
   sub->footer("Exit codes: 0 SSIM >= threshold, 1 bad input (missing file, not a PNG, sizes differ), "
               "2 usage, 3 SSIM below the threshold (docs/qa.md).");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     namespace qa = vgd::qa;
-    const qa::Image a = vgd::render::read_png(o->a), b = vgd::render::read_png(o->b);
+    const qa::Image a = vgd::render::read_png(o->a, o->max_pixels),
+                   b = vgd::render::read_png(o->b, o->max_pixels);
     if (a.width != b.width || a.height != b.height)
       throw vgd::Error(o->b, "", "is " + std::to_string(b.width) + " x " + std::to_string(b.height) + " pixels but " +
                                      o->a + " is " + std::to_string(a.width) + " x " + std::to_string(a.height) +

@@ -79,6 +79,7 @@ vgd::cli::Registrar compress_reg{"compress", 70, [](CLI::App& app, vgd::cli::Com
     const double read_s = seconds_since(t0);
     wvt::EncodeOptions opts;
     opts.max_error_m = o->max_error_mm * 1e-3;
+    opts.source = o->input;
     opts.levels = o->levels;
     opts.transform = o->transform == "haar" ? wvt::EncodeOptions::Transform::haar : wvt::EncodeOptions::Transform::cdf53;
     wvt::EncodeStats s;

@@ -21,6 +21,7 @@
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/io/trj/trj.hpp"
+#include "vgd/io/wvt/wvt.hpp"
 #include "vgd/io/vrml/gltf.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/sources.hpp"
@@ -53,7 +54,17 @@ std::string size_text(std::size_t bytes) {
   return vgd::format_fixed(bytes / (1024.0 * 1024.0), 1) + " MB";
 }
 
-// The garment of one input: a .trj, a drape folder or an .obj.
+// The first bytes of a file ("" when it cannot be opened: its reader says why).
+std::string head_of(const fs::path& file) {
+  std::string head(8, '\0');
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return "";
+  head.resize(std::fread(head.data(), 1, head.size(), f));
+  std::fclose(f);
+  return head;
+}
+
+// The garment of one input: a .trj or .wvt, a drape folder or an .obj.
 vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs::path& folder_avatar) {
   const fs::path p(input);
   if (fs::is_directory(p)) {
@@ -69,9 +80,17 @@ vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs:
     diag.info(input, "", "an OBJ: one frame, material coordinates approximated (a .trj has them)");
     return vrml::garment_from_obj(p);
   }
+  if (vgd::io::wvt::looks_like_wvt(head_of(p))) {
+    diag.info(input, "", "a compressed trajectory (.wvt): positions within the error bound it was written with");
+    auto g = vrml::garment_from_trajectory(vgd::io::wvt::read_wvt(p), input);
+    g.name = p.stem().string();
+    return g;
+  }
   vgd::io::trj::TrjReader reader(p);
   diag.append(reader.warnings());
-  return vrml::garment_from_trajectory(reader.read_all(), p.stem().string());
+  auto g = vrml::garment_from_trajectory(reader.read_all(), input);
+  g.name = p.stem().string();
+  return g;
 }
 
 // The body: an avatar file in vgd's frame (metres, +Y up), as vgd drape writes it.
@@ -156,7 +175,7 @@ vgd::cli::Registrar reg{"export", 72, [](CLI::App& app, vgd::cli::Common& common
   auto* sub = app.add_subcommand("export", "Export a draped garment: VRML (static, animated, live), glTF, OBJ, a web page");
   auto o = std::make_shared<Options>();
   sub->add_option("INPUT", o->inputs,
-                  "Trajectory (.trj), or a drape folder (garment.obj, avatar.obj), or a garment .obj; several with --web");
+                  "Trajectory (.trj, or .wvt: positions within its error bound), or a drape folder (garment.obj, avatar.obj), or a garment .obj; several with --web");
   sub->add_option("--vrml", o->vrml, "VRML97 flavour: static (final drape), animated (every frame), live (the viewer "
                                      "simulates it); default static with -o or --web")
       ->check(CLI::IsMember({"static", "animated", "live"}));

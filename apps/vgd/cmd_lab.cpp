@@ -24,6 +24,7 @@ struct Options {
   std::string test, measurements, material, model = "rosette", out_dir;
   double angle = 0.0, resolution_mm = 5.0, drape_resolution_mm = 0.0;
   bool json = false, no_poisson = false;
+  std::size_t max_rows = vgd::lab::kMaxMeasurements;
   CLI::Option* angle_opt = nullptr;
 };
 
@@ -182,7 +183,7 @@ int run_fit(const Options& o, const vgd::cli::Common& common) {
   const auto model = o.model == "mass-spring" ? vgd::scene::ClothModel::mass_spring
                                               : vgd::scene::ClothModel::strain_rosette;
   const std::filesystem::path out(o.out_dir);
-  const auto measurements = lab::read_measurements(o.measurements);
+  const auto measurements = lab::read_measurements(o.measurements, o.max_rows);
   const lab::FitResult f = lab::fit(measurements, model, out.stem().string(), o.measurements);
   lab::write_material_xvc(f, out, o.measurements);
   vgd::cli::say(common, "wrote " + out.string() + " (MATERIAL " + out.stem().string() + ")");
@@ -226,6 +227,9 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
       ->check(CLI::IsMember({"tip-cantilever", "tensile", "cantilever", "buckling", "shear", "bending", "drape", "all",
                              "fit"}));
   sub->add_option("MEASUREMENTS", o->measurements, "fit: the measurements CSV (docs/fabric-lab.md)");
+  sub->add_option("--max-rows", o->max_rows, "fit: refuse a CSV with more measurements than this")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_option("--material", o->material, "Fabric: a name in data/materials (shirting) or an XVC file");
   sub->add_option("--model", o->model, "Cloth model: rosette (strain rosette + bending) or mass-spring")
       ->check(CLI::IsMember({"rosette", "strain-rosette", "mass-spring"}));

@@ -87,6 +87,7 @@ vgd::cli::Registrar reg{"mesh", 50, [](CLI::App& app, vgd::cli::Common& common) 
     vgd::Diagnostics diag;
     const auto t0 = std::chrono::steady_clock::now();
     const auto meshes = vgd::mesh::mesh_style(style, o->size, opts, diag);
+    diag.name_file(o->input);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     // Check each mesh and write its files when asked.

@@ -241,6 +241,9 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   } else if (!fs::exists(input, ec)) {
     throw vgd::Error(input.string(), "", "file not found");
   } else if (const auto ext = vgd::to_lower(input.extension().string()); ext != ".obj" && ext != ".trj") {
+    if (ext == ".wvt")
+      throw vgd::Error(input.string(), "", "a compressed trajectory (.wvt): vgd decompress turns it into a .trj, "
+                                           "which vgd render reads");
     throw vgd::Error(input.string(), "", "vgd render reads a drape folder, a garment .obj or a trajectory .trj");
   }
   const bool trj = vgd::to_lower(input.extension().string()) == ".trj";

@@ -95,7 +95,8 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
   sub->add_option("--duration", o->duration, "Simulated time, s (e.g. 2 or 500ms); replaces the scene's")
       ->check(time_text);
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
-                                   "FILE.partial while the run goes, renamed to FILE at its end");
+                                   "FILE.partial while the run goes, renamed to FILE at its end; a run that stops "
+                                   "early leaves FILE as it was and its frames in NAME.failed.trj");
   sub->add_flag("--profile", o->profile, "Print calls and time per effect (System::profile)");
   sub->add_flag("--json", o->json, "Print the summary (and profile) as JSON on stdout");
   sub->footer("Exit codes: 0 the run finished, 1 the scene is bad or the run stopped early (frames so far are kept).");
@@ -141,9 +142,11 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
       }
       sinks.push_back(owned.back().get());
     }
+    vgd::io::trj::TrjWriter* trj = nullptr;
     if (!o->trj.empty()) {
       owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(o->trj));
-      sinks.push_back(owned.back().get());
+      trj = static_cast<vgd::io::trj::TrjWriter*>(owned.back().get());
+      sinks.push_back(trj);
       folders.push_back(o->trj);
     }
 
@@ -154,6 +157,11 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
     ProgressBar bar(!common.quiet && !o->json);
     const auto r = vgd::sim::run(sys, *integrator, state, s.run, sinks, std::ref(bar));
     bar.finish();
+    if (trj && !trj->written().empty() && trj->written() != trj->path()) {
+      folders.back() = trj->written().string();
+      std::fprintf(stderr, "vgd: the run stopped early: its %d frames are in %s; %s is unchanged\n",
+                   trj->frames_written(), trj->written().c_str(), o->trj.c_str());
+    }
 
     const double pps = r.wall_s > 0 ? static_cast<double>(particles) * r.stats.steps / r.wall_s : 0.0;
     const std::string where = folders.empty() ? "" : " in " + folders.front();

@@ -87,9 +87,11 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
     owned.push_back(std::make_unique<vgd::io::obj::ObjSequenceSink>(out / "frames"));
     sinks.push_back(owned.back().get());
   }
+  vgd::io::trj::TrjWriter* trj = nullptr;
   if (!run.trj.empty()) {
     owned.push_back(std::make_unique<vgd::io::trj::TrjWriter>(run.trj));
-    sinks.push_back(owned.back().get());
+    trj = static_cast<vgd::io::trj::TrjWriter*>(owned.back().get());
+    sinks.push_back(trj);
   }
   StageBar bar(!common.quiet && !run.json);
   // What the build found is said before the run: the body's import notes,
@@ -105,6 +107,9 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
   };
   dress::DrapeResult r = dress::run_drape(def, sinks, progress);
   bar.finish();
+  if (trj && !trj->written().empty() && trj->written() != trj->path())
+    std::fprintf(stderr, "vgd: the run stopped early: its %d frames are in %s; %s is unchanged\n",
+                 trj->frames_written(), trj->written().c_str(), run.trj.c_str());
 
   std::error_code ec;
   fs::create_directories(out, ec);

@@ -630,7 +630,7 @@ std::string to_json(const AvatarReport& r) {
     j["nearest_size"] = {{"table", r.nearest->table}, {"size", r.nearest->size.label}, {"sex", r.nearest->size.sex},
                          {"rms_m", r.nearest->rms}, {"bust_m", r.nearest->size.bust}, {"waist_m", r.nearest->size.waist},
                          {"hip_m", r.nearest->size.hip}, {"height_m", r.nearest->size.height}};
-  return j.dump(2);
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::vector<std::string> avatar_export_extensions() { return {".obj", ".ply", ".stl", ".glb", ".gltf", ".dae", ".fbx"}; }

@@ -21,6 +21,7 @@
 
 #include "assimp/module_api.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 
 namespace vgd::body {
@@ -170,10 +171,62 @@ bool write_all(int fd, const std::string& bytes) {
   return true;
 }
 
+// assimp's reasons, said as vgd says them where assimp's wording is its own
+// code's ("Cannot parse string \"\" as a real number: does not start with
+// digit or decimal point followed by digit.").
+std::string in_words(std::string why) {
+  const std::string parse = "Cannot parse string \"";
+  if (const auto p = why.find(parse); p != std::string::npos) {
+    const auto q = why.find("\" as a real number", p + parse.size());
+    if (q != std::string::npos) {
+      const std::string found = why.substr(p + parse.size(), q - p - parse.size());
+      return why.substr(0, p) + "a number was expected" +
+             (found.empty() ? std::string(" and the line ends or holds none") : ", found \"" + found + "\"");
+    }
+  }
+  return why;
+}
+
+// An OBJ face with more corners than the limit is refused before assimp sees
+// it: assimp triangulates a polygon in time that grows faster than its size
+// (a face of a million corners reads for minutes).
+void check_obj_faces(const fs::path& path, const std::string& file, std::size_t max_corners) {
+  std::string ext = to_lower(path.extension().string());
+  if (ext != ".obj") return;
+  std::string text;
+  try {
+    text = read_file(path);
+  } catch (const Error&) {
+    return;  // the reader says why
+  }
+  int line = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    ++line;
+    std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    std::string_view l(text.data() + at, end - at);
+    at = end + 1;
+    std::size_t i = 0;
+    while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
+    if (i + 1 >= l.size() || l[i] != 'f' || (l[i + 1] != ' ' && l[i + 1] != '\t')) continue;
+    std::size_t corners = 0;
+    bool in_word = false;
+    for (std::size_t k = i + 1; k < l.size(); ++k) {
+      const bool space = l[k] == ' ' || l[k] == '\t' || l[k] == '\r';
+      corners += !space && !in_word;
+      in_word = !space;
+    }
+    if (corners > max_corners)
+      throw Error(file, "face", "a face with " + std::to_string(corners) + " corners, more than the " +
+                                    std::to_string(max_corners) + " vgd reads in one face", line);
+  }
+}
+
 }  // namespace
 
 ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options) {
   const std::string file = path.string();
+  check_obj_faces(path, file, options.max_face_corners);
   const assimp_module::Api& a = api(file);
   // assimp runs in a child process: some damaged files make it abort or
   // crash (an assertion in its post-processing on a mangled PLY, found by
@@ -238,7 +291,7 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
       }
     }).detach();
     if (!why.empty())
-      throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + why);
+      throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + in_words(why));
     return out;
   }
   int status = 0;

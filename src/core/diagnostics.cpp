@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "vgd/core/strings.hpp"
+
 namespace vgd {
 
 const char* to_string(Severity s) {
@@ -32,9 +34,23 @@ std::string Diagnostic::format() const {
   return out;
 }
 
-Error::Error(Diagnostic d) : std::runtime_error(d.format()), diag_(std::move(d)) {
+namespace {
+// A message may quote what a file holds; a binary file's bytes are escaped.
+Diagnostic printable(Diagnostic d) {
+  d.file = vgd::printable(d.file);
+  d.entity = vgd::printable(d.entity);
+  d.message = vgd::printable(d.message);
+  return d;
+}
+}  // namespace
+
+Error::Error(Diagnostic d) : Error(printable(std::move(d)), 0) {}
+
+Error::Error(Diagnostic d, int) : std::runtime_error(d.format()), diag_(std::move(d)) {
   diag_.severity = Severity::error;
 }
+
+void Diagnostics::add(Diagnostic d) { items_.push_back(printable(std::move(d))); }
 
 Error::Error(std::string file, std::string entity, std::string message, int line)
     : Error(Diagnostic{Severity::error, std::move(file), std::move(entity), std::move(message), line}) {}
@@ -53,6 +69,11 @@ std::size_t Diagnostics::count(Severity s) const {
   std::size_t n = 0;
   for (const auto& d : items_) n += d.severity == s;
   return n;
+}
+
+void Diagnostics::name_file(const std::string& file, std::size_t from) {
+  for (std::size_t i = from; i < items_.size(); ++i)
+    if (items_[i].file.empty()) items_[i].file = vgd::printable(file);
 }
 
 void Diagnostics::append(const Diagnostics& other) {

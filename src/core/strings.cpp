@@ -143,4 +143,50 @@ void append_utf8(std::string& out, std::uint32_t c) {
   }
 }
 
+std::string printable(std::string_view s) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t start = i;
+    const std::uint32_t c = next_utf8(s, i);
+    const bool control = c < 0x20 ? (c != '\n' && c != '\t') : (c == 0x7F || (c >= 0x80 && c < 0xA0));
+    if (c == kInvalidUtf8 || control) {
+      for (std::size_t k = start; k < i; ++k) {
+        const auto b = static_cast<unsigned char>(s[k]);
+        out += "\\x";
+        out += hex[b >> 4];
+        out += hex[b & 0xF];
+      }
+    } else {
+      out.append(s.substr(start, i - start));
+    }
+  }
+  return out;
+}
+
+std::string json_error_message(std::string_view what, std::string_view lead) {
+  std::string s(what);
+  if (s.rfind("[json.exception.", 0) == 0)
+    if (const auto p = s.find("] "); p != std::string::npos) s.erase(0, p + 2);
+  std::string where;
+  if (s.rfind("parse error at ", 0) == 0)
+    if (const auto p = s.find(": "); p != std::string::npos) {
+      where = s.substr(15, p - 15);
+      s.erase(0, p + 2);
+    }
+  if (s.rfind("parse error: ", 0) == 0) s.erase(0, 13);
+  if (s.rfind("syntax error while parsing ", 0) == 0)
+    if (const auto p = s.find(" - "); p != std::string::npos) s.erase(0, p + 3);
+  if (const auto p = s.find("; last read: '"); p != std::string::npos) {
+    const auto q = s.find('\'', p + 14);
+    const std::string read = s.substr(p + 14, q == std::string::npos ? std::string::npos : q - p - 14);
+    const std::string rest = q == std::string::npos ? "" : s.substr(q + 1);
+    s = s.substr(0, p) + " (read up to: " + read + ")" + rest;
+  }
+  if (s.rfind("number overflow parsing '", 0) == 0) s = "a number too large for a double: " + s.substr(25);
+  if (!s.empty() && s.back() == '\'') s.pop_back();
+  return printable(std::string(lead) + (where.empty() ? ": " : " at " + where + ": ") + s);
+}
+
 }  // namespace vgd

@@ -480,7 +480,7 @@ std::string to_json(const Certificate& c) {
                   {"pressure_pa", to_json(c.contact.pressure)}};
   j["kinetic_energy"] = {{"unit", "J per particle"}, {"times_s", c.times}, {"values", c.kinetic_energy}};
   j["passed"] = c.passed();
-  return j.dump(2) + "\n";
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace vgd::dress

@@ -510,7 +510,9 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     mo.max_area_m2 = (1.0 + std::sqrt(2.0)) / 4.0 * spacing * spacing;
     mo.resample.spacing_m = spacing;
     try {
+      const std::size_t said = diag.items().size();
       gp.mesh = mesh::mesh_piece(resampled, mo, diag);
+      diag.name_file(file, said);
     } catch (const Error& e) {
       throw Error(file, gp.pattern_id, "cannot mesh " + gp.name + ": " + e.diagnostic().message);
     }

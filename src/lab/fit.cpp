@@ -68,9 +68,13 @@ std::string known_quantities() {
 
 const char* to_string(Measure m) { return info(m).name; }
 
-std::vector<Measurement> read_measurements(const std::filesystem::path& file) {
-  const std::string f = file.string();
-  const std::vector<std::string> lines = split(read_file(file), '\n');
+std::vector<Measurement> read_measurements(const std::filesystem::path& file, std::size_t max_rows) {
+  return parse_measurements(read_file(file), file.string(), max_rows);
+}
+
+std::vector<Measurement> parse_measurements(std::string_view text_of_file, const std::string& f,
+                                            std::size_t max_rows) {
+  const std::vector<std::string> lines = split(text_of_file, '\n');
   std::vector<Measurement> out;
   bool header = false;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -87,6 +91,9 @@ std::vector<Measurement> read_measurements(const std::filesystem::path& file) {
       header = true;
       continue;
     }
+    if (out.size() == max_rows)
+      throw Error(f, "", "more than " + std::to_string(max_rows) +
+                             " measurements (--max-rows): thin a tensile curve to the points that shape it", line);
     if (fields.size() != 5)
       throw Error(f, "", "expected 5 fields (" + std::string(kHeader) + "), got " + std::to_string(fields.size()),
                   line);
@@ -244,12 +251,18 @@ std::vector<Param> start(const std::vector<Measurement>& ms, scene::ClothModel m
 }
 
 // The material of the parameters (SI values); held optional ones keep their defaults.
-scene::MaterialDef material_of(const std::vector<Param>& ps, scene::ClothModel model, bool have_thickness) {
+// `file` (the measurements) names the fit in messages.
+scene::MaterialDef material_of(const std::vector<Param>& ps, scene::ClothModel model, bool have_thickness,
+                               const std::string& file) {
   scene::MaterialDef m;
   for (const auto& p : ps) {
     if (!p.free && !p.required && p.name != "nu_warp_weft") continue;  // derived / not given
     if (p.name == "thickness" && !have_thickness) continue;
-    set_material_parameter(m, p.name, p.value, find_material_parameter(p.name)->dimension, "", "");
+    if (!std::isfinite(p.value))
+      throw Error(file, p.name,
+                  "the fit drove it to a value that is not a finite number: the measurements contradict each other "
+                  "or do not determine it (check their units and directions)");
+    set_material_parameter(m, p.name, p.value, find_material_parameter(p.name)->dimension, file, p.name);
   }
   if (model == scene::ClothModel::mass_spring && m.mass_spring) m.mass_spring->damping = 0.005;  // as the shipped fabrics
   return m;
@@ -262,9 +275,11 @@ struct Problem : Eigen::DenseFunctor<double> {
   const std::vector<Measurement>* used;
   scene::ClothModel model;
   bool have_thickness;
-  Problem(std::vector<Param>& ps, std::vector<int> f, const std::vector<Measurement>& u, scene::ClothModel mo, bool th)
+  std::string file;
+  Problem(std::vector<Param>& ps, std::vector<int> f, const std::vector<Measurement>& u, scene::ClothModel mo, bool th,
+          std::string fi)
       : Eigen::DenseFunctor<double>(static_cast<int>(f.size()), static_cast<int>(u.size())),
-        params(&ps), free(std::move(f)), used(&u), model(mo), have_thickness(th) {}
+        params(&ps), free(std::move(f)), used(&u), model(mo), have_thickness(th), file(std::move(fi)) {}
   void set(const Eigen::VectorXd& x) const {
     for (std::size_t k = 0; k < free.size(); ++k) {
       Param& p = (*params)[free[k]];
@@ -273,7 +288,7 @@ struct Problem : Eigen::DenseFunctor<double> {
   }
   int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& r) const {
     set(x);
-    const scene::MaterialDef m = material_of(*params, model, have_thickness);
+    const scene::MaterialDef m = material_of(*params, model, have_thickness, file);
     for (std::size_t i = 0; i < used->size(); ++i) {
       const Measurement& ms = (*used)[i];
       r[i] = predict(ms, m, model) / ms.value - 1.0;
@@ -321,7 +336,7 @@ FitResult fit(const std::vector<Measurement>& ms, scene::ClothModel model, const
   std::vector<Measurement> used;
   {
     for (auto& p : ps) p.free = p.required || (p.name == "thickness" && have_thickness);
-    const scene::MaterialDef m0 = material_of(ps, model, have_thickness);
+    const scene::MaterialDef m0 = material_of(ps, model, have_thickness, file);
     for (const auto& m : ms) {
       if (m.value == 0.0) continue;
       if (std::isnan(predict(m, m0, model))) {
@@ -340,7 +355,7 @@ FitResult fit(const std::vector<Measurement>& ms, scene::ClothModel model, const
   std::vector<int> all(ps.size());
   for (std::size_t k = 0; k < ps.size(); ++k) all[k] = static_cast<int>(k), ps[k].free = true;
   Eigen::MatrixXd J(used.size(), ps.size());
-  if (!used.empty()) Problem(ps, all, used, model, have_thickness).df(unknowns(ps, all), J);
+  if (!used.empty()) Problem(ps, all, used, model, have_thickness, file).df(unknowns(ps, all), J);
   std::vector<int> free;
   for (bool required : {true, false})
     for (std::size_t k = 0; k < ps.size(); ++k) {
@@ -373,7 +388,7 @@ FitResult fit(const std::vector<Measurement>& ms, scene::ClothModel model, const
         result.notes.push_back("D_twist not determined (no bending off the yarns): derived, G thickness^2 / 12");
       }
     }
-  Problem problem(ps, free, used, model, have_thickness);
+  Problem problem(ps, free, used, model, have_thickness, file);
   Eigen::VectorXd x = unknowns(ps, free);
   Eigen::LevenbergMarquardt<Problem> lm(problem);
   lm.setXtol(1e-14), lm.setFtol(1e-16), lm.setMaxfev(5000);
@@ -381,7 +396,7 @@ FitResult fit(const std::vector<Measurement>& ms, scene::ClothModel model, const
   problem.set(x);
   result.iterations = static_cast<int>(lm.iterations());
   for (int k : free) result.fitted.push_back(ps[k].name), ps[k].value = rounded(ps[k].value);
-  result.material = material_of(ps, model, have_thickness);
+  result.material = material_of(ps, model, have_thickness, file);
   result.material.name = id;
   if (model == scene::ClothModel::mass_spring)
     result.notes.push_back("spring.damping not fitted (statics do not see it): 0.005 kg/s as the shipped fabrics");

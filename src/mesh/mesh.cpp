@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "cgal_mesher.hpp"
@@ -138,6 +140,51 @@ Contour to_contour(const pattern::ResampledContour& r) {
   return c;
 }
 
+// A contour vertex closer than kTouch to the inside of a contour edge that
+// does not end at it: the outline (or a cutout) touches itself there, a sliver no triangle
+// of the minimum angle fits in, and Delaunay refinement would add points
+// there without end. Edges sorted by their smallest x are swept as in
+// pattern::is_self_intersecting: O(n log n) on real outlines.
+// Below any DXF's resolution (1 µm in mm, 2.5 µm in 1/10000 in): a real outline
+// that comes back within a few µm of itself (a graded sleeve of the shared
+// GMH1006F18 file does) meshes.
+constexpr double kTouch = 1e-7;  // m
+
+std::optional<Vec2> touching_vertex(const std::vector<Contour>& contours) {
+  struct Edge { double xmin, xmax; std::size_t c, i; };
+  struct Vertex { double x; std::size_t c, i; };
+  std::vector<Edge> edges;
+  std::vector<Vertex> vertices;
+  for (std::size_t c = 0; c < contours.size(); ++c) {
+    const auto& p = contours[c].points;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec2& a = p[i];
+      const Vec2& b = p[(i + 1) % p.size()];
+      edges.push_back({std::min(a.x(), b.x()) - kTouch, std::max(a.x(), b.x()) + kTouch, c, i});
+      vertices.push_back({a.x(), c, i});
+    }
+  }
+  std::sort(vertices.begin(), vertices.end(), [](const Vertex& l, const Vertex& r) { return l.x < r.x; });
+  for (const Edge& e : edges) {
+    const auto& p = contours[e.c].points;
+    const std::size_t n = p.size(), j = (e.i + 1) % n;
+    const Vec2 a = p[e.i], ab = p[j] - a;
+    const double len2 = ab.squaredNorm();
+    auto v = std::lower_bound(vertices.begin(), vertices.end(), e.xmin,
+                              [](const Vertex& l, double x) { return l.x < x; });
+    for (; v != vertices.end() && v->x <= e.xmax; ++v) {
+      if (v->c == e.c && (v->i == e.i || v->i == j)) continue;
+      const Vec2& q = contours[v->c].points[v->i];
+      // Near the edge's inside, not near one of its ends: two points of an
+      // outline closer than kTouch (graded blocks have them) mesh as they are.
+      const double t = len2 > 0.0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const Vec2 foot = a + t * ab;
+      if ((foot - q).norm() < kTouch && (foot - a).norm() > kTouch && (foot - p[j]).norm() > kTouch) return q;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 double effective_max_area(const MeshOptions& o) {
@@ -159,6 +206,12 @@ PieceMesh triangulate(const std::vector<Contour>& contours, const MeshOptions& o
   }
   const double outline_area = pattern::signed_area(contours[0].points);
   if (!(outline_area > 0)) throw Error("", piece, "the outline has no area or winds clockwise");
+  if (const auto q = touching_vertex(contours)) {
+    char at[96];
+    std::snprintf(at, sizeof at, "(%.4f, %.4f) m", q->x(), q->y());
+    throw Error("", piece, std::string("the outline or a cutout touches itself at ") + at +
+                               " (a point less than 0.0001 mm from the inside of another edge); repair the piece");
+  }
 
   // Refinement (CGAL).
   detail::Bounds b;

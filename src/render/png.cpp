@@ -48,7 +48,7 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   write_file_atomic(path, encode_png(image));
 }
 
-Image decode_png(std::string_view bytes, const std::string& name) {
+Image decode_png(std::string_view bytes, const std::string& name, std::uint64_t max_pixels) {
   static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (bytes.size() < 8 || std::memcmp(bytes.data(), signature, 8) != 0)
     throw Error(name, "", "not a PNG file (the PNG signature is missing)");
@@ -57,6 +57,12 @@ Image decode_png(std::string_view bytes, const std::string& name) {
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()))
     throw Error(name, "", std::string("unreadable PNG: ") + png.message);
+  const std::uint64_t pixels = std::uint64_t{png.width} * png.height;
+  if (pixels > max_pixels || png.width > 0x7FFFFFFFu || png.height > 0x7FFFFFFFu) {
+    png_image_free(&png);
+    throw Error(name, "", std::to_string(png.width) + " x " + std::to_string(png.height) + " pixels is more than the " +
+                              std::to_string(max_pixels) + " pixels vgd reads (--max-pixels)");
+  }
   // Whatever is stored (grey, palette, 16-bit, alpha or not) comes out as 8-bit RGBA.
   png.format = PNG_FORMAT_RGBA;
   Image image(static_cast<int>(png.width), static_cast<int>(png.height));
@@ -68,8 +74,8 @@ Image decode_png(std::string_view bytes, const std::string& name) {
   return image;
 }
 
-Image read_png(const std::filesystem::path& path) {
-  return decode_png(read_file(path), path.string());
+Image read_png(const std::filesystem::path& path, std::uint64_t max_pixels) {
+  return decode_png(read_file(path), path.string(), max_pixels);
 }
 
 }  // namespace vgd::render

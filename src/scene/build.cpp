@@ -191,7 +191,9 @@ std::vector<std::pair<std::string, sim::Model>> xvc_pieces(const SceneDef& def, 
   for (const auto* piece : pieces) {
     mesh::PieceMesh pm;
     try {
+      const std::size_t said = diag.items().size();
       pm = mesh::mesh_piece(*piece, opt, diag);
+      diag.name_file(file.string(), said);
     } catch (const Error& e) {
       throw Error(file.string(), piece->block, "cannot mesh the piece for " + cloth_path(ci) + ": " +
                                                    e.diagnostic().message);

@@ -607,15 +607,10 @@ SceneDef parse_scene(std::string_view json_text, const std::filesystem::path& so
   try {
     j = json::parse(json_text.begin(), json_text.end());
   } catch (const json::parse_error& e) {
-    // nlohmann's text after its "[json.exception.parse_error.N] " tag.
-    std::string what = e.what();
-    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw Error(c.file, "", "not valid JSON: " + what, line_of(json_text, e.byte));
+    throw Error(c.file, "", json_error_message(e.what(), "not valid JSON"), line_of(json_text, e.byte));
   } catch (const json::exception& e) {
     // A number too large for a double ("1e999") and the like: out_of_range.
-    std::string what = e.what();
-    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw Error(c.file, "", "not valid JSON: " + what);
+    throw Error(c.file, "", json_error_message(e.what(), "not valid JSON"));
   }
 
   SceneDef def;

@@ -77,6 +77,7 @@ class Checker {
     integrator();
     positive("frames.fps", def_.run.fps);
     non_negative("frames.duration", def_.run.duration);
+    frame_and_step_counts();
     non_negative("frames.rest_energy", def_.run.rest_energy);
     if (def_.run.rest_frames < 1) fail("frames.rest_frames", "must be >= 1");
     if (!(def_.run.start_jitter >= 0.0) || def_.run.start_jitter > 0.01)
@@ -87,6 +88,26 @@ class Checker {
   }
 
  private:
+  // What a run plans must be bounded: a mistyped rate ("fps": 1e9) would plan
+  // tens of millions of frames, a step of 1e-12 s a run that never ends.
+  void frame_and_step_counts() const {
+    if (def_.run.fps > kMaxFps)
+      fail("frames.fps", format_double(def_.run.fps) + " frames per second is more than the " +
+                             format_fixed(kMaxFps, 0) + " a scene may ask for");
+    const double frames = def_.run.duration * def_.run.fps;
+    if (frames > kMaxFrames)
+      fail("frames.duration",
+           format_fixed(def_.run.duration, 3) + " s at " + format_double(def_.run.fps) + " frames per second is " +
+               format_fixed(frames, 0) + " frames, more than the " + format_fixed(kMaxFrames, 0) +
+               " a run may write; shorten it or lower frames.fps");
+    const double step = effective_step(def_);
+    if (step > 0.0 && def_.run.duration / step > kMaxSteps)
+      fail("integrator.step",
+           format_double(step) + " s for " + format_fixed(def_.run.duration, 3) + " s is " +
+               format_fixed(def_.run.duration / step, 0) + " steps, more than the " + format_fixed(kMaxSteps, 0) +
+               " a run may take; lengthen the step or shorten the run");
+  }
+
   void cloth(const ClothDef& c, const std::string& p) const {
     const int sources = c.grid.has_value() + c.xvc.has_value() + c.garment.has_value();
     if (sources != 1)

@@ -1049,13 +1049,13 @@ std::vector<pattern::SeamPlan> parse_seam_plans(std::string_view text, const std
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     // parse_error, and out_of_range for a number too large for a double.
-    throw Error(file, "", std::string("not valid JSON: ") + e.what());
+    throw Error(file, "", json_error_message(e.what(), "not valid JSON"));
   }
   try {
     return read_seam_plans(j, file);
   } catch (const nlohmann::json::exception& e) {
     // A value of the wrong type somewhere the checks below did not look.
-    throw Error(file, "", std::string("not a seam file: ") + e.what());
+    throw Error(file, "", json_error_message(e.what(), "not a seam file"));
   }
 }
 
@@ -1099,7 +1099,7 @@ std::string seam_plans_to_json(const std::vector<pattern::SeamPlan>& plans) {
       hems.push_back({{"piece", h.piece}, {"from", h.from}, {"to", h.to}, {"direction", h.reverse ? "reverse" : "forward"}});
     seams.push_back({{"name", p.name}, {"hems", hems}});
   }
-  return nlohmann::json{{"seams", seams}}.dump(2) + "\n";
+  return nlohmann::json{{"seams", seams}}.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::vector<pattern::SeamPlan> seams_as_plans(const Document& doc, const std::string& size) {

@@ -55,6 +55,17 @@ void collect(void* user, ErrorPtr err) {
   std::string msg = err->message ? err->message : "unknown problem";
   while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
   const Severity sev = err->level == XML_ERR_WARNING ? Severity::warning : Severity::error;
+  // libxml2 says "entity reference loop" for an entity that expands without
+  // bound (the "billion laughs") as well as for one that refers to itself.
+  if (msg.find("entity reference loop") != std::string::npos)
+    msg = "an entity refers to itself or expands into too much text; the document is refused (an XVC document "
+          "needs no entities of its own)";
+  if (msg.rfind("Input is not proper UTF-8", 0) == 0)
+    msg = "the text is not UTF-8 (" + (msg.find("Bytes:") != std::string::npos ? msg.substr(msg.find("Bytes:")) : msg) +
+          "); save the document as UTF-8";
+  // The same message for the same line once.
+  for (const auto& d : c->items)
+    if (d.line == err->line && d.message == msg) return;
   c->items.push_back({sev, c->file, entity_of(err->node), std::move(msg), err->line});
 }
 

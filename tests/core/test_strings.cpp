@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 
 TEST(ParseDouble, AcceptsDxfStyleNumbers) {
@@ -51,4 +52,38 @@ TEST(Utf8, DecodesEncodesAndFlagsWhatIsNot) {
   i = 0;
   EXPECT_EQ(vgd::next_utf8("\xFFx", i), vgd::kInvalidUtf8);
   EXPECT_EQ(i, 1u) << "an invalid byte is stepped over alone";
+}
+
+using namespace vgd;
+
+TEST(Printable, KeepsUtf8AndLineBreaksAndEscapesTheRest) {
+  EXPECT_EQ(printable("DOS \xd0\x9f\xd0\x95\xd0\xa0\xd0\x95\xd0\x94 line\n\ttab"),
+            "DOS \xd0\x9f\xd0\x95\xd0\xa0\xd0\x95\xd0\x94 line\n\ttab");
+  EXPECT_EQ(printable("a\x01" "b\xff" "c\x7f"), "a\\x01b\\xFFc\\x7F");
+  EXPECT_EQ(printable("cut short \xd0"), "cut short \\xD0");
+  EXPECT_EQ(printable("\xc2\x85"), "\\xC2\\x85");  // U+0085, a C1 control
+  EXPECT_TRUE(is_utf8(printable(std::string("\x00\xfe\xff\xc0", 4))));
+}
+
+TEST(Printable, AnErrorAndACollectedDiagnosticNeverCarryRawBytes) {
+  const Error e("f.obj", "", "found '\x02\xfe'");
+  EXPECT_EQ(e.diagnostic().message, "found '\\x02\\xFE'");
+  EXPECT_STREQ(e.what(), "f.obj: found '\\x02\\xFE'");
+  Diagnostics d;
+  d.warn("", "BLOCK\xff", "x");
+  d.name_file("in.dxf");
+  EXPECT_EQ(d.items()[0].format(), "in.dxf: BLOCK\\xFF: x");
+}
+
+TEST(JsonErrorMessage, SaysNlohmannsErrorsInWords) {
+  EXPECT_EQ(json_error_message("[json.exception.parse_error.101] parse error at line 1, column 19: syntax error while "
+                               "parsing object key - invalid string: missing closing quote; last read: '\"di'; "
+                               "expected string literal",
+                               "not valid JSON"),
+            "not valid JSON at line 1, column 19: invalid string: missing closing quote (read up to: \"di); expected "
+            "string literal");
+  EXPECT_EQ(json_error_message("[json.exception.out_of_range.406] number overflow parsing '1e999'", "not valid JSON"),
+            "not valid JSON: a number too large for a double: 1e999");
+  EXPECT_EQ(json_error_message("[json.exception.type_error.302] type must be number, but is string", "not a seam file"),
+            "not a seam file: type must be number, but is string");
 }

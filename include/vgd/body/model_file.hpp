@@ -52,6 +52,9 @@ struct ModelReadOptions {
   // s: assimp reads in a child process; one still reading after this long is
   // killed and the file refused (assimp loops on some damaged files).
   double time_limit_s = 30.0;
+  // An OBJ face with more corners than this is refused before assimp reads
+  // the file (its triangulation's time grows faster than the corner count).
+  std::size_t max_face_corners = 1024;
 };
 
 // Reads `path`; assimp validates the scene it builds before vgd reads it (a

@@ -29,7 +29,8 @@ struct Diagnostic {
   std::string format() const;
 };
 
-// The one exception type for bad input. Carries a Diagnostic.
+// The one exception type for bad input. Carries a Diagnostic, its texts made
+// printable (valid UTF-8, control bytes escaped: core/strings.hpp).
 class Error : public std::runtime_error {
  public:
   explicit Error(Diagnostic d);
@@ -37,13 +38,14 @@ class Error : public std::runtime_error {
   const Diagnostic& diagnostic() const { return diag_; }
 
  private:
+  Error(Diagnostic d, int);  // d already printable
   Diagnostic diag_;
 };
 
 // Collected, non-fatal findings of one operation (an import, a validation, ...).
 class Diagnostics {
  public:
-  void add(Diagnostic d) { items_.push_back(std::move(d)); }
+  void add(Diagnostic d);  // file, entity and message made printable (core/strings.hpp)
   void info(std::string file, std::string entity, std::string message, int line = 0);
   void warn(std::string file, std::string entity, std::string message, int line = 0);
   void error(std::string file, std::string entity, std::string message, int line = 0);
@@ -53,6 +55,9 @@ class Diagnostics {
   std::size_t count(Severity s) const;
   bool has_errors() const { return count(Severity::error) > 0; }
   void append(const Diagnostics& other);
+  // Names `file` in the items from index `from` on that name no file (what a
+  // stage that does not know the file said, e.g. the mesher).
+  void name_file(const std::string& file, std::size_t from = 0);
 
  private:
   std::vector<Diagnostic> items_;

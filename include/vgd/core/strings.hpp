@@ -34,4 +34,16 @@ std::uint32_t next_utf8(std::string_view s, std::size_t& i);
 bool is_utf8(std::string_view s);
 void append_utf8(std::string& out, std::uint32_t code_point);
 
+// Text safe to print and to put in JSON: valid UTF-8 kept, line breaks and tabs
+// kept, every other control byte and every byte that starts no valid UTF-8
+// sequence written as \xNN (a binary file's bytes echoed in a message).
+std::string printable(std::string_view s);
+
+// nlohmann::json's exception text in words, after `lead`: with lead "not valid
+// JSON", "[json.exception.parse_error.101] parse error at line 1, column 19:
+// syntax error while parsing object key - invalid string: missing closing
+// quote; last read: '"di'" becomes "not valid JSON at line 1, column 19:
+// invalid string: missing closing quote (read up to: "di)".
+std::string json_error_message(std::string_view what, std::string_view lead);
+
 }  // namespace vgd

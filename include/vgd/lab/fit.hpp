@@ -19,6 +19,7 @@
 // residuals (Eigen's Levenberg–Marquardt on the logarithms of the positive ones).
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vgd/scene/material.hpp"
@@ -37,8 +38,14 @@ struct Measurement {
   int line = 0;            // in the CSV, for messages
 };
 
-// Reads the CSV. Throws vgd::Error naming the file, the line and the problem.
-std::vector<Measurement> read_measurements(const std::filesystem::path& file);
+// Reads the CSV. Throws vgd::Error naming the file, the line and the problem,
+// also for more than max_rows measurements (the fit's cost grows with them).
+inline constexpr std::size_t kMaxMeasurements = 10000;
+std::vector<Measurement> read_measurements(const std::filesystem::path& file,
+                                           std::size_t max_rows = kMaxMeasurements);
+// The same from the CSV's text; `name` is the file in messages.
+std::vector<Measurement> parse_measurements(std::string_view text, const std::string& name,
+                                            std::size_t max_rows = kMaxMeasurements);
 
 // The value the material predicts for a measurement with the model's forward
 // formula; NaN where the model has none (mass-spring off the yarns).

@@ -41,12 +41,17 @@ std::string encode_png(const Image& image);
 // the file on failure.
 void write_png(const Image& image, const std::filesystem::path& path);
 
+// The largest image decoded unless the caller allows more: 8192 x 8192 pixels
+// (256 MiB as RGBA). A PNG's header can claim 10^10 pixels in 69 bytes.
+inline constexpr std::uint64_t kMaxImagePixels = 8192ull * 8192ull;
+
 // Decodes PNG bytes (any bit depth, palette, grey or alpha) into 8-bit RGBA.
-// Throws vgd::Error naming `name` when the bytes are not a PNG image.
-Image decode_png(std::string_view bytes, const std::string& name);
+// Throws vgd::Error naming `name` when the bytes are not a PNG image, or when
+// its header claims more than max_pixels pixels (nothing is allocated then).
+Image decode_png(std::string_view bytes, const std::string& name, std::uint64_t max_pixels = kMaxImagePixels);
 
 // Reads a PNG file. Throws vgd::Error naming the file when it is missing,
-// unreadable or not a PNG image.
-Image read_png(const std::filesystem::path& path);
+// unreadable, not a PNG image or larger than max_pixels.
+Image read_png(const std::filesystem::path& path, std::uint64_t max_pixels = kMaxImagePixels);
 
 }  // namespace vgd::render

@@ -219,8 +219,13 @@ struct SceneDef {
 // The step the integrator will be asked to take (s).
 double effective_step(const SceneDef& def);
 
+// What a scene may plan; more is refused by validate() naming the field.
+inline constexpr double kMaxFps = 10000.0;     // frames per second
+inline constexpr double kMaxFrames = 1.0e6;    // frames of one run (duration x fps)
+inline constexpr double kMaxSteps = 1.0e9;     // steps of one run (duration / step)
+
 // Checks what can be checked without reading other files (ranges, references
-// between fields, exactly one piece source, ...). Throws vgd::Error naming
+// between fields, exactly one piece source, bounded frame and step counts, ...). Throws vgd::Error naming
 // def.source, the field's path and the problem.
 void validate(const SceneDef& def);
 

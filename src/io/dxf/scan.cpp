@@ -3,6 +3,8 @@
 // found here first, with the line it is on.
 #include <cstring>
 
+#include <dxflib/dl_codes.h>
+
 #include "raw.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -12,6 +14,8 @@ namespace vgd::dxf::raw {
 namespace {
 
 enum class ValueKind { string, real, integer };
+
+constexpr std::size_t kMaxLine = DL_DXF_MAXLINE - 2;  // dxflib's buffer, less the line end
 
 // DXF reference, "group code value types".
 ValueKind kind_of(long code) {
@@ -54,6 +58,12 @@ ScanInfo scan(std::string_view text, const std::string& name) {
     if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
     pos = e + 1;
     ++line;
+    // dxflib reads a line into DL_DXF_MAXLINE bytes and takes the rest of a
+    // longer one as the next lines: the file's pairs would fall out of step.
+    if (out.size() > kMaxLine)
+      throw Error(name, "", "a line of " + std::to_string(out.size()) + " characters; a DXF line holds at most " +
+                                std::to_string(kMaxLine),
+                  line);
     return true;
   };
 

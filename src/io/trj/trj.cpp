@@ -227,9 +227,18 @@ void TrjWriter::end(bool ok) {
   const int closed = std::fclose(out_);
   out_ = nullptr;
   if (!flushed || closed != 0) fail(partial.string(), "", std::string("cannot finish the file: ") + std::strerror(errno));
+  // A failed run's frames never replace a complete file: they go beside it.
+  written_ = ok ? file_ : failed_path();
   std::error_code ec;
-  std::filesystem::rename(partial, file_, ec);
-  if (ec) fail(file_.string(), "", "cannot rename " + partial.string() + " into place: " + ec.message());
+  std::filesystem::rename(partial, written_, ec);
+  if (ec) fail(written_.string(), "", "cannot rename " + partial.string() + " into place: " + ec.message());
+}
+
+std::filesystem::path TrjWriter::failed_path() const {
+  auto p = file_;
+  const auto ext = p.extension().string();
+  p.replace_filename(p.stem().string() + ".failed" + (ext.empty() ? ".trj" : ext));
+  return p;
 }
 
 void TrjWriter::write_chunk(const char tag[4], const std::string& payload) {
@@ -377,8 +386,12 @@ void TrjReader::open() {
   std::string buf;
 
   // ---- header ----
-  if (!read_at(in, 0, 8, buf) || !looks_like_trj(buf))
+  if (!read_at(in, 0, 8, buf) || !looks_like_trj(buf)) {
+    // A .wvt (docs/formats/wvt.md) begins "\x89WVT".
+    if (buf.size() >= 4 && buf.compare(0, 4, "\x89WVT") == 0)
+      fail(name_, "header", "a compressed trajectory (.wvt), not a .trj: vgd decompress turns it into one");
     fail(name_, "header", "not a vgd trajectory: the file does not start with the .trj signature (bad magic)");
+  }
   if (!read_at(in, 0, kHeaderSize, buf))
     fail(name_, "header", "the file ends inside the " + std::to_string(kHeaderSize) + "-byte header (" +
                               std::to_string(size_) + " bytes)");

@@ -176,7 +176,7 @@ std::string glb_bytes(const Garment& g, const DrapeExportOptions& options) {
                      {"bufferViews", buf.views},
                      {"buffers", {{{"byteLength", buf.bin.size()}}}}};
   if (!images.empty()) doc["images"] = images, doc["textures"] = textures;
-  std::string json = doc.dump();
+  std::string json = doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   while (json.size() % 4) json.push_back(' ');
 
   // Header, JSON chunk, BIN chunk (glTF 2.0 §4.4).

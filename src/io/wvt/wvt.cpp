@@ -22,6 +22,7 @@
 #include <limits>
 
 #include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
 #include "vgd/io/trj/binary.hpp"
 
 namespace vgd::io::wvt {
@@ -476,12 +477,12 @@ double max_vertex_error(const Trajectory& a, const Trajectory& b) {
 
 std::string encode(const Trajectory& t, const EncodeOptions& options, EncodeStats* stats) {
   const auto start = std::chrono::steady_clock::now();
-  const std::string name = "<trajectory>";
+  const std::string& name = options.source;
   const int n = t.topology.num_particles, frames = t.frame_count();
   VGD_ASSERT(t.times.size() == t.frames.size(), "wvt::encode: one time per frame");
   VGD_ASSERT(options.max_error_m > 0.0, "wvt::encode: the error bound must be positive");
   if (!(options.max_error_m >= 1e-7))
-    fail(name, "", "an error bound of " + std::to_string(options.max_error_m * 1000) +
+    fail(name, "", "an error bound of " + format_double(options.max_error_m * 1000) +
                        " mm is below float32 resolution; use at least 0.0001 mm");
   if (3ull * static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(frames) > kMaxValues)
     fail(name, "", "too large for one .wvt (more than 2^31 coordinates)");
@@ -513,8 +514,8 @@ std::string encode(const Trajectory& t, const EncodeOptions& options, EncodeStat
   g.step = 2.0 * std::max(options.max_error_m - margin, 0.5 * options.max_error_m) / std::sqrt(3.0);
   for (int a = 0; a < 3; ++a)
     if ((hi[a] - lo[a]) / g.step > kMaxSteps)
-      fail(name, "", "an error bound of " + std::to_string(options.max_error_m * 1000) +
-                         " mm is too fine for a trajectory " + std::to_string(hi[a] - lo[a]) + " m across");
+      fail(name, "", "an error bound of " + format_double(options.max_error_m * 1000) +
+                         " mm is too fine for a trajectory " + format_double(hi[a] - lo[a]) + " m across");
 
   const Tree tree = spanning_tree(t.topology, frames);
   std::string times;

@@ -221,14 +221,26 @@ TEST(TrjFile, ATruncatedLastFrameIsDroppedWithAWarning) {
   EXPECT_TRUE(has_warning(r4, "checksum"));
 }
 
-TEST(TrjFile, AFailedRunStillEndsItsFileAndSaysSo) {
+TEST(TrjFile, AFailedRunEndsItsFileBesideTheCompleteOneAndSaysSo) {
   const auto dir = test::scratch_dir("trj_failed");
   const Trajectory t = sample();
+  {  // a complete trajectory from an earlier run
+    TrjWriter w(dir / "f.trj");
+    w.begin(t.topology);
+    for (const auto& f : t.frames) w.add_frame(0.0, f);
+    w.end(true);
+    EXPECT_EQ(w.written(), dir / "f.trj");
+  }
   TrjWriter w(dir / "f.trj");
   w.begin(t.topology);
   w.add_frame(0.0, t.frames[0]);
   w.end(false);
-  const TrjReader r(dir / "f.trj");
+  EXPECT_EQ(w.written(), dir / "f.failed.trj");
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.trj.partial"));
+  const TrjReader kept(dir / "f.trj");
+  EXPECT_TRUE(kept.run_ok());
+  EXPECT_EQ(kept.frame_count(), static_cast<int>(t.frames.size()));
+  const TrjReader r(dir / "f.failed.trj");
   EXPECT_TRUE(r.complete());
   EXPECT_FALSE(r.run_ok());
   EXPECT_EQ(r.frame_count(), 1);

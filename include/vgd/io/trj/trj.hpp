@@ -101,14 +101,17 @@ struct WriterOptions {
 // Appends a trajectory chunk by chunk. As a sim::FrameSink: begin() creates
 // `file.partial` (and missing parent folders) and writes the header and
 // topology; merged() and frame() append one chunk each and flush it; end()
-// writes the end marker and renames `file.partial` to `file` — also when the
-// run failed (`ok` false): the frames before the failure are valid. One
-// writer records one run. Throws vgd::Error naming the file when it cannot
+// writes the end marker and renames `file.partial` to `file`. When the run
+// failed (`ok` false) the frames before the failure are valid but do not
+// replace `file`: they go to failed_path() (`out.trj` -> `out.failed.trj`),
+// and written() says which. One writer records one run. Throws vgd::Error naming the file when it cannot
 // write.
 class TrjWriter : public sim::FrameSink {
  public:
   explicit TrjWriter(std::filesystem::path file, WriterOptions options = {});
   ~TrjWriter() override;  // a writer never ended leaves `file.partial` (a crash looks the same)
+  std::filesystem::path failed_path() const;
+  const std::filesystem::path& written() const { return written_; }  // empty before end()
   TrjWriter(const TrjWriter&) = delete;
   TrjWriter& operator=(const TrjWriter&) = delete;
 
@@ -135,7 +138,7 @@ class TrjWriter : public sim::FrameSink {
   void write_chunk(const char tag[4], const std::string& payload);
   void flush_chunk();
 
-  std::filesystem::path file_;
+  std::filesystem::path file_, written_;
   WriterOptions options_;
   std::FILE* out_ = nullptr;
   int num_particles_ = 0;

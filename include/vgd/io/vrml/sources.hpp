@@ -12,7 +12,8 @@ namespace vgd::io::vrml {
 
 // The garment of a whole trajectory: topology, uv and every frame; the merges
 // in force at the last frame become Cloth::representative. Throws vgd::Error
-// (naming `name`) when the trajectory has no material coordinates or no frame.
+// (naming `name`, the file it came from, also the garment's name) when the
+// trajectory has no material coordinates or no frame.
 Garment garment_from_trajectory(const trj::Trajectory& trajectory, const std::string& name);
 
 // The garment of a drape's OBJ (`v`, triangles `f`, one `g` per piece): one

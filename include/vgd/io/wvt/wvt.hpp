@@ -44,6 +44,8 @@ struct EncodeOptions {
   // representative's), in no band, the coarsest band only, or every band.
   enum class Spatial { none = 0, coarse = 1, all = 2 };
   Spatial spatial = Spatial::all;
+  // What the trajectory is called in messages (the file it was read from).
+  std::string source = "the trajectory";
 };
 
 // What an encoding did (sizes in bytes, times in seconds).
@@ -58,7 +60,7 @@ struct EncodeStats {
   double seconds = 0.0;                     // encode + verification
 };
 
-// Encodes a trajectory. Throws vgd::Error (file "<trajectory>") for a
+// Encodes a trajectory. Throws vgd::Error (file options.source) for a
 // non-finite position or a bound too small for the trajectory's extent.
 std::string encode(const trj::Trajectory& trajectory, const EncodeOptions& options, EncodeStats* stats = nullptr);
 
