@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
@@ -273,4 +274,54 @@ TEST(HostileInput, ACompressedTrajectoryIsExportedOrNamedAsOne) {
   r = test::run_vgd({"render", (dir / "s2.trj").string(), "-o", (dir / "s.png").string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_TRUE(has(r.err, "s2.trj: header: a compressed trajectory (.wvt), not a .trj: vgd decompress")) << r.err;
+}
+
+TEST(HostileInput, TrajectoryMistakesNameTheFileByItsPath) {
+  const auto dir = test::scratch_dir("hostile_trj_names");
+  io::trj::Topology topo;
+  topo.num_particles = 3;
+  topo.triangles = {{0, 1, 2}};
+  topo.uv = {{0, 0}, {1, 0}, {0, 1}};
+  {  // no frame at all
+    io::trj::TrjWriter w(dir / "empty.trj");
+    w.begin(topo);
+    w.end(true);
+  }
+  auto r = test::run_vgd({"export", (dir / "empty.trj").string(), "-o", (dir / "e.wrl").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(has(r.err, (dir / "empty.trj").string() + ": the trajectory has no frame")) << r.err;
+  {  // 3e38 m across: no error bound of 1 mm fits a 2^30-step grid
+    io::trj::TrjWriter w(dir / "wide.trj");
+    w.begin(topo);
+    w.add_frame(0.0, std::vector<float>{0, 0, 0, 3e38f, 0, 0, 0, 1, 0});
+    w.end(true);
+  }
+  r = test::run_vgd({"compress", (dir / "wide.trj").string(), "-o", (dir / "w.wvt").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(has(r.err, (dir / "wide.trj").string() + ": an error bound of 1 mm is too fine for a trajectory 3"))
+      << r.err;
+  EXPECT_FALSE(has(r.err, "<trajectory>")) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "w.wvt"));
+}
+
+TEST(HostileInput, LibraryMessagesAreSaidInWords) {
+  const auto dir = test::scratch_dir("hostile_words");
+  // assimp's "Cannot parse string \"a\" as a real number: ..."
+  write_file_atomic(dir / "p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn a b c\nf 1 2 3\n");
+  auto r = test::run_vgd({"avatar", "report", (dir / "p.obj").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(has(r.err, "p.obj: not a 3-D model vgd can read") && has(r.err, "a number was expected, found \"a\""))
+      << r.err;
+  EXPECT_FALSE(has(r.err, "Cannot parse string")) << r.err;
+  // A fit driven to infinity names the measurements and the parameter.
+  write_file_atomic(dir / "over.csv",
+                    "quantity,direction,x,value,unit\nweight,,,120,g/m2\ntensile,warp,1e-300,1e300,N/m\n"
+                    "tensile,weft,1e-300,1e300,N/m\nshear_rigidity,,,395,N/m\nbending_rigidity,warp,,1e-5,N.m\n"
+                    "bending_rigidity,weft,,1e-5,N.m\n");
+  r = test::run_vgd({"lab", "fit", (dir / "over.csv").string(), "--model", "mass-spring", "-o",
+                     (dir / "out").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(has(r.err, (dir / "over.csv").string() + ": spring.warp: the fit drove it to a value that is not a "
+                                                       "finite number"))
+      << r.err;
 }
