@@ -326,6 +326,7 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
 
   ModelReadOptions ro;
   ro.bind_pose = gltf;  // glTF: a skinned mesh ignores its node's transform
+  ro.time_limit_s = o.read_time_limit_s;
   ModelFile model = read_model_file(path, ro);
   mesh::SurfaceMesh& s = model.surface;
   r.dropped_primitives = model.dropped;

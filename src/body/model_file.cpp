@@ -187,6 +187,14 @@ std::string in_words(std::string why) {
   return why;
 }
 
+// s: the reading time allowed (ModelReadOptions::time_limit_s).
+double time_limit_s(const fs::path& path, const ModelReadOptions& options) {
+  if (options.time_limit_s > 0.0) return options.time_limit_s;
+  std::error_code ec;
+  const auto bytes = fs::file_size(path, ec);
+  return 5.0 + (ec ? 0.0 : static_cast<double>(bytes) / 1e6);
+}
+
 // An OBJ face with more corners than the limit is refused before assimp sees
 // it: assimp triangulates a polygon in time that grows faster than its size
 // (a face of a million corners reads for minutes).
@@ -262,7 +270,8 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
   ::close(fds[1]);
   std::string bytes;
   char buf[1 << 16];
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(options.time_limit_s);
+  const double limit_s = time_limit_s(path, options);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
   bool late = false;
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
@@ -298,8 +307,8 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (late)
-    throw Error(file, "", "not read: assimp had not finished reading it after " +
-                              format_double(options.time_limit_s) + " s (a damaged file it loops on, or a huge one)");
+    throw Error(file, "", "not read: assimp had not finished reading it after " + format_fixed(limit_s, 1) +
+                              " s, the limit for a file of its size (a damaged file it loops on)");
   if (WIFSIGNALED(status))
     throw Error(file, "", "not a 3-D model vgd can read: assimp crashed reading it (signal " +
                               std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status)) +

@@ -325,3 +325,16 @@ TEST(HostileInput, LibraryMessagesAreSaidInWords) {
                                                        "finite number"))
       << r.err;
 }
+
+TEST(HostileInput, ABodyFileAssimpLoopsOnIsRefusedAtALimitScaledToItsSize) {
+  // Found by fuzzing: 922 bytes of PLY whose header assimp never finishes (the
+  // corpus file's first byte picks the format for the fuzz target).
+  const auto dir = test::scratch_dir("hostile_ply_loop");
+  const std::string corpus = read_file(test::source_dir() / "tests" / "fuzz" / "corpus" / "avatar" / "assimp-loops.ply");
+  write_file_atomic(dir / "loop.ply", corpus.substr(1));
+  const auto r = test::run_vgd({"avatar", "report", (dir / "loop.ply").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(has(r.err, "loop.ply: not read: assimp had not finished reading it after 5.0 s, the limit for a file of "
+                         "its size"))
+      << r.err;
+}

@@ -19,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     const vgd::xvc::Document doc = vgd::xvc::load_string(text, "fuzz.xvc");
-    for (const auto& d : vgd::xvc::check(doc).items())
+    const vgd::Diagnostics found = vgd::xvc::check(doc);
+    for (const auto& d : found.items())
       if (!vgd::is_utf8(d.message) || !vgd::is_utf8(d.entity)) __builtin_trap();  // printable, always
     const vgd::pattern::Style style = vgd::xvc::to_style(doc);
     for (const auto& piece : style.pieces)

@@ -39,6 +39,7 @@ struct AvatarImportOptions {
   double weld_tolerance = 1e-6;  // m, after unit conversion
   bool recentre = true;          // feet on y = 0, bounding box centred on x = z = 0
   bool segments = true;          // best-effort segments from horizontal slices
+  double read_time_limit_s = 0;  // s, assimp's reading (ModelReadOptions::time_limit_s; 0: by the file's size)
 };
 
 struct AvatarReport {
