@@ -175,11 +175,15 @@ std::optional<Vec2> touching_vertex(const std::vector<Contour>& contours) {
     for (; v != vertices.end() && v->x <= e.xmax; ++v) {
       if (v->c == e.c && (v->i == e.i || v->i == j)) continue;
       const Vec2& q = contours[v->c].points[v->i];
-      // Near the edge's inside, not near one of its ends: two points of an
-      // outline closer than kTouch (graded blocks have them) mesh as they are.
       const double t = len2 > 0.0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
       const Vec2 foot = a + t * ab;
-      if ((foot - q).norm() < kTouch && (foot - a).norm() > kTouch && (foot - p[j]).norm() > kTouch) return q;
+      if ((foot - q).norm() >= kTouch) continue;
+      // Next to one of the edge's ends that is q's neighbour on its contour:
+      // two consecutive points closer than kTouch (graded blocks have them)
+      // mesh as they are.
+      auto neighbours = [&](std::size_t k) { return v->c == e.c && (v->i == (k + 1) % n || k == (v->i + 1) % n); };
+      if (((foot - a).norm() < kTouch && neighbours(e.i)) || ((foot - p[j]).norm() < kTouch && neighbours(j))) continue;
+      return q;
     }
   }
   return std::nullopt;

@@ -277,6 +277,26 @@ TEST(MeshPiece, UnmeshablePiecesThrowNamingThePiece) {
   EXPECT_THROW(mesh_piece(piece("TINY", {{0, 0}, {1, 0}}), opts(), d), Error);
 }
 
+TEST(MeshPiece, AnOutlineTouchingItselfIsRefusedAndAFewMicrometresApartMeshes) {
+  // A spike back along the bottom edge, 1e-300 m above it: refinement would not end.
+  Diagnostics d;
+  const std::vector<Vec2> touching{{0, 0}, {0.5, 0}, {0.45, 1e-300}, {0.5, 0.01}, {0.5, 0.5}, {0, 0.5}};
+  try {
+    mesh_piece(piece("TOUCH", touching), opts(), d);
+    FAIL() << "expected vgd::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.diagnostic().entity, "TOUCH");
+    EXPECT_NE(e.diagnostic().message.find("touches itself at (0.4500, 0.0000) m"), std::string::npos)
+        << e.diagnostic().message;
+  }
+  // A notch whose tip comes within 5 micrometres of the opposite edge (a real
+  // graded sleeve does): above the 0.1 micrometre tolerance, it meshes.
+  MeshOptions o = opts();
+  o.resample_contour = false;
+  const std::vector<Vec2> close{{0, 0}, {0.5, 0}, {0.5, 0.2}, {0.25, 0.2}, {0.25, 5e-6}, {0.2, 0.2}, {0, 0.2}};
+  EXPECT_NO_THROW(mesh_piece(piece("CLOSE", close), o, d));
+}
+
 TEST(Triangulate, CrossingContoursAreReportedWithTheirPlace) {
   // A bow tie drawn as one outline (positive net area so the orientation check passes).
   const std::vector<Vec2> bow = {{0, 0}, {1, 0}, {1, 0.5}, {0.4, -0.2}, {0, 0.5}};
