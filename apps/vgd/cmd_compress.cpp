@@ -34,16 +34,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The first bytes of a file (to tell .trj from .wvt by content).
-std::string head_of(const fs::path& file) {
-  std::string head(8, '\0');
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) throw vgd::Error(file.string(), "", "cannot open the file");
-  head.resize(std::fread(head.data(), 1, head.size(), f));
-  std::fclose(f);
-  return head;
-}
-
 // ---- vgd compress ----
 struct CompressOptions {
   std::string input, output, transform = "cdf53";
@@ -71,7 +61,7 @@ vgd::cli::Registrar compress_reg{"compress", 70, [](CLI::App& app, vgd::cli::Com
               "the whole-file ratio is printed too. Exit codes: 0 ok, 1 bad input.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
-    if (wvt::looks_like_wvt(head_of(o->input)))
+    if (wvt::is_wvt_file(o->input))
       throw vgd::Error(o->input, "", "this is already a compressed trajectory (.wvt); vgd decompress reads it");
     trj::TrjReader reader(o->input);
     vgd::cli::print_diagnostics(reader.warnings(), common);
@@ -167,7 +157,7 @@ vgd::cli::Registrar trj_reg{"trj", 72, [](CLI::App& app, vgd::cli::Common& commo
   return vgd::cli::Command{sub, [o, &common]() -> int {
     nlohmann::json j{{"file", o->input}};
     vgd::Diagnostics warnings;
-    if (wvt::looks_like_wvt(head_of(o->input))) {
+    if (wvt::is_wvt_file(o->input)) {
       const wvt::Info w = wvt::read_info(vgd::read_file(o->input), o->input);
       j.update({{"format", "wvt"},
                 {"version", std::to_string(w.version_major) + "." + std::to_string(w.version_minor)},

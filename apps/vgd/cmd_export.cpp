@@ -54,16 +54,6 @@ std::string size_text(std::size_t bytes) {
   return vgd::format_fixed(bytes / (1024.0 * 1024.0), 1) + " MB";
 }
 
-// The first bytes of a file ("" when it cannot be opened: its reader says why).
-std::string head_of(const fs::path& file) {
-  std::string head(8, '\0');
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) return "";
-  head.resize(std::fread(head.data(), 1, head.size(), f));
-  std::fclose(f);
-  return head;
-}
-
 // The garment of one input: a .trj or .wvt, a drape folder or an .obj.
 vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs::path& folder_avatar) {
   const fs::path p(input);
@@ -80,7 +70,7 @@ vrml::Garment load_garment(const std::string& input, vgd::Diagnostics& diag, fs:
     diag.info(input, "", "an OBJ: one frame, material coordinates approximated (a .trj has them)");
     return vrml::garment_from_obj(p);
   }
-  if (vgd::io::wvt::looks_like_wvt(head_of(p))) {
+  if (vgd::io::wvt::is_wvt_file(p)) {
     diag.info(input, "", "a compressed trajectory (.wvt): positions within the error bound it was written with");
     auto g = vrml::garment_from_trajectory(vgd::io::wvt::read_wvt(p), input);
     g.name = p.stem().string();

@@ -140,10 +140,11 @@ Contour to_contour(const pattern::ResampledContour& r) {
   return c;
 }
 
-// A contour vertex closer than kTouch to the inside of a contour edge that
-// does not end at it: the outline (or a cutout) touches itself there, a sliver no triangle
-// of the minimum angle fits in, and Delaunay refinement would add points
-// there without end. Edges sorted by their smallest x are swept as in
+// A contour vertex closer than kTouch to a contour edge that does not end at
+// it or at its neighbour (over the edge's inside, or at another vertex): the
+// outline (or a cutout) touches itself there, a sliver no triangle of the
+// minimum angle fits in, and Delaunay refinement would add points there
+// without end. Edges sorted by their smallest x are swept as in
 // pattern::is_self_intersecting: O(n log n) on real outlines.
 // Below any DXF's resolution (1 µm in mm, 2.5 µm in 1/10000 in): a real outline
 // that comes back within a few µm of itself (a graded sleeve of the shared
@@ -214,7 +215,7 @@ PieceMesh triangulate(const std::vector<Contour>& contours, const MeshOptions& o
     char at[96];
     std::snprintf(at, sizeof at, "(%.4f, %.4f) m", q->x(), q->y());
     throw Error("", piece, std::string("the outline or a cutout touches itself at ") + at +
-                               " (a point less than 0.0001 mm from the inside of another edge); repair the piece");
+                               " (a point less than 0.0001 mm from another part of the outline); repair the piece");
   }
 
   // Refinement (CGAL).

@@ -640,16 +640,18 @@ Info read_info(std::string_view bytes, const std::string& name) {
   return info;
 }
 
-Trajectory read_trajectory(const std::filesystem::path& file) {
+bool is_wvt_file(const std::filesystem::path& file) {
   std::string head(8, '\0');
-  {
-    std::FILE* f = std::fopen(file.c_str(), "rb");
-    if (!f) fail(file.string(), "", "cannot open the trajectory");
-    head.resize(std::fread(head.data(), 1, 8, f));
-    std::fclose(f);
-  }
-  if (looks_like_wvt(head)) return read_wvt(file);
-  return trj::TrjReader(file).read_all();
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return false;
+  head.resize(std::fread(head.data(), 1, head.size(), f));
+  std::fclose(f);
+  return looks_like_wvt(head);
+}
+
+Trajectory read_trajectory(const std::filesystem::path& file) {
+  if (is_wvt_file(file)) return read_wvt(file);
+  return trj::TrjReader(file).read_all();  // says when the file cannot be opened
 }
 
 }  // namespace vgd::io::wvt

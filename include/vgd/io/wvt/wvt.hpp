@@ -94,6 +94,9 @@ double max_vertex_error(const trj::Trajectory& a, const trj::Trajectory& b);
 
 // True when `bytes` begin with the .wvt magic.
 bool looks_like_wvt(std::string_view bytes);
+// True when the file begins with the .wvt magic (false when it cannot be
+// read: the reader that opens it next says why).
+bool is_wvt_file(const std::filesystem::path& file);
 
 // A .trj or a .wvt (told apart by content), whole, in memory.
 trj::Trajectory read_trajectory(const std::filesystem::path& file);
