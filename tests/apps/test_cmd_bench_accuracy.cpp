@@ -122,17 +122,32 @@ void bdf_error_follows_its_tolerance() {
 }
 
 // On the hanging cloth RK4 is the cheapest way to an error below 1 mm (the
-// doc's "which method wins"): no other run reaching 1 mm costs less CPU.
+// doc's "which method wins"). Among the explicit methods work is counted in
+// force evaluations (each costs the same, and the count does not depend on
+// the machine's load): no other explicit run reaching 1 mm needs fewer. The
+// implicit runs that reach 1 mm (BDF) cost 4-7x RK4's CPU in the same run;
+// the test asks for more than 2x.
 void rk4_is_the_cheapest_way_below_one_millimetre_on_the_hanging_cloth() {
   for (const std::string model : {"mass-spring", "strain-rosette"}) {
-    double best = 1e300;
+    SCOPED_TRACE(model);
+    double fewest = 1e300, rk4_cpu = 1e300, implicit_cpu = 1e300;
     std::string winner;
-    for (const auto& r : records())
-      if (r["problem"] == "hanging" && r["model"] == model && r["status"] == "ok" &&
-          r["integrator"].get<std::string>().rfind("reference", 0) != 0 && r["error_mm"].get<double>() < 1.0 &&
-          r["cpu_s"].get<double>() < best)
-        best = r["cpu_s"].get<double>(), winner = r["integrator"].get<std::string>();
-    EXPECT_EQ(winner, "rk4") << model;
+    for (const auto& r : records()) {
+      if (r["problem"] != "hanging" || r["model"] != model || r["status"] != "ok") continue;
+      const auto method = r["integrator"].get<std::string>();
+      if (method.rfind("reference", 0) == 0 || method.rfind("preset", 0) == 0) continue;
+      if (r["error_mm"].get<double>() >= 1.0) continue;
+      const double cpu = r["cpu_s"].get<double>();
+      if (r["jac_evals"].get<int>() > 0) {
+        implicit_cpu = std::min(implicit_cpu, cpu);
+        continue;
+      }
+      if (method == "rk4") rk4_cpu = std::min(rk4_cpu, cpu);
+      const double rhs = r["rhs_evals"].get<double>();
+      if (rhs < fewest) fewest = rhs, winner = method;
+    }
+    EXPECT_EQ(winner, "rk4");
+    EXPECT_LT(2.0 * rk4_cpu, implicit_cpu);
   }
 }
 
