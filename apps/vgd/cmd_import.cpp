@@ -12,7 +12,7 @@ namespace {
 
 struct Options {
   std::string input, output, units;
-  bool report = false, json = false, unfold = false, strict = false, no_repair = false;
+  bool report = false, json = false, unfold = false, join = false, strict = false, no_repair = false;
 };
 
 vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common) {
@@ -24,6 +24,10 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
   sub->add_flag("--report", o->report, "Print what the file holds: pieces, sizes, blocks, warnings");
   sub->add_flag("--json", o->json, "With --report: machine-readable JSON on stdout");
   sub->add_flag("--unfold-mirrored", o->unfold, "Unfold half pieces about their mirror (fold) line");
+  sub->add_flag("--join-per-side", o->join,
+                "Join pieces written once per side whose names say nothing: mirror-image halves with a straight "
+                "centre edge into one piece, two blocks of one outline into one piece cut twice (CLO; vgd dress "
+                "does this)");
   sub->add_option("--units", o->units, "Units to read the file in, overriding what it states (mm, cm, in)");
   sub->add_flag("--strict", o->strict,
                 "Write nothing when a block had to be dropped (default: the other blocks are written, each dropped "
@@ -32,6 +36,7 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
   return vgd::cli::Command{sub, [o, &common]() -> int {
     vgd::dxf::ImportOptions opts;
     opts.unfold_mirrored = o->unfold;
+    opts.join_per_side = o->join;
     opts.repair_self_intersections = !o->no_repair;
     if (!o->units.empty()) {
       opts.units = vgd::parse_length_unit(o->units);
@@ -45,6 +50,7 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
       vgd::cli::print_json(vgd::dxf::report_json(result));
     } else {
       vgd::cli::print_diagnostics(result.diagnostics, common);
+      for (const auto& j : result.joined) vgd::cli::say(common, "vgd: " + vgd::pattern::describe(j));
       if (o->report) {
         std::printf("%s: %s %s, style '%s', %d pieces, %d blocks, sizes:", o->input.c_str(), s.producer.c_str(),
                     s.flavour.c_str(), s.style.c_str(), s.pieces, s.blocks);
@@ -65,8 +71,8 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
       throw vgd::Error(o->input, "", std::to_string(dropped) +
                                          " block(s) could not be imported; nothing written (--strict)");
     vgd::xvc::save_file(vgd::xvc::from_style(result.style), o->output);
-    vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(s.pieces) + " pieces, " +
-                              std::to_string(s.blocks) + " blocks" +
+    vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(result.style.piece_names().size()) +
+                              " pieces, " + std::to_string(result.style.pieces.size()) + " blocks" +
                               (dropped > 0 ? " (" + std::to_string(dropped) + " dropped: see above)" : ""));
     return dropped > 0 ? vgd::cli::kCheckFailed : vgd::cli::kOk;
   }};

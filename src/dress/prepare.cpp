@@ -10,6 +10,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
 #include "vgd/pattern/roles.hpp"
+#include "vgd/pattern/shape_roles.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -134,6 +135,46 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         if (q != 1) list += (list.empty() ? "" : ", ") + piece + " " + std::to_string(q);
       out.decisions.push_back("every piece says it is cut 0 times, which states nothing: each is cut as often as its "
                               "annotation says, else once (" + (list.empty() ? std::string("all once") : "twice or more: " + list) + ")");
+    }
+  }
+
+  // Roles from the pieces' shapes, for pieces whose names say nothing (CLO's
+  // numbers): pattern::roles_from_shapes at the sample size, written in the
+  // document as role attributes (every size of the piece), and said.
+  {
+    const auto here = patterns_of(!sample.empty() && !patterns_of(sample).empty() ? sample : out.size);
+    std::vector<const xvc::Node*> unknown;
+    std::vector<pattern::Piece> pieces;
+    for (const auto* p : here)
+      if (!p->has_attribute("role") && xvc::piece_role(doc, *p).role == pattern::Role::unknown) {
+        unknown.push_back(p);
+        pieces.push_back(xvc::to_piece(doc, p->id()));
+      }
+    std::vector<const pattern::Piece*> shapes;
+    for (const auto& pc : pieces) shapes.push_back(&pc);
+    const auto found = pattern::roles_from_shapes(shapes);
+    std::map<std::string, pattern::Role> by_name;
+    std::string said, left;
+    for (std::size_t i = 0; i < unknown.size(); ++i) {
+      const std::string name(unknown[i]->attribute("piece"));
+      if (found[i].role == pattern::Role::unknown) {
+        left += (left.empty() ? "" : ", ") + name;
+        continue;
+      }
+      by_name[name] = found[i].role;
+      said += (said.empty() ? "" : ", ") + name + " " + std::string(pattern::role_name(found[i].role)) + " (" +
+              found[i].why + ")";
+    }
+    if (!by_name.empty()) {
+      std::vector<std::unique_ptr<xvc::Command>> set;
+      for (const auto* p : doc.patterns())
+        if (const auto it = by_name.find(std::string(p->attribute("piece"))); it != by_name.end())
+          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role",
+                                                            std::string(pattern::role_name(it->second))));
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("roles from shapes", std::move(set)));
+      out.decisions.push_back("roles from the pieces' shapes (their names say nothing): " + said +
+                              (left.empty() ? "" : "; no role from its shape: " + left) +
+                              " (role written; correct it in the document)");
     }
   }
 

@@ -681,6 +681,7 @@ ImportResult Interpreter::run() {
         for (auto& n : p.notches) n.boundary_index = pattern::nearest_vertex(p.boundary, n.position).index;
     }
   }
+  if (opts_.join_per_side) res_.joined = pattern::join_pieces_written_per_side(res_.style);
   // Files that mark no turn points (Valentina) get their corners from
   // the outline, so that a piece has stretches to sew.
   for (auto& p : pieces) {

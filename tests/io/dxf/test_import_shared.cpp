@@ -1,6 +1,7 @@
 // The importer against figures computed independently (ezdxf + a raw tag reader,
 // exact arithmetic; tests/io/dxf/reference/README.md) for every block of every
 // shared real DXF file: Gerber AAMA and ASTM, CLO, Valentina AAMA and ASTM.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -129,6 +130,40 @@ TEST(SharedDxf, MirroredFileUnfoldsEveryHalfPiece) {
     EXPECT_FALSE(vgd::pattern::is_self_intersecting(p.boundary)) << p.block;
   }
   EXPECT_EQ(halves, 195);  // 13 half pieces x 15 sizes (195 layer-6 lines)
+}
+
+// CLO writes its T-shirt's front and back as left and right halves (blocks
+// 11/37 and 7/38), its sleeve twice (36, 39) and a neck binding in two
+// halves: joined, 9 blocks are 5 pieces, each half pair twice the area of
+// its half, and no other shared file has a piece joined.
+TEST(SharedDxf, CloHalvesWrittenPerSideAreJoined) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions o;
+  o.unfold_mirrored = true;
+  o.join_per_side = true;
+  const auto r = vgd::dxf::import_file(vgd::test::shared_dxf("clo-pattern.dxf"), o);
+  EXPECT_EQ(r.blocks.size(), 9u);
+  ASSERT_EQ(r.joined.size(), 4u);
+  EXPECT_EQ(r.style.pieces.size(), 5u);
+  int halves = 0;
+  for (const auto& j : r.joined) {
+    if (!j.halves) {
+      EXPECT_EQ(j.kept, "36_M");
+      continue;
+    }
+    ++halves;
+    const auto kept = std::find_if(r.blocks.begin(), r.blocks.end(), [&](const auto& b) { return b.block == j.kept; });
+    const auto piece = std::find_if(r.style.pieces.begin(), r.style.pieces.end(), [&](const auto& p) { return p.block == j.kept; });
+    ASSERT_NE(kept, r.blocks.end());
+    ASSERT_NE(piece, r.style.pieces.end());
+    EXPECT_NEAR(std::abs(vgd::pattern::signed_area(piece->boundary)), 2 * kept->area_m2, 1e-4 * kept->area_m2) << j.kept;
+    EXPECT_FALSE(vgd::pattern::is_self_intersecting(piece->boundary)) << j.kept;
+  }
+  EXPECT_EQ(halves, 3);
+  for (const auto& file : vgd::test::shared_dxf_files()) {
+    if (file == "clo-pattern.dxf") continue;
+    EXPECT_TRUE(vgd::dxf::import_file(vgd::test::shared_dxf(file), o).joined.empty()) << file;
+  }
 }
 
 // Valentina marks no turn points: corners come from the outline. Every

@@ -24,6 +24,7 @@
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/units.hpp"
+#include "vgd/pattern/halves.hpp"
 #include "vgd/pattern/piece.hpp"
 
 namespace vgd::dxf {
@@ -35,6 +36,9 @@ struct ImportOptions {
   LengthUnit default_units = LengthUnit::millimetre;
   // Unfold half pieces about their mirror line (layer 6) into full pieces.
   bool unfold_mirrored = false;
+  // Join pieces written once per side whose names say nothing (CLO's left and
+  // right halves, a sleeve written twice): pattern::join_pieces_written_per_side.
+  bool join_per_side = false;
   // Cut small self-intersection loops (≤ 5 % of the area) out of outlines.
   bool repair_self_intersections = true;
   // Outline end points closer than this are joined silently (m).
@@ -78,6 +82,7 @@ struct ImportResult {
   ImportSummary summary;
   std::vector<BlockReport> blocks;
   Diagnostics diagnostics;  // warnings and dropped blocks, each naming the block
+  std::vector<pattern::JoinedPieces> joined;  // ImportOptions::join_per_side
 };
 
 // Imports a file. Throws vgd::Error for files that cannot be read at all

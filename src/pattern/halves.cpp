@@ -1,0 +1,162 @@
+#include "vgd/pattern/halves.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
+#include "vgd/pattern/roles.hpp"
+
+namespace vgd::pattern {
+
+namespace {
+
+// The piece's "up": along its grain line, else +y.
+Vec2 up_of(const Piece& p) {
+  if (p.grain_line && (p.grain_line->b - p.grain_line->a).norm() > 0) return (p.grain_line->b - p.grain_line->a).normalized();
+  return Vec2::UnitY();
+}
+
+Vec2 centroid(const std::vector<ContourPoint>& o) {
+  Vec2 c = Vec2::Zero();
+  double a2 = 0;
+  const std::size_t n = o.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &p = o[i].p, &q = o[(i + 1) % n].p;
+    const double w = p.x() * q.y() - q.x() * p.y();
+    a2 += w;
+    c += w * (p + q);
+  }
+  return std::abs(a2) > 0 ? Vec2(c / (3.0 * a2)) : o.front().p;
+}
+
+// Largest distance from a vertex of one outline to the other outline, both ways.
+double outline_gap(const std::vector<ContourPoint>& a, const std::vector<ContourPoint>& b) {
+  double gap = 0;
+  for (const auto& c : a) gap = std::max(gap, nearest_edge(b, c.p).distance);
+  for (const auto& c : b) gap = std::max(gap, nearest_edge(a, c.p).distance);
+  return gap;
+}
+
+// b moved onto a's centroid, reflected across the line along `up` first when asked.
+std::vector<ContourPoint> laid_on(const std::vector<ContourPoint>& b, const Vec2& onto, const Vec2& up, bool reflect) {
+  const Vec2 cb = centroid(b);
+  std::vector<ContourPoint> out = b;
+  for (auto& c : out) {
+    Vec2 d = c.p - cb;
+    if (reflect) d = 2.0 * d.dot(up) * up - d;
+    c.p = onto + d;
+  }
+  return out;
+}
+
+// The longest straight run of the outline along `up` with the whole piece on
+// one side of its line: its two end vertices. Runs of consecutive edges
+// within `tol` of the line through their ends.
+std::optional<Segment> centre_edge(const std::vector<ContourPoint>& o, const Vec2& up, double tol) {
+  const int n = static_cast<int>(o.size());
+  const Vec2 across(-up.y(), up.x());
+  auto along = [&](int i) {  // edge i runs along up (within 0.5 degree)
+    const Vec2 e = o[(i + 1) % n].p - o[i].p;
+    const double len = e.norm();
+    return len > 0 && std::abs(e.dot(across)) <= std::max(tol, len * std::sin(0.5 * M_PI / 180));
+  };
+  std::optional<Segment> best;
+  double best_len = 0;
+  for (int i = 0; i < n; ++i) {
+    if (!along(i) || along((i - 1 + n) % n)) continue;  // start of a run
+    int j = i;
+    while (along(j % n) && j - i < n) {
+      const Vec2 a = o[i].p, b = o[(j + 1) % n].p;
+      // the run's vertices stay on the line from its start
+      if (std::abs((b - a).dot(across)) > tol) break;
+      ++j;
+    }
+    if (j == i) continue;
+    const Vec2 a = o[i].p, b = o[j % n].p;
+    const double len = (b - a).norm();
+    if (len <= best_len) continue;
+    double lo = 0, hi = 0;
+    for (const auto& c : o) {
+      const double s = (c.p - a).dot(across);
+      lo = std::min(lo, s), hi = std::max(hi, s);
+    }
+    if (lo < -tol && hi > tol) continue;  // cloth on both sides: not an edge the piece folds about
+    best = Segment{a, b};
+    best_len = len;
+  }
+  return best;
+}
+
+double extent_along(const std::vector<ContourPoint>& o, const Vec2& up) {
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : o) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
+  return hi - lo;
+}
+
+}  // namespace
+
+std::vector<JoinedPieces> join_pieces_written_per_side(Style& style, double tol) {
+  std::vector<JoinedPieces> out;
+  std::vector<char> drop(style.pieces.size(), 0);
+  auto eligible = [&](const Piece& p) {
+    return p.closed && !p.mirror_line && p.quantity <= 1 && p.boundary.size() >= 3 &&
+           piece_role(p.name, p.category, p.annotation).role == Role::unknown;
+  };
+  for (std::size_t i = 0; i < style.pieces.size(); ++i) {
+    if (drop[i] || !eligible(style.pieces[i])) continue;
+    Piece& a = style.pieces[i];
+    const Vec2 up = up_of(a);
+    const double area = std::abs(signed_area(a.boundary)), per = perimeter(a.boundary);
+    for (std::size_t j = i + 1; j < style.pieces.size(); ++j) {
+      const Piece& b = style.pieces[j];
+      if (drop[j] || !eligible(b) || b.size != a.size || b.category != a.category || b.fabric != a.fabric) continue;
+      if ((up_of(b) - up).norm() > 0.01 && (up_of(b) + up).norm() > 0.01) continue;
+      if (std::abs(std::abs(signed_area(b.boundary)) - area) > 0.01 * area ||
+          std::abs(perimeter(b.boundary) - per) > 0.01 * per)
+        continue;
+      const Vec2 ca = centroid(a.boundary);
+      const bool same = outline_gap(a.boundary, laid_on(b.boundary, ca, up, false)) <= tol;
+      const bool mirrored = !same && outline_gap(a.boundary, laid_on(b.boundary, ca, up, true)) <= tol;
+      if (!same && !mirrored) continue;
+      JoinedPieces jp;
+      jp.size = a.size;
+      jp.kept = a.block;
+      jp.dropped = b.block;
+      if (mirrored) {
+        if (const auto c = centre_edge(a.boundary, up, tol);
+            c && (c->b - c->a).norm() >= 0.4 * extent_along(a.boundary, up)) {
+          Piece whole = a;
+          whole.mirror_line = *c;
+          if (unfold_about_mirror_line(whole, tol)) {
+            for (auto& nt : whole.notches) nt.boundary_index = nearest_vertex(whole.boundary, nt.position).index;
+            a = std::move(whole);
+            jp.halves = true;
+            jp.centre_length = (c->b - c->a).norm();
+          }
+        }
+      }
+      if (!jp.halves) a.quantity = 2;
+      drop[j] = 1;
+      out.push_back(jp);
+      break;
+    }
+  }
+  std::vector<Piece> kept;
+  for (std::size_t i = 0; i < style.pieces.size(); ++i)
+    if (!drop[i]) kept.push_back(std::move(style.pieces[i]));
+  style.pieces = std::move(kept);
+  return out;
+}
+
+std::string describe(const JoinedPieces& j) {
+  if (j.halves)
+    return "blocks " + j.kept + " and " + j.dropped + " are the left and right halves of one piece (mirror images, " +
+           "cut once each): joined along their " + format_fixed(100 * j.centre_length, 1) + " cm centre edge into " +
+           j.kept;
+  return "blocks " + j.kept + " and " + j.dropped + " have the same outline" + " (or its mirror image), cut once each: " +
+         j.kept + " is cut twice instead";
+}
+
+}  // namespace vgd::pattern

@@ -1,0 +1,152 @@
+// Pieces written once per side (pattern/halves.hpp) and roles from shapes
+// (pattern/shape_roles.hpp), on generated outlines.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "vgd/pattern/contour.hpp"
+#include "vgd/pattern/halves.hpp"
+#include "vgd/pattern/shape_roles.hpp"
+
+using namespace vgd::pattern;
+
+namespace {
+
+// The left half of a front, its centre edge on x = 0 from the neck down to
+// the hem (0.6 m), drawn counter-clockwise: hem, side, armhole, shoulder,
+// neck (a scoop 0.1 m deep), centre. `x0` moves it.
+Piece half_front(const std::string& name, double x0 = 0.0) {
+  Piece p;
+  p.block = name + "_M";
+  p.name = name;
+  p.size = "M";
+  const double pts[][2] = {{0, 0},      {0.25, 0},   {0.25, 0.45}, {0.22, 0.50}, {0.19, 0.54}, {0.18, 0.64},
+                           {0.08, 0.68}, {0.05, 0.63}, {0.02, 0.60}, {0, 0.58}};
+  for (const auto& q : pts) p.boundary.push_back({Vec2(x0 - q[0], q[1])});  // x mirrored: the centre on the right
+  std::reverse(p.boundary.begin(), p.boundary.end());                        // keep it counter-clockwise
+  p.grain_line = Segment{Vec2(x0 - 0.1, 0.1), Vec2(x0 - 0.1, 0.4)};
+  return p;
+}
+
+// `p` reflected across x = 0 and moved by dx, counter-clockwise again.
+Piece mirrored(Piece p, const std::string& name, double dx) {
+  p.block = name + "_M";
+  p.name = name;
+  for (auto& c : p.boundary) c.p = Vec2(-c.p.x() + dx, c.p.y());
+  std::reverse(p.boundary.begin(), p.boundary.end());
+  p.grain_line = Segment{Vec2(-p.grain_line->a.x() + dx, p.grain_line->a.y()), Vec2(-p.grain_line->b.x() + dx, p.grain_line->b.y())};
+  return p;
+}
+
+// A short sleeve: a bell-shaped cap 0.15 m high over a 0.45 m base, the
+// sides slanting in to a 0.34 m hem 0.1 m lower.
+Piece sleeve(const std::string& name, double dx) {
+  Piece p;
+  p.block = name + "_M";
+  p.name = name;
+  p.size = "M";
+  p.boundary.push_back({Vec2(dx + 0.055, 0)});
+  p.boundary.push_back({Vec2(dx + 0.395, 0)});
+  for (int k = 0; k <= 20; ++k) {
+    const double t = k / 20.0, x = 0.45 * (1 - t);
+    const double bell = 0.15 * std::exp(-std::pow((x - 0.225) / 0.1, 2));
+    p.boundary.push_back({Vec2(dx + x, 0.1 + bell)});
+  }
+  p.grain_line = Segment{Vec2(dx + 0.225, 0.02), Vec2(dx + 0.225, 0.2)};
+  return p;
+}
+
+double area_of(const Piece& p) { return std::abs(signed_area(p.boundary)); }
+
+}  // namespace
+
+// CLO's way: the left and right halves of a front as two blocks, cut once
+// each, and a sleeve written twice. The halves become one front (twice the
+// area, symmetric about its centre edge), the sleeves one sleeve cut twice.
+TEST(PiecesPerSide, MirrorHalvesAreJoinedAndASleeveWrittenTwiceIsCutTwice) {
+  Style s;
+  s.pieces = {half_front("11"), sleeve("36", 2.0), mirrored(half_front("11"), "37", 1.0), sleeve("39", 3.0)};
+  const double half = area_of(s.pieces[0]);
+  const auto joined = join_pieces_written_per_side(s);
+  ASSERT_EQ(joined.size(), 2u);
+  EXPECT_TRUE(joined[0].halves);
+  EXPECT_EQ(joined[0].kept, "11_M");
+  EXPECT_EQ(joined[0].dropped, "37_M");
+  EXPECT_NEAR(joined[0].centre_length, 0.58, 1e-9);
+  EXPECT_FALSE(joined[1].halves);
+  EXPECT_EQ(joined[1].dropped, "39_M");
+  ASSERT_EQ(s.pieces.size(), 2u);
+  const Piece& front = s.pieces[0];
+  EXPECT_NEAR(area_of(front), 2 * half, 1e-9);
+  EXPECT_EQ(front.quantity, 1);
+  EXPECT_FALSE(is_self_intersecting(front.boundary));
+  // Symmetric about the centre edge (x = 0): every vertex has its mirror image.
+  for (const auto& c : front.boundary)
+    EXPECT_LT(nearest_vertex(front.boundary, Vec2(-c.p.x(), c.p.y())).distance, 1e-9);
+  EXPECT_EQ(s.pieces[1].name, "36");
+  EXPECT_EQ(s.pieces[1].quantity, 2);
+  EXPECT_NE(describe(joined[0]).find("joined along their 58.0 cm centre edge into 11_M"), std::string::npos);
+}
+
+// Left alone: pieces whose names give a role (a placket and its interfacing
+// may share an outline), pieces of different sizes or categories, pieces cut
+// twice already, and a mirror pair whose straight edge is shorter than 40 %
+// of its length (not a centre).
+TEST(PiecesPerSide, NamedPiecesAndOtherSizesAreLeftAlone) {
+  Style s;
+  s.pieces = {half_front("FRONT"), mirrored(half_front("FRONT"), "FRONT", 1.0)};
+  s.pieces[1].block = "FRONT2_M";
+  EXPECT_TRUE(join_pieces_written_per_side(s).empty());
+  EXPECT_EQ(s.pieces.size(), 2u);
+
+  Style sizes;
+  sizes.pieces = {half_front("11"), mirrored(half_front("11"), "37", 1.0)};
+  sizes.pieces[1].size = "L";
+  EXPECT_TRUE(join_pieces_written_per_side(sizes).empty());
+
+  Style category;
+  category.pieces = {half_front("11"), mirrored(half_front("11"), "37", 1.0)};
+  category.pieces[1].category = "LINING";
+  EXPECT_TRUE(join_pieces_written_per_side(category).empty());
+
+  Style twice;
+  twice.pieces = {half_front("11"), mirrored(half_front("11"), "37", 1.0)};
+  twice.pieces[0].quantity = 2;
+  EXPECT_TRUE(join_pieces_written_per_side(twice).empty());
+
+  Style different;
+  different.pieces = {half_front("11"), mirrored(half_front("11"), "37", 1.0)};
+  different.pieces[1].boundary[3].p.y() += 0.01;  // 1 cm off: not the same piece
+  EXPECT_TRUE(join_pieces_written_per_side(different).empty());
+}
+
+// Roles from shapes: a strip is a binding, a cap makes a sleeve, and of two
+// body pieces the deeper neckline is the front's.
+TEST(ShapeRoles, AStripACapAndTwoNecklines) {
+  Style s;
+  s.pieces = {half_front("11"), mirrored(half_front("11"), "37", 1.0)};
+  join_pieces_written_per_side(s);
+  Piece front = s.pieces[0];
+  Piece back = front;
+  for (auto& c : back.boundary)
+    if (c.p.y() >= 0.58) c.p.y() = std::max(c.p.y(), 0.66);  // a shallow neck: 2 cm below the neck points
+  Piece strip;
+  strip.boundary = {{Vec2(0, 0)}, {Vec2(0.4, 0)}, {Vec2(0.4, 0.02)}, {Vec2(0, 0.02)}};
+  const Piece cap = sleeve("36", 0.0);
+  const auto roles = roles_from_shapes({&strip, &back, &cap, &front});
+  ASSERT_EQ(roles.size(), 4u);
+  EXPECT_EQ(roles[0].role, Role::binding) << roles[0].why;
+  EXPECT_EQ(roles[1].role, Role::back) << roles[1].why;
+  EXPECT_EQ(roles[2].role, Role::sleeve) << roles[2].why;
+  EXPECT_EQ(roles[3].role, Role::front) << roles[3].why;
+  EXPECT_NE(roles[3].why.find("10.0 cm"), std::string::npos) << roles[3].why;  // the scoop is 0.1 m deep
+  // One body piece: front or back cannot be told, and is not guessed.
+  const auto alone = roles_from_shapes({&front});
+  EXPECT_EQ(alone[0].role, Role::unknown);
+  // The sleeve turned upside down has no cap on top: not a sleeve.
+  Piece down = cap;
+  for (auto& c : down.boundary) c.p.y() = -c.p.y();
+  std::reverse(down.boundary.begin(), down.boundary.end());
+  EXPECT_NE(roles_from_shapes({&down})[0].role, Role::sleeve);
+}
