@@ -12,7 +12,7 @@ namespace {
 
 struct Options {
   std::string input, output, units;
-  bool report = false, json = false, unfold = false, join = false, strict = false, no_repair = false;
+  bool report = false, json = false, unfold = false, join = false, sew = false, strict = false, no_repair = false;
 };
 
 vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common) {
@@ -28,6 +28,9 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
                 "Join pieces written once per side whose names say nothing: mirror-image halves with a straight "
                 "centre edge into one piece, two blocks of one outline into one piece cut twice (CLO; vgd dress "
                 "does this)");
+  sub->add_flag("--sew-lines", o->sew,
+                "Sew each piece on its sew line (layer 14) where it has one closed inside its outline: the seam "
+                "allowance is cut off (vgd dress does this)");
   sub->add_option("--units", o->units, "Units to read the file in, overriding what it states (mm, cm, in)");
   sub->add_flag("--strict", o->strict,
                 "Write nothing when a block had to be dropped (default: the other blocks are written, each dropped "
@@ -37,6 +40,7 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
     vgd::dxf::ImportOptions opts;
     opts.unfold_mirrored = o->unfold;
     opts.join_per_side = o->join;
+    opts.sew_on_sew_lines = o->sew;
     opts.repair_self_intersections = !o->no_repair;
     if (!o->units.empty()) {
       opts.units = vgd::parse_length_unit(o->units);
@@ -51,6 +55,7 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
     } else {
       vgd::cli::print_diagnostics(result.diagnostics, common);
       for (const auto& j : result.joined) vgd::cli::say(common, "vgd: " + vgd::pattern::describe(j));
+      if (const std::string sewn = vgd::dxf::describe_sew_lines(result); !sewn.empty()) vgd::cli::say(common, "vgd: " + sewn);
       if (o->report) {
         std::printf("%s: %s %s, style '%s', %d pieces, %d blocks, sizes:", o->input.c_str(), s.producer.c_str(),
                     s.flavour.c_str(), s.style.c_str(), s.pieces, s.blocks);

@@ -260,6 +260,56 @@ bool unfold_about_mirror_line(Piece& piece, double tol) {
   return true;
 }
 
+namespace {
+// Even-odd test: p inside the closed outline.
+bool point_in_outline(const std::vector<ContourPoint>& o, const Vec2& p) {
+  bool in = false;
+  const std::size_t n = o.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 &a = o[i].p, &b = o[j].p;
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+}  // namespace
+
+std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m, double max_m) {
+  const Polyline* line = nullptr;
+  for (const auto& l : piece.sew_lines)
+    if (l.closed && l.points.size() >= 3) {
+      if (line) return std::nullopt;  // several: which one is the piece's is not said
+      line = &l;
+    }
+  if (!line || piece.boundary.size() < 3) return std::nullopt;
+  // The allowance at the sew line's vertices and at points along its edges
+  // (a corner is nearer the cut line than the middle of the hem beside it).
+  Allowance a{1e300, 0.0};
+  const std::size_t m = line->points.size();
+  for (std::size_t i = 0; i < m; ++i)
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 p = line->points[i] + (line->points[(i + 1) % m] - line->points[i]) * (k / 4.0);
+      const double d = nearest_edge(piece.boundary, p).distance;
+      if (!point_in_outline(piece.boundary, p) || d < min_m || d > max_m) return std::nullopt;
+      a.min = std::min(a.min, d), a.max = std::max(a.max, d);
+    }
+  std::vector<ContourPoint> outline;
+  for (const Vec2& p : line->points)
+    if (outline.empty() || (p - outline.back().p).norm() > 1e-9) outline.push_back({p, PointKind::plain});
+  while (outline.size() > 1 && (outline.front().p - outline.back().p).norm() <= 1e-9) outline.pop_back();
+  if (outline.size() < 3) return std::nullopt;
+  make_counter_clockwise(outline);
+  mark_corners(outline);
+  piece.boundary = std::move(outline);
+  for (auto& n : piece.notches) {
+    const NearestEdge e = nearest_edge(piece.boundary, n.position);
+    n.position = e.point;
+    n.boundary_index = nearest_vertex(piece.boundary, n.position).index;
+  }
+  piece.sew_lines.clear();
+  return a;
+}
+
 int remove_small_self_loops(std::vector<ContourPoint>& o, double max_loop_fraction) {
   int removed = 0;
   const double total = std::abs(signed_area(o));

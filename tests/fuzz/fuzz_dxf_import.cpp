@@ -12,6 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     vgd::dxf::ImportOptions opts;
     opts.unfold_mirrored = size % 2 == 1;  // exercise unfolding on half of the inputs
+    opts.join_per_side = size % 4 >= 2;    // and joining pieces written per side on half, across both
     const auto result = vgd::dxf::import_string(text, "fuzz.dxf", opts);
     // Invariants of a successful import.
     for (const auto& p : result.style.pieces)

@@ -150,3 +150,40 @@ TEST(ShapeRoles, AStripACapAndTwoNecklines) {
   std::reverse(down.boundary.begin(), down.boundary.end());
   EXPECT_NE(roles_from_shapes({&down})[0].role, Role::sleeve);
 }
+
+// A piece sewn on its sew line: a 30 × 40 cm rectangle cut with a 1 cm
+// allowance (the sew line 1 cm inside, 2 cm at the hem) becomes the 28 × 37 cm
+// rectangle the sewer sews, its corners marked, a notch on the cut edge moved
+// onto the sew line. Not sewn on: two sew lines, an open one, one crossing the
+// cut line, one 10 cm in (more than any allowance).
+TEST(SewLines, APieceIsSewnOnItsSewLineAndTheAllowanceIsCutOff) {
+  auto rect = [](double x0, double y0, double x1, double y1) {
+    return std::vector<Vec2>{Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+  };
+  Piece cut;
+  for (const Vec2& p : rect(0, 0, 0.30, 0.40)) cut.boundary.push_back({p});
+  cut.notches.push_back({Vec2(0.30, 0.20)});
+  Piece p = cut;
+  p.sew_lines.push_back({rect(0.01, 0.02, 0.29, 0.39), true});
+  const auto a = sew_on_sew_line(p);
+  ASSERT_TRUE(a.has_value());
+  EXPECT_NEAR(a->min, 0.01, 1e-12);
+  EXPECT_NEAR(a->max, 0.02, 1e-12);
+  EXPECT_NEAR(signed_area(p.boundary), 0.28 * 0.37, 1e-12);
+  EXPECT_EQ(std::count_if(p.boundary.begin(), p.boundary.end(), [](const ContourPoint& c) { return c.kind == PointKind::turn; }), 4);
+  EXPECT_NEAR((p.notches[0].position - Vec2(0.29, 0.20)).norm(), 0.0, 1e-12);
+  EXPECT_TRUE(p.sew_lines.empty());
+
+  Piece two = cut;
+  two.sew_lines = {{rect(0.01, 0.02, 0.29, 0.39), true}, {rect(0.02, 0.03, 0.28, 0.38), true}};
+  Piece open = cut;
+  open.sew_lines = {{rect(0.01, 0.02, 0.29, 0.39), false}};
+  Piece crossing = cut;
+  crossing.sew_lines = {{rect(0.01, 0.02, 0.31, 0.39), true}};
+  Piece deep = cut;
+  deep.sew_lines = {{rect(0.10, 0.10, 0.20, 0.30), true}};
+  for (Piece* q : {&two, &open, &crossing, &deep}) {
+    EXPECT_FALSE(sew_on_sew_line(*q).has_value());
+    EXPECT_NEAR(signed_area(q->boundary), 0.30 * 0.40, 1e-12);  // unchanged
+  }
+}

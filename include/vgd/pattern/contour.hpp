@@ -5,6 +5,7 @@
 // vertices, repeat the first vertex at the end, and wind either way
 // (shared/data/dxf/README.md). These functions turn such parts into one
 // counter-clockwise outline and say what they had to do. Units: metres.
+#include <optional>
 #include <vector>
 
 #include "vgd/pattern/piece.hpp"
@@ -74,6 +75,19 @@ NearestEdge nearest_edge(const std::vector<ContourPoint>& outline, const Vec2& p
 // lines are mirrored too. Both fold-line ends must be boundary vertices (within
 // tol_m); returns false (and leaves the piece unchanged) when they are not.
 bool unfold_about_mirror_line(Piece& piece, double tol_m = 1e-4);
+
+// Sews a piece on its sew line: a piece with exactly one closed sew line
+// (ASTM layer 14) of at least 3 points lying inside its outline, no point of
+// it nearer the outline than `min_m` nor farther than `max_m`, takes the sew
+// line as its outline (counter-clockwise, corners marked from its shape as
+// mark_corners does), its notches moved onto it; the seam allowance is cut
+// off. Returns the allowance's range (m, nearest and farthest point of the
+// sew line from the cut line), nothing when the piece has no such sew line
+// (the piece is then unchanged).
+struct Allowance {
+  double min = 0.0, max = 0.0;
+};
+std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m = 0.002, double max_m = 0.08);
 
 // Removes small loops where the outline crosses itself (a typical defect of
 // graded sizes): each crossing of two edges that encloses at most

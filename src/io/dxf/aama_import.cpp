@@ -682,6 +682,15 @@ ImportResult Interpreter::run() {
     }
   }
   if (opts_.join_per_side) res_.joined = pattern::join_pieces_written_per_side(res_.style);
+  if (opts_.sew_on_sew_lines) {
+    double lo = 1e300, hi = 0.0;
+    for (auto& p : pieces)
+      if (const auto a = pattern::sew_on_sew_line(p)) {
+        ++res_.sewn_on_sew_lines;
+        lo = std::min(lo, a->min), hi = std::max(hi, a->max);
+      }
+    if (res_.sewn_on_sew_lines > 0) res_.allowance_min = lo, res_.allowance_max = hi;
+  }
   // Files that mark no turn points (Valentina) get their corners from
   // the outline, so that a piece has stretches to sew.
   for (auto& p : pieces) {
@@ -709,6 +718,13 @@ ImportResult import_string(std::string_view text, const std::string& name, const
   else if (!decoded.note.empty())
     r.diagnostics.info(name, "$DWGCODEPAGE", decoded.note);
   return r;
+}
+
+std::string describe_sew_lines(const ImportResult& r) {
+  if (r.sewn_on_sew_lines == 0) return "";
+  auto cm = [](double m) { return format_fixed(100 * m, 1); };
+  return std::to_string(r.sewn_on_sew_lines) + " block(s) sewn on their sew line (layer 14): a seam allowance of " +
+         cm(r.allowance_min) + "-" + cm(r.allowance_max) + " cm cut off their outline";
 }
 
 ImportResult import_file(const std::filesystem::path& path, const ImportOptions& opts) {

@@ -166,6 +166,30 @@ TEST(SharedDxf, CloHalvesWrittenPerSideAreJoined) {
   }
 }
 
+// Valentina's trousers (ASTM) have a closed sew line in every block: sewn on
+// them, every block is smaller than as cut, the allowance between 2 mm and
+// 8 cm; no other shared file has a sew line.
+TEST(SharedDxf, ValentinaTrousersAreSewnOnTheirSewLines) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions o;
+  o.sew_on_sew_lines = true;
+  const auto cut = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_Trousers_ASTM_R12.dxf"));
+  const auto sewn = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_Trousers_ASTM_R12.dxf"), o);
+  EXPECT_EQ(sewn.sewn_on_sew_lines, 11);
+  EXPECT_GE(sewn.allowance_min, 0.002);
+  EXPECT_LE(sewn.allowance_max, 0.08);
+  ASSERT_EQ(sewn.style.pieces.size(), cut.style.pieces.size());
+  for (std::size_t i = 0; i < cut.style.pieces.size(); ++i) {
+    EXPECT_LT(std::abs(vgd::pattern::signed_area(sewn.style.pieces[i].boundary)),
+              std::abs(vgd::pattern::signed_area(cut.style.pieces[i].boundary)))
+        << cut.style.pieces[i].block;
+    EXPECT_FALSE(vgd::pattern::is_self_intersecting(sewn.style.pieces[i].boundary)) << cut.style.pieces[i].block;
+  }
+  for (const auto& file : vgd::test::shared_dxf_files())
+    if (file != "Valentina_Trousers_ASTM_R12.dxf")
+      EXPECT_EQ(vgd::dxf::import_file(vgd::test::shared_dxf(file), o).sewn_on_sew_lines, 0) << file;
+}
+
 // Valentina marks no turn points: corners come from the outline. Every
 // piece gets at least three, at least 5 mm of arc apart (one per corner), and
 // a polygon drawn with few vertices (a collar, a pocket flap: 4 to 7) has a

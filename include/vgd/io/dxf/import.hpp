@@ -39,6 +39,9 @@ struct ImportOptions {
   // Join pieces written once per side whose names say nothing (CLO's left and
   // right halves, a sleeve written twice): pattern::join_pieces_written_per_side.
   bool join_per_side = false;
+  // Sew each piece on its sew line (layer 14) where it has one closed inside
+  // its outline: pattern::sew_on_sew_line; the seam allowance is cut off.
+  bool sew_on_sew_lines = false;
   // Cut small self-intersection loops (≤ 5 % of the area) out of outlines.
   bool repair_self_intersections = true;
   // Outline end points closer than this are joined silently (m).
@@ -83,7 +86,14 @@ struct ImportResult {
   std::vector<BlockReport> blocks;
   Diagnostics diagnostics;  // warnings and dropped blocks, each naming the block
   std::vector<pattern::JoinedPieces> joined;  // ImportOptions::join_per_side
+  // ImportOptions::sew_on_sew_lines: blocks sewn on their sew line, and the
+  // seam allowance cut off (m, smallest and largest over them).
+  int sewn_on_sew_lines = 0;
+  double allowance_min = 0.0, allowance_max = 0.0;
 };
+
+// ImportOptions::sew_on_sew_lines in words ("" when no block was sewn on its sew line).
+std::string describe_sew_lines(const ImportResult& result);
 
 // Imports a file. Throws vgd::Error for files that cannot be read at all
 // (empty, binary DXF, not a DXF, truncated, no pieces).
