@@ -125,7 +125,7 @@ void bdf_error_follows_its_tolerance() {
 // doc's "which method wins"). Among the explicit methods work is counted in
 // force evaluations (each costs the same, and the count does not depend on
 // the machine's load): no other explicit run reaching 1 mm needs fewer. The
-// implicit runs that reach 1 mm (BDF) cost 4-7x RK4's CPU in the same run;
+// implicit runs that reach 1 mm (BDF) cost 8-14x RK4's CPU in the same run;
 // the test asks for more than 2x.
 void rk4_is_the_cheapest_way_below_one_millimetre_on_the_hanging_cloth() {
   for (const std::string model : {"mass-spring", "strain-rosette"}) {
