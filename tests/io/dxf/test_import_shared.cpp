@@ -1,15 +1,18 @@
 // The importer against figures computed independently (ezdxf + a raw tag reader,
 // exact arithmetic; tests/io/dxf/reference/README.md) for every block of every
 // shared real DXF file: Gerber AAMA and ASTM, CLO, Valentina AAMA and ASTM.
-#include <algorithm>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "support/test_paths.hpp"
 #include "vgd/io/dxf/import.hpp"
+#include "vgd/pattern/roles.hpp"
+#include "vgd/pattern/shape_roles.hpp"
 
 using nlohmann::json;
 
@@ -188,6 +191,44 @@ TEST(SharedDxf, ValentinaTrousersAreSewnOnTheirSewLines) {
   for (const auto& file : vgd::test::shared_dxf_files())
     if (file != "Valentina_Trousers_ASTM_R12.dxf")
       EXPECT_EQ(vgd::dxf::import_file(vgd::test::shared_dxf(file), o).sewn_on_sew_lines, 0) << file;
+}
+
+// Roles from shapes on pieces whose names do give a role: over the sample
+// size of every shared file, each front, back and sleeve (whole pieces: not
+// halves of a sleeve or leg) whose shape gives a role gets the one its name
+// gives. Printed: how many of them the shapes recognise.
+TEST(SharedDxf, RolesFromShapesAgreeWithTheNamesOfTheSharedFiles) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions o;
+  o.unfold_mirrored = true;
+  int named = 0, recognised = 0;
+  for (const auto& file : vgd::test::shared_dxf_files()) {
+    const auto r = vgd::dxf::import_file(vgd::test::shared_dxf(file), o);
+    std::vector<const vgd::pattern::Piece*> pieces;
+    std::vector<vgd::pattern::Role> by_name;
+    for (const auto* p : r.style.pieces_of_size(r.style.sample_size)) {
+      const auto g = vgd::pattern::piece_role(p->name, p->category, p->annotation);
+      if (g.half != vgd::pattern::Half::none || p->quantity == 0) continue;
+      pieces.push_back(p);
+      by_name.push_back(g.role);
+    }
+    const auto shapes = vgd::pattern::roles_from_shapes(pieces);
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const auto n = by_name[i];
+      if (n != vgd::pattern::Role::front && n != vgd::pattern::Role::back && n != vgd::pattern::Role::sleeve) continue;
+      ++named;
+      if (shapes[i].role == vgd::pattern::Role::unknown) {
+        std::printf("not recognised: %s %s (%s)\n", file.c_str(), pieces[i]->name.c_str(),
+                    std::string(vgd::pattern::role_name(n)).c_str());
+        continue;
+      }
+      ++recognised;
+      EXPECT_EQ(vgd::pattern::role_name(shapes[i].role), vgd::pattern::role_name(n))
+          << file << ": " << pieces[i]->name << ": " << shapes[i].why;
+    }
+  }
+  std::printf("roles from shapes: %d of %d named fronts, backs and sleeves recognised\n", recognised, named);
+  EXPECT_GT(recognised, 0);
 }
 
 // Valentina marks no turn points: corners come from the outline. Every
