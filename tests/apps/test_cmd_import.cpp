@@ -130,3 +130,28 @@ TEST(CliDraft, DraftedFileImportsCleanly) {
   EXPECT_NE(r.err.find("waist"), std::string::npos) << r.err;
   EXPECT_EQ(run_vgd("draft skirt --sizes 99 -o u.dxf", dir).code, 1);
 }
+
+// --join-per-side and --sew-lines say what they did and write what they say:
+// CLO's 9 blocks as 5 pieces; Valentina's trousers on their sew lines.
+TEST(CliImport, JoinPerSideAndSewLinesSayWhatTheyDid) {
+  VGD_REQUIRE_SHARED();
+  const auto dir = vgd::test::scratch_dir("cli_join_sew");
+  auto r = run_vgd({"import", vgd::test::shared_dxf("clo-pattern.dxf").string(), "--join-per-side", "-o",
+                    (dir / "clo.xvc").string()});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("blocks 11_M and 37_M are the left and right halves of one piece"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("blocks 36_M and 39_M have the same outline"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(": 5 pieces, 5 blocks"), std::string::npos) << r.err;
+  const auto doc = vgd::read_file(dir / "clo.xvc");
+  EXPECT_EQ(doc.find("block=\"37_M\""), std::string::npos);
+  r = run_vgd({"import", vgd::test::shared_dxf("clo-pattern.dxf").string(), "-o", (dir / "as-written.xvc").string()});
+  EXPECT_EQ(r.err.find("halves"), std::string::npos) << r.err;  // off unless asked
+  EXPECT_NE(r.err.find(": 9 pieces, 9 blocks"), std::string::npos) << r.err;
+  r = run_vgd({"import", vgd::test::shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "--sew-lines", "-o",
+               (dir / "trousers.xvc").string()});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("11 block(s) sewn on their sew line (layer 14): a seam allowance of 0.9-6.9 cm cut off"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(vgd::read_file(dir / "trousers.xvc").find("role=\"sew\""), std::string::npos);
+}
