@@ -31,12 +31,25 @@ Vec2 centroid(const std::vector<ContourPoint>& o) {
   return std::abs(a2) > 0 ? Vec2(c / (3.0 * a2)) : o.front().p;
 }
 
-// Largest distance from a vertex of one outline to the other outline, both ways.
-double outline_gap(const std::vector<ContourPoint>& a, const std::vector<ContourPoint>& b) {
-  double gap = 0;
-  for (const auto& c : a) gap = std::max(gap, nearest_edge(b, c.p).distance);
-  for (const auto& c : b) gap = std::max(gap, nearest_edge(a, c.p).distance);
-  return gap;
+// Whether every vertex of each outline lies within tol of the other outline
+// (stops at the first that does not: most pairs differ at once).
+bool within(const std::vector<ContourPoint>& a, const std::vector<ContourPoint>& b, double tol) {
+  for (const auto& c : a)
+    if (nearest_edge(b, c.p).distance > tol) return false;
+  for (const auto& c : b)
+    if (nearest_edge(a, c.p).distance > tol) return false;
+  return true;
+}
+
+// The outline's extents along `up` and across it (m).
+Vec2 extents(const std::vector<ContourPoint>& o, const Vec2& up) {
+  const Vec2 across(up.y(), -up.x());
+  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+  for (const auto& c : o) {
+    u0 = std::min(u0, c.p.dot(across)), u1 = std::max(u1, c.p.dot(across));
+    v0 = std::min(v0, c.p.dot(up)), v1 = std::max(v1, c.p.dot(up));
+  }
+  return Vec2(u1 - u0, v1 - v0);
 }
 
 // b moved onto a's centroid, reflected across the line along `up` first when asked.
@@ -109,16 +122,17 @@ std::vector<JoinedPieces> join_pieces_written_per_side(Style& style, double tol)
     Piece& a = style.pieces[i];
     const Vec2 up = up_of(a);
     const double area = std::abs(signed_area(a.boundary)), per = perimeter(a.boundary);
+    const Vec2 size = extents(a.boundary, up);
     for (std::size_t j = i + 1; j < style.pieces.size(); ++j) {
       const Piece& b = style.pieces[j];
       if (drop[j] || !eligible(b) || b.size != a.size || b.category != a.category || b.fabric != a.fabric) continue;
       if ((up_of(b) - up).norm() > 0.01 && (up_of(b) + up).norm() > 0.01) continue;
       if (std::abs(std::abs(signed_area(b.boundary)) - area) > 0.01 * area ||
-          std::abs(perimeter(b.boundary) - per) > 0.01 * per)
+          std::abs(perimeter(b.boundary) - per) > 0.01 * per || (extents(b.boundary, up) - size).cwiseAbs().maxCoeff() > 2 * tol)
         continue;
       const Vec2 ca = centroid(a.boundary);
-      const bool same = outline_gap(a.boundary, laid_on(b.boundary, ca, up, false)) <= tol;
-      const bool mirrored = !same && outline_gap(a.boundary, laid_on(b.boundary, ca, up, true)) <= tol;
+      const bool same = within(a.boundary, laid_on(b.boundary, ca, up, false), tol);
+      const bool mirrored = !same && within(a.boundary, laid_on(b.boundary, ca, up, true), tol);
       if (!same && !mirrored) continue;
       JoinedPieces jp;
       jp.size = a.size;
