@@ -9,6 +9,7 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
+#include "vgd/pattern/halves.hpp"
 #include "vgd/pattern/roles.hpp"
 #include "vgd/pattern/shape_roles.hpp"
 #include "vgd/xvc/arrangement.hpp"
@@ -95,6 +96,23 @@ std::string size_table_from_name(const std::string& style_name) {
 Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   const std::string file = doc.name();
   Preparation out;
+
+  // Pieces written once per side (CLO's halves, a sleeve written twice) in a
+  // document imported as the file wrote them: joined as vgd dress joins them
+  // when it imports a DXF (pattern/halves.hpp). Only in a document that is
+  // its style and nothing more (written again from its style, it is the same
+  // document: no SEAM, MATERIAL, PARAMETER, arrangement, role or edit of its
+  // own), which is then written again from the joined style.
+  {
+    pattern::Style style = xvc::to_style(doc);
+    if (xvc::from_style(style) == doc) {
+      const auto joined = pattern::join_pieces_written_per_side(style);
+      if (!joined.empty()) {
+        doc = xvc::Document(xvc::Node(xvc::from_style(style).root()), file);
+        for (const auto& j : joined) out.decisions.push_back(pattern::describe(j));
+      }
+    }
+  }
   std::string sample;
   if (const auto* grads = doc.container("GRADATIONS")) sample = std::string(grads->attribute("sample_size"));
   const auto patterns_of = [&](const std::string& size) {

@@ -12,6 +12,7 @@
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/xvc/io.hpp"
+#include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
 namespace vgd::test {
@@ -55,6 +56,31 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
             std::string::npos)
       << rerun.err;
   EXPECT_EQ(rerun.err.find("is kept as"), std::string::npos) << "its own input is not moved aside";
+}
+
+// CLO's T-shirt imported as the file wrote it (9 blocks, the halves apart):
+// vgd dress joins them as it does on a DXF, reads the roles from the shapes
+// and sews the same 8 seams. A document that holds more than its style (a
+// mesh parameter set) is not written again: its halves stay apart.
+TEST(CliDress, ADocumentImportedAsWrittenHasItsHalvesJoined) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-clo-xvc");
+  auto r = run_vgd({"import", shared_dxf("clo-pattern.dxf").string(), "-o", (out / "clo.xvc").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_vgd({"dress", (out / "clo.xvc").string(), "-o", (out / "joined").string(), "--time-limit", "0.05",
+               "--no-previews"});
+  EXPECT_NE(r.err.find("blocks 11_M and 37_M are the left and right halves of one piece"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("11 front (the deeper neckline"), std::string::npos) << r.err;
+  const auto joined = xvc::load_file(out / "joined" / "garment.xvc");
+  EXPECT_EQ(joined.patterns().size(), 5u);
+  EXPECT_EQ(xvc::list_seams(joined).size(), 8u);
+  r = run_vgd({"edit", (out / "clo.xvc").string(), "--set-parameter", "mesh.spacing=14mm", "-o",
+               (out / "clo-own.xvc").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_vgd({"dress", (out / "clo-own.xvc").string(), "-o", (out / "own").string(), "--time-limit", "0.05",
+               "--no-previews"});
+  EXPECT_EQ(r.err.find("halves of one piece"), std::string::npos) << r.err;
+  EXPECT_EQ(xvc::load_file(out / "own" / "garment.xvc").patterns().size(), 9u);
 }
 
 // The project's own skirt as AAMA DXF (what `vgd draft` writes, every size):
