@@ -55,6 +55,13 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
     } else {
       vgd::cli::print_diagnostics(result.diagnostics, common);
       for (const auto& j : result.joined) vgd::cli::say(common, "vgd: " + vgd::pattern::describe(j));
+      if (!o->join) {
+        vgd::pattern::Style copy = result.style;
+        if (const auto would = vgd::pattern::join_pieces_written_per_side(copy); !would.empty())
+          vgd::cli::say(common, "vgd: note: " + std::to_string(would.size()) +
+                                    " pair(s) of blocks look written once per side (" + would.front().kept + " and " +
+                                    would.front().dropped + ", ...): --join-per-side joins them (vgd dress does)");
+      }
       if (const std::string sewn = vgd::dxf::describe_sew_lines(result); !sewn.empty()) vgd::cli::say(common, "vgd: " + sewn);
       if (o->report) {
         std::printf("%s: %s %s, style '%s', %d pieces, %d blocks, sizes:", o->input.c_str(), s.producer.c_str(),

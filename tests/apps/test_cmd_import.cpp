@@ -145,7 +145,10 @@ TEST(CliImport, JoinPerSideAndSewLinesSayWhatTheyDid) {
   const auto doc = vgd::read_file(dir / "clo.xvc");
   EXPECT_EQ(doc.find("block=\"37_M\""), std::string::npos);
   r = run_vgd({"import", vgd::test::shared_dxf("clo-pattern.dxf").string(), "-o", (dir / "as-written.xvc").string()});
-  EXPECT_EQ(r.err.find("halves"), std::string::npos) << r.err;  // off unless asked
+  EXPECT_EQ(r.err.find("halves"), std::string::npos) << r.err;  // off unless asked, and said
+  EXPECT_NE(r.err.find("note: 4 pair(s) of blocks look written once per side (11_M and 37_M, ...): --join-per-side"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find(": 9 pieces, 9 blocks"), std::string::npos) << r.err;
   r = run_vgd({"import", vgd::test::shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "--sew-lines", "-o",
                (dir / "trousers.xvc").string()});
