@@ -203,6 +203,41 @@ std::vector<Edge> edges(const Outline& o, const Frame& f, double merge_angle) {
   return out;
 }
 
+// The centre front or back of a piece drawn as a half with no fold line
+// (Valentina's FRONTPANEL and BACKPANEL): of its straight edges along the
+// grain (within 0.6 degrees) that run at least 60 % of its length with the
+// whole piece on one side of them (within 1 mm), the longest, on a piece
+// that is not its own mirror image across its middle (a whole piece's
+// straight side seams are not centres). Such an edge is not a side seam.
+std::optional<std::size_t> centre_edge_of_half(const Outline& o, const Frame& f, const std::vector<Edge>& es) {
+  if (o.shape.mirror_line) return std::nullopt;
+  const auto& b = o.shape.boundary;
+  double umin = 1e300, umax = -1e300;
+  for (const auto& c : b) umin = std::min(umin, c.p.dot(f.right)), umax = std::max(umax, c.p.dot(f.right));
+  // Its own mirror image: every vertex reflected across the middle lies on the outline.
+  bool symmetric = true;
+  const double mid = 0.5 * (umin + umax);
+  for (const auto& c : b) {
+    const Vec2 r = c.p - 2.0 * (c.p.dot(f.right) - mid) * f.right;
+    if (pattern::nearest_edge(b, r).distance > 0.002) {
+      symmetric = false;
+      break;
+    }
+  }
+  if (symmetric) return std::nullopt;
+  std::optional<std::size_t> best;
+  double best_len = 0;
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    const Edge& e = es[i];
+    if (e.curved || e.length < 0.6 * (f.v_max - f.v_min) || e.length <= best_len) continue;
+    if (std::abs(e.chord.x()) > std::sin(0.6 * M_PI / 180.0) * e.chord.norm()) continue;
+    if (umin < e.u_mid - 0.001 && umax > e.u_mid + 0.001) continue;  // cloth on both sides
+    best = i;
+    best_len = e.length;
+  }
+  return best;
+}
+
 // Two consecutive edges on one side of a piece read as one when they meet at a gentle
 // turn (a waist shaped on one piece and almost straight on the other: the front's side
 // seam is one edge, the back's two). At most `max_turn_deg` between them.
@@ -882,8 +917,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   };
   const auto runs_of = [&](const PieceInfo& p) {
     std::vector<Run> r;
+    const auto centre = centre_edge_of_half(*p.o, p.frame, p.edges);
     for (std::size_t i = 0; i < p.edges.size(); ++i) {
-      if (p.edges[i].side == 0 || used.count({p.o, i})) continue;
+      if (p.edges[i].side == 0 || used.count({p.o, i}) || (centre && *centre == i)) continue;
       r.push_back({p.edges[i], {i}});
       const std::size_t j = (i + 1) % p.edges.size();
       if (j != i && !used.count({p.o, j}))

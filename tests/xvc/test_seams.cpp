@@ -519,3 +519,20 @@ TEST(SeamSuggestions, ALeggingsWaistbandIsClosedIntoALoop) {
                                                {"waist seam", 1},
                                                {"waistband ends", 1}}));
 }
+
+// Valentina's shirt draws its front and its back as halves with no fold line:
+// the straight centre front (70 cm, the button stand's edge) and centre back
+// are not side seams. Only the real side seam pairs the front with the back
+// (45 cm); before, the centre front was sewn to the centre back as the
+// "right side seam" (70 cm).
+TEST(SeamSuggestions, TheCentreEdgesOfHalvesWithNoFoldLineAreNotSideSeams) {
+  VGD_REQUIRE_SHARED();
+  const Document doc = shared_document("Valentina_MaleShirt_AAMA_R12.dxf");
+  int sides = 0;
+  for (const auto& s : at_size(doc, "base")) {
+    if (s.name.find("side seam") == std::string::npos) continue;
+    ++sides;
+    EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
+  }
+  EXPECT_EQ(sides, 1);
+}
