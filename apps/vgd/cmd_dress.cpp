@@ -75,16 +75,13 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       if (ext != ".dxf") return vgd::xvc::load_file(o->input);
       vgd::dxf::ImportOptions io;
       io.unfold_mirrored = true;
-      io.join_per_side = true;
-      io.sew_on_sew_lines = true;
+      io.sew_on_sew_lines = true;  // pieces written per side are joined by prepare_garment
       const auto imported = vgd::dxf::import_file(o->input, io);
       vgd::cli::print_diagnostics(imported.diagnostics, common);
       const auto& s = imported.summary;
       vgd::cli::say(common, "vgd: " + o->input + ": " + std::to_string(s.pieces) + " pieces, sizes " +
                                 std::to_string(s.sizes.size()) + " (sample " + s.sample_size + "), " + s.producer);
-      for (const auto& j : imported.joined) vgd::cli::say(common, "vgd: " + vgd::pattern::describe(j));
-      if (const std::string sewn = vgd::dxf::describe_sew_lines(imported); !sewn.empty())
-        vgd::cli::say(common, "vgd: " + sewn);
+      for (const auto& note : vgd::dxf::import_notes(imported)) vgd::cli::say(common, "vgd: " + note);
       return vgd::xvc::from_style(imported.style);
     }();
     vgd::dress::PrepareOptions po;

@@ -54,7 +54,7 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
       vgd::cli::print_json(vgd::dxf::report_json(result));
     } else {
       vgd::cli::print_diagnostics(result.diagnostics, common);
-      for (const auto& j : result.joined) vgd::cli::say(common, "vgd: " + vgd::pattern::describe(j));
+      for (const auto& note : vgd::dxf::import_notes(result)) vgd::cli::say(common, "vgd: " + note);
       if (!o->join) {
         vgd::pattern::Style copy = result.style;
         if (const auto would = vgd::pattern::join_pieces_written_per_side(copy); !would.empty())
@@ -62,7 +62,6 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
                                     " pair(s) of blocks look written once per side (" + would.front().kept + " and " +
                                     would.front().dropped + ", ...): --join-per-side joins them (vgd dress does)");
       }
-      if (const std::string sewn = vgd::dxf::describe_sew_lines(result); !sewn.empty()) vgd::cli::say(common, "vgd: " + sewn);
       if (o->report) {
         std::printf("%s: %s %s, style '%s', %d pieces, %d blocks, sizes:", o->input.c_str(), s.producer.c_str(),
                     s.flavour.c_str(), s.style.c_str(), s.pieces, s.blocks);

@@ -57,23 +57,11 @@ double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node
     pattern::Vec2 up = pattern::Vec2::UnitY();
     if (p.grain_line && (p.grain_line->b - p.grain_line->a).norm() > 0) up = (p.grain_line->b - p.grain_line->a).normalized();
     if (from_wider_end && pattern::wider_at_top(p.boundary, up)) up = -up;  // measured from the waist down
-    const pattern::Vec2 across(up.y(), -up.x());
     double lo = 1e300, hi = -1e300;
     for (const auto& c : p.boundary) lo = std::min(lo, c.p.dot(up)), hi = std::max(hi, c.p.dot(up));
     double widest = 0;
-    for (int k = 0; k <= 20; ++k) {
-      const double v = lo + (from + (to - from) * k / 20.0) * (hi - lo);
-      double u0 = 1e300, u1 = -1e300;
-      const std::size_t n = p.boundary.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const pattern::Vec2 &a = p.boundary[i].p, &b = p.boundary[(i + 1) % n].p;
-        const double va = a.dot(up), vb = b.dot(up);
-        if ((va - v) * (vb - v) > 0 || va == vb) continue;
-        const double u = (a + (v - va) / (vb - va) * (b - a)).dot(across);
-        u0 = std::min(u0, u), u1 = std::max(u1, u);
-      }
-      if (u1 > u0) widest = std::max(widest, u1 - u0);
-    }
+    for (int k = 0; k <= 20; ++k)
+      widest = std::max(widest, pattern::width_at(p.boundary, up, lo + (from + (to - from) * k / 20.0) * (hi - lo)));
     girth += std::max(1, p.quantity) * widest;
   }
   return girth;

@@ -260,6 +260,20 @@ bool unfold_about_mirror_line(Piece& piece, double tol) {
   return true;
 }
 
+double width_at(const std::vector<ContourPoint>& o, const Vec2& up, double v) {
+  const Vec2 across(up.y(), -up.x());
+  double lo = 1e300, hi = -1e300;
+  const std::size_t n = o.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = o[i].p, &b = o[(i + 1) % n].p;
+    const double va = a.dot(up), vb = b.dot(up);
+    if ((va - v) * (vb - v) > 0 || va == vb) continue;
+    const double u = (a + (v - va) / (vb - va) * (b - a)).dot(across);
+    lo = std::min(lo, u), hi = std::max(hi, u);
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+
 namespace {
 // Even-odd test: p inside the closed outline.
 bool point_in_outline(const std::vector<ContourPoint>& o, const Vec2& p) {
@@ -299,7 +313,16 @@ std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m, double max_
   while (outline.size() > 1 && (outline.front().p - outline.back().p).norm() <= 1e-9) outline.pop_back();
   if (outline.size() < 3) return std::nullopt;
   make_counter_clockwise(outline);
-  mark_corners(outline);
+  // The corners the file marked on the cut line (carried to graded sizes, so
+  // that stretch k is the same stretch in every size) go to the sew line's
+  // nearest vertex; a cut line with none gets corners from the sew line's shape.
+  bool marked = false;
+  for (const auto& c : piece.boundary)
+    if (c.kind == PointKind::turn) {
+      const Nearest v = nearest_vertex(outline, c.p);
+      if (v.index >= 0 && v.distance <= 1.5 * max_m) outline[v.index].kind = PointKind::turn, marked = true;
+    }
+  if (!marked) mark_corners(outline);
   piece.boundary = std::move(outline);
   for (auto& n : piece.notches) {
     const NearestEdge e = nearest_edge(piece.boundary, n.position);

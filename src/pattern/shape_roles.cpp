@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
 
 namespace vgd::pattern {
 
@@ -25,20 +26,6 @@ struct Frame {
   double width() const { return u1 - u0; }
   double length() const { return v1 - v0; }
 };
-
-// Width of the outline at height v (between its extreme crossings), 0 if none.
-double width_at(const Piece& p, const Frame& f, double v) {
-  double lo = 1e300, hi = -1e300;
-  const std::size_t n = p.boundary.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 &a = p.boundary[i].p, &b = p.boundary[(i + 1) % n].p;
-    const double va = a.dot(f.up), vb = b.dot(f.up);
-    if ((va - v) * (vb - v) > 0 || va == vb) continue;
-    const double u = (a + (v - va) / (vb - va) * (b - a)).dot(f.across);
-    lo = std::min(lo, u), hi = std::max(hi, u);
-  }
-  return hi > lo ? hi - lo : 0.0;
-}
 
 // Where the outline crosses its centre line highest (along the grain): how
 // far that lies below the piece's top is its neckline's depth.
@@ -76,7 +63,7 @@ std::vector<ShapeRole> roles_from_shapes(const std::vector<const Piece*>& pieces
     for (const auto& c : p.boundary)
       if (c.p.dot(f.up) > apex_v) apex_v = c.p.dot(f.up), apex_u = c.p.dot(f.across);
     const bool centred = std::abs(apex_u - 0.5 * (f.u0 + f.u1)) <= 0.1 * w;
-    const double below = width_at(p, f, f.v1 - 0.1 * l);
+    const double below = width_at(p.boundary, f.up, f.v1 - 0.1 * l);
     if (centred && below < 0.5 * w) {
       out[i] = {Role::sleeve, "a cap, its top centred, " + cm(below) + " wide a tenth of its length below it (" +
                                   cm(w) + " wide)"};

@@ -173,6 +173,18 @@ TEST(SewLines, APieceIsSewnOnItsSewLineAndTheAllowanceIsCutOff) {
   EXPECT_EQ(std::count_if(p.boundary.begin(), p.boundary.end(), [](const ContourPoint& c) { return c.kind == PointKind::turn; }), 4);
   EXPECT_NEAR((p.notches[0].position - Vec2(0.29, 0.20)).norm(), 0.0, 1e-12);
   EXPECT_TRUE(p.sew_lines.empty());
+  // A cut line whose corners the file marked (two of four here, as carried to
+  // graded sizes) gives its marks to the sew line instead.
+  Piece marked = cut;
+  marked.boundary[0].kind = marked.boundary[2].kind = PointKind::turn;
+  marked.sew_lines.push_back({rect(0.01, 0.02, 0.29, 0.39), true});
+  ASSERT_TRUE(sew_on_sew_line(marked).has_value());
+  std::vector<Vec2> turns;
+  for (const auto& c : marked.boundary)
+    if (c.kind == PointKind::turn) turns.push_back(c.p);
+  ASSERT_EQ(turns.size(), 2u);
+  EXPECT_NEAR(nearest_vertex(marked.boundary, Vec2(0.01, 0.02)).distance, 0.0, 1e-12);
+  for (const Vec2& t : turns) EXPECT_TRUE((t - Vec2(0.01, 0.02)).norm() < 1e-12 || (t - Vec2(0.29, 0.39)).norm() < 1e-12);
 
   Piece two = cut;
   two.sew_lines = {{rect(0.01, 0.02, 0.29, 0.39), true}, {rect(0.02, 0.03, 0.28, 0.38), true}};

@@ -79,8 +79,9 @@ bool unfold_about_mirror_line(Piece& piece, double tol_m = 1e-4);
 // Sews a piece on its sew line: a piece with exactly one closed sew line
 // (ASTM layer 14) of at least 3 points lying inside its outline, no point of
 // it nearer the outline than `min_m` nor farther than `max_m`, takes the sew
-// line as its outline (counter-clockwise, corners marked from its shape as
-// mark_corners does), its notches moved onto it; the seam allowance is cut
+// line as its outline (counter-clockwise; the cut line's turn points at the
+// sew line's nearest vertices, or where the cut line has none, corners marked
+// from its shape as mark_corners does), its notches moved onto it; the seam allowance is cut
 // off. Returns the allowance's range (m, nearest and farthest point of the
 // sew line from the cut line), nothing when the piece has no such sew line
 // (the piece is then unchanged).
@@ -94,6 +95,10 @@ std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m = 0.002, dou
 // max_loop_fraction of the piece area is cut at the crossing point.
 // Returns the number of loops removed; the outline stays counter-clockwise.
 int remove_small_self_loops(std::vector<ContourPoint>& outline, double max_loop_fraction = 0.05);
+
+// The outline's width across `up` (unit) at height `v` along it: between its
+// outermost crossings of that line (m), 0 where it does not reach.
+double width_at(const std::vector<ContourPoint>& outline, const Vec2& up, double v);
 
 // The outline's widths across `up` (unit) among its vertices in its bottom 15 %
 // and its top 15 % along `up`, and its length along `up` (m).

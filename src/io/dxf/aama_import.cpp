@@ -720,11 +720,15 @@ ImportResult import_string(std::string_view text, const std::string& name, const
   return r;
 }
 
-std::string describe_sew_lines(const ImportResult& r) {
-  if (r.sewn_on_sew_lines == 0) return "";
-  auto cm = [](double m) { return format_fixed(100 * m, 1); };
-  return std::to_string(r.sewn_on_sew_lines) + " block(s) sewn on their sew line (layer 14): a seam allowance of " +
-         cm(r.allowance_min) + "-" + cm(r.allowance_max) + " cm cut off their outline";
+std::vector<std::string> import_notes(const ImportResult& r) {
+  std::vector<std::string> out;
+  for (const auto& j : r.joined) out.push_back(pattern::describe(j));
+  if (r.sewn_on_sew_lines > 0) {
+    auto cm = [](double m) { return format_fixed(100 * m, 1); };
+    out.push_back(std::to_string(r.sewn_on_sew_lines) + " block(s) sewn on their sew line (layer 14): a seam allowance of " +
+                  cm(r.allowance_min) + "-" + cm(r.allowance_max) + " cm cut off their outline");
+  }
+  return out;
 }
 
 ImportResult import_file(const std::filesystem::path& path, const ImportOptions& opts) {

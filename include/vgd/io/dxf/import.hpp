@@ -92,8 +92,9 @@ struct ImportResult {
   double allowance_min = 0.0, allowance_max = 0.0;
 };
 
-// ImportOptions::sew_on_sew_lines in words ("" when no block was sewn on its sew line).
-std::string describe_sew_lines(const ImportResult& result);
+// What join_per_side and sew_on_sew_lines did, in words, a line each (none
+// when they did nothing).
+std::vector<std::string> import_notes(const ImportResult& result);
 
 // Imports a file. Throws vgd::Error for files that cannot be read at all
 // (empty, binary DXF, not a DXF, truncated, no pieces).
