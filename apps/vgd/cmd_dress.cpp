@@ -18,6 +18,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/prepare.hpp"
 #include "vgd/io/dxf/import.hpp"
+#include "vgd/scene/quality.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
@@ -29,6 +30,8 @@ struct Options {
   double time_limit = 8.0;
   bool previews = true, json = false, between = true;
   std::string model = "mass-spring";
+  std::string material, material_id, quality = "standard", preview_size = "768";
+  double spacing = 0.0;
 };
 
 vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common) {
@@ -55,11 +58,21 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--time-limit", o->time_limit, "Simulated seconds at most (default 8)")->check(CLI::PositiveNumber);
   sub->add_option("--views", o->views, "Preview views (vgd render --views)")->capture_default_str();
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
+  sub->add_option("--preview-size", o->preview_size, "Preview size in pixels: N or WxH")->capture_default_str();
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
   sub->add_option("--model", o->model, "Cloth model: mass-spring (the default) or strain-rosette (vgd drape --model)")
       ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
       ->capture_default_str();
+  sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's, "
+                                             "else data/materials/shirting.xvc)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
+  sub->add_option("--quality", o->quality, "Quality preset: preview, standard or precise (vgd drape --quality)")
+      ->check(CLI::IsMember({"preview", "standard", "precise"}))
+      ->capture_default_str();
+  sub->add_option("--spacing", o->spacing, "Mesh spacing, m (default: the document's mesh.spacing, else 0.015)")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
   sub->add_flag("--json", o->json, "Print the certificate on stdout");
@@ -124,6 +137,10 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.time_limit = o->time_limit;
     run.options.between_particles = o->between;
     run.options.model = vgd::scene::parse_cloth_model(o->model);
+    run.options.material_xvc = o->material;
+    run.options.material_id = o->material_id;
+    run.options.quality = vgd::scene::parse_quality(o->quality);
+    run.options.spacing = o->spacing;
     if (o->avatar.empty() && prep.body_size != prep.size) {
       vgd::scene::AvatarDef a;
       a.kind = vgd::scene::AvatarDef::Kind::mannequin;
@@ -144,7 +161,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     ro.input = out.string();
     ro.output = (out / "previews").string();
     ro.views = o->views;
-    ro.size = "768";
+    ro.size = o->preview_size;
     ro.look = prepared.string();
     ro.list_files = !o->json && !common.quiet;
     const int rendered = vgd::cli::write_previews(ro, common);
