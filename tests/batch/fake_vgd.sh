@@ -1,7 +1,8 @@
 #!/bin/bash
 # A stand-in for vgd in the batch tests: answers `vgd [--threads N] dress ...
 # -o DIR ...` as $FAKE_VGD says, and `compress`/`export` by writing their -o
-# file. Modes: pass, check-failed, bad-input, crash, hang.
+# file. Modes: pass, check-failed, bad-input, crash, hang. $FAKE_PNG: a PNG
+# to copy as the preview.
 set -u
 while [ "${1:-}" = "--threads" ]; do shift 2; done
 cmd=$1; shift
@@ -23,7 +24,7 @@ case "$cmd" in
       hang) sleep 60 & wait; exit 0 ;;
     esac
     echo "garment" > "$out/garment.obj"
-    echo "png" > "$out/previews/front.png"
+    if [ -n "${FAKE_PNG:-}" ]; then cp "$FAKE_PNG" "$out/previews/front.png"; else echo "png" > "$out/previews/front.png"; fi
     [ -n "$trj" ] && echo "trj" > "$trj"
     if [ "${FAKE_VGD:-pass}" = check-failed ]; then
       printf '{"passed": false, "stop": {"reason": "time limit", "simulated_s": 8.0, "wall_s": 3.5}, "seams": [{"closed": 10, "pairs": 40}], "penetration": {"max_m": 0.0004}, "triangle_intersections": 0, "failures": [{"kind": "seams open", "detail": "left armhole 10/40 pairs closed"}, {"kind": "no rest", "detail": "still moving"}]}' > "$out/certificate.json"
