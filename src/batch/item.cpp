@@ -193,6 +193,9 @@ std::string to_json(const Manifest& m) {
   j["started"] = m.started, j["finished"] = m.finished;
   j["vgd_version"] = m.vgd_version;
   j["certificate"] = m.certificate.empty() ? json(nullptr) : json::parse(m.certificate);
+  json steps = json::array();
+  for (const auto& st : m.steps) steps.push_back({{"name", st.name}, {"wall_s", st.wall_s}, {"result", st.result}});
+  j["steps"] = steps;
   json files = json::array();
   for (const auto& f : m.files) files.push_back({{"path", f.path}, {"bytes", f.bytes}, {"sha256", f.sha256}});
   j["files"] = files;
@@ -215,6 +218,8 @@ Manifest manifest_from_json(const std::string& text, const std::string& file) {
     m.wall_s = j.at("wall_s");
     m.started = j.at("started"), m.finished = j.at("finished"), m.vgd_version = j.at("vgd_version");
     if (!j.at("certificate").is_null()) m.certificate = j["certificate"].dump();
+    for (const auto& st : j.value("steps", json::array()))
+      m.steps.push_back({st.at("name"), st.at("wall_s"), st.at("result")});
     for (const auto& f : j.at("files")) m.files.push_back({f.at("path"), f.at("bytes"), f.at("sha256")});
     return m;
   } catch (const json::exception& e) {
@@ -316,6 +321,7 @@ ItemOutcome run_item(const Catalogue& c, const Item& item, const fs::path& out, 
       l << '\n';
     }
     const ProcessResult r = run_process(options.exe, step.args, po);
+    m.steps.push_back({step.name, r.wall_s, r.describe()});
     if (step.name == "dress") {
       if (r.timed_out) {
         m.failure_class = "time-out";

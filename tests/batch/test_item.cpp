@@ -103,6 +103,9 @@ TEST(BatchItem, APassedItemHasAManifestThatVerifies) {
       << "the trajectory was only the outputs' source: not kept";
   const json m = json::parse(read_file(item / "manifest.json"));
   EXPECT_EQ(m["certificate"]["seams_closed"], 40);
+  ASSERT_EQ(m["steps"].size(), 3u) << "dress, compress, export: where the time went";
+  EXPECT_EQ(m["steps"][0]["name"], "dress");
+  EXPECT_EQ(m["steps"][2]["result"], "exit 0");
   EXPECT_DOUBLE_EQ(m["certificate"]["strain_p95_max"].get<double>(), 0.08);
   EXPECT_NEAR(m["certificate"]["max_penetration_mm"].get<double>(), 0.2, 1e-12);
   EXPECT_EQ(batch::item_status(out, c.items[0]).state, batch::ItemState::passed);

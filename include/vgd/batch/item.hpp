@@ -39,6 +39,12 @@ struct FileEntry {
   std::string sha256;
 };
 
+struct StepRecord {
+  std::string name;    // dress, compress, export, export-animated
+  double wall_s = 0.0;
+  std::string result;  // "exit 0", "killed by signal 11 (...)", ...
+};
+
 struct Manifest {
   std::string id, name, style, size, fabric, avatar;
   int index = 0;
@@ -49,6 +55,7 @@ struct Manifest {
   std::string started, finished;  // UTC, ISO 8601
   std::string vgd_version;
   std::string certificate;      // key figures of certificate.json, as JSON text ("" when none)
+  std::vector<StepRecord> steps;  // where the time went
   std::vector<FileEntry> files;
 };
 
