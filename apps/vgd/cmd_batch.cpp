@@ -162,6 +162,7 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
       lo.retry_failed = o->retry_failed;
       lo.stop = &g_stop;
       std::string last_line;
+      bool first = true;
       lo.progress = [&](const batch::RunProgress& p) {
         if (common.quiet) return;
         const int total = p.done + p.failed + p.left + p.running;
@@ -175,10 +176,11 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
         if (tty) {
           std::fprintf(stderr, "\r%s\033[K", line.c_str());
           if (!p.last.empty() && p.last != last_line) std::fprintf(stderr, "\n  %s\n", p.last.c_str());
-        } else if (p.last != last_line || line.find(" 0 running") != std::string::npos) {
+        } else if (p.last != last_line || first) {
           std::fprintf(stderr, "%s%s\n", line.c_str(), p.last.empty() ? "" : ("  last: " + p.last).c_str());
         }
         last_line = p.last;
+        first = false;
         std::fflush(stderr);
       };
       const auto r = batch::run_local(c, out, lo);

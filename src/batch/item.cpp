@@ -59,7 +59,7 @@ json certificate_figures(const json& c) {
   f["strain_p95_max"] = strain;
   json failures = json::array();
   if (c.contains("failures"))
-    for (const auto& x : c["failures"]) failures.push_back(x.value("kind", ""));
+    for (const auto& x : c["failures"]) failures.push_back(x.value("class", ""));
   f["failures"] = failures;
   return f;
 }
@@ -340,9 +340,12 @@ ItemOutcome run_item(const Catalogue& c, const Item& item, const fs::path& out, 
         if (!cert.is_discarded()) {
           const json fig = certificate_figures(cert);
           m.certificate = fig.dump();
-          if (!fig["passed"].get<bool>() && cert.contains("failures") && !cert["failures"].empty()) {
-            m.failure_class = failure_class_of_check(cert["failures"][0].value("kind", ""));
-            m.failure_message = cert["failures"][0].value("detail", "");
+          if (!fig["passed"].get<bool>()) {
+            // The first check that failed names the class (certificate.hpp's fixed order).
+            const json first = cert.contains("failures") && !cert["failures"].empty() ? cert["failures"][0] : json();
+            m.failure_class = failure_class_of_check(first.is_object() ? first.value("class", "") : "");
+            m.failure_message = first.is_object() ? first.value("detail", "") : "";
+            if (m.failure_class.empty()) m.failure_class = "check failed";
           }
         }
       }

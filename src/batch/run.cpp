@@ -60,6 +60,7 @@ LocalResult run_local(const Catalogue& c, const fs::path& out, const LocalOption
     if (o.progress) o.progress(p);
   };
   report();
+  bool started = false;
   while (!queue.empty() || !running.empty()) {
     if (o.stop && *o.stop) {
       for (auto& r : running) r.process.kill();
@@ -73,14 +74,17 @@ LocalResult run_local(const Catalogue& c, const fs::path& out, const LocalOption
       queue.pop_front();
       ProcessOptions po;
       po.log = out / "logs" / (std::to_string(index) + ".log");
+      fs::create_directories(po.log.parent_path(), ec);
       fs::remove(po.log, ec);
       po.deadline_s = c.settings.wall_limit + 120.0;  // the item stops its own steps first
       running.push_back(Running{index, Process(o.exe, {"batch", "item", c.file.string(), "-o", out.string(), "--index",
                                                 std::to_string(index), "--retry-failed"},
                                         po)});
       --p.left;
-      report();
+      started = true;
     }
+    if (started) report();
+    started = false;
     bool changed = false;
     for (auto it = running.begin(); it != running.end();) {
       if (!it->process.poll()) {
@@ -107,10 +111,10 @@ LocalResult run_local(const Catalogue& c, const fs::path& out, const LocalOption
       it = running.erase(it);
       changed = true;
     }
-    if (changed) report();
+    // Finished items are reported with the next ones started (or at the end).
+    if (changed && (queue.empty() || (o.stop && *o.stop))) report();
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  report();
   return result;
 }
 

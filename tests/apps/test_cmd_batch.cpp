@@ -166,6 +166,16 @@ TEST(CliBatch, OneItemTakesItsIndexFromTheSchedulerAndSaysWhyItFailed) {
   EXPECT_EQ(far.code, 1);
   EXPECT_NE(far.err.find("no item 3: the catalogue has 3 items"), std::string::npos) << far.err;
 
+  // A drape stopped long before rest: the certificate's first failed check
+  // is the class, its detail the message.
+  json short_run = j;
+  short_run["settings"]["time_limit"] = 0.05;
+  write_file_atomic(dir / "short.json", short_run.dump());
+  const auto sh = run_vgd({"batch", "item", (dir / "short.json").string(), "-o", (dir / "short").string(),
+                           "--index", "0"});
+  EXPECT_EQ(sh.code, 3) << sh.err;
+  EXPECT_NE(sh.err.find("failed: no rest: stopped at the time limit"), std::string::npos) << sh.err;
+
   // The Slurm script for what is left: items 0 and 1.
   const auto sl = run_vgd({"batch", "slurm", cat, "-o", out, "--max-running", "2"});
   EXPECT_EQ(sl.code, 0) << sl.err;

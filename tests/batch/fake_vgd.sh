@@ -27,7 +27,7 @@ case "$cmd" in
     if [ -n "${FAKE_PNG:-}" ]; then cp "$FAKE_PNG" "$out/previews/front.png"; else echo "png" > "$out/previews/front.png"; fi
     [ -n "$trj" ] && echo "trj" > "$trj"
     if [ "${FAKE_VGD:-pass}" = check-failed ]; then
-      printf '{"passed": false, "stop": {"reason": "time limit", "simulated_s": 8.0, "wall_s": 3.5}, "seams": [{"closed": 10, "pairs": 40}], "penetration": {"max_m": 0.0004}, "triangle_intersections": 0, "failures": [{"kind": "seams open", "detail": "left armhole 10/40 pairs closed"}, {"kind": "no rest", "detail": "still moving"}]}' > "$out/certificate.json"
+      printf '{"passed": false, "stop": {"reason": "time limit", "simulated_s": 8.0, "wall_s": 3.5}, "seams": [{"closed": 10, "pairs": 40}], "penetration": {"max_m": 0.0004}, "triangle_intersections": 0, "failures": [{"class": "seams open", "detail": "left armhole 10/40 pairs closed"}, {"class": "no rest", "detail": "still moving"}]}' > "$out/certificate.json"
       exit 3
     fi
     printf '{"passed": true, "stop": {"reason": "rest", "simulated_s": 1.5, "wall_s": 2.0}, "seams": [{"closed": 40, "pairs": 40}], "penetration": {"max_m": 0.0002}, "triangle_intersections": 0, "strain": [{"piece": "FRONT", "warp": {"p95": 0.05}, "weft": {"p95": 0.08}}], "failures": []}' > "$out/certificate.json"
