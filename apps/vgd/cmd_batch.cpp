@@ -31,7 +31,7 @@ void on_signal(int) { g_stop = 1; }
 
 struct Options {
   std::string catalogue, output = "out", partition;
-  int jobs = 1, index = -1, max_running = 0;
+  int jobs = 1, index = -1, max_running = 0, max_array_size = 1001;
   bool retry_failed = false, force = false, submit = false, json = false, failed_only = false, sizes_only = false;
 };
 
@@ -106,6 +106,11 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
   slurm->add_option("--indices", indices_text, "Only these items, as --array takes them (\"3,7,9-11\"); default: "
                                                "every unfinished item");
   slurm->add_option("--partition", o->partition, "Slurm partition (default: the cluster's)");
+  slurm->add_option("--max-array-size", o->max_array_size,
+                    "The cluster's MaxArraySize (scontrol show config): task ids stay below it, more items go in "
+                    "several arrays")
+      ->check(CLI::Range(1, 4000001))
+      ->capture_default_str();
   slurm->add_flag("--retry-failed", o->retry_failed, "Also submit items that finished failed");
   slurm->add_flag("--submit", o->submit, "Submit it with sbatch and print the job id");
 
@@ -219,31 +224,46 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
       }
       std::error_code ec;
       fs::create_directories(out / "slurm", ec);
-      const fs::path script = out / "slurm" / (c.name + ".sbatch");
-      vgd::write_file_atomic(script, batch::slurm_script(c, out, so));
-      fs::permissions(script, fs::perms::owner_exec, fs::perm_options::add, ec);
-      std::printf("wrote %s: %zu items as --array=%s%s\n", script.string().c_str(), so.indices.size(),
-                  batch::array_ranges(so.indices).c_str(),
-                  o->max_running > 0 ? ("%" + std::to_string(o->max_running)).c_str() : "");
+      // Task ids must stay below the cluster's MaxArraySize: more items go
+      // in several arrays, each with its offset.
+      const auto arrays = batch::slurm_arrays(so.indices, o->max_array_size);
+      std::vector<fs::path> scripts;
+      for (std::size_t k = 0; k < arrays.size(); ++k) {
+        batch::SlurmOptions part = so;
+        part.indices = arrays[k].indices;
+        part.offset = arrays[k].offset;
+        const fs::path script =
+            out / "slurm" / (c.name + (arrays.size() > 1 ? "-" + std::to_string(k + 1) : std::string()) + ".sbatch");
+        vgd::write_file_atomic(script, batch::slurm_script(c, out, part));
+        fs::permissions(script, fs::perms::owner_exec, fs::perm_options::add, ec);
+        std::printf("wrote %s: %zu items as --array=%s%s%s\n", script.string().c_str(), part.indices.size(),
+                    batch::array_ranges(part.indices).c_str(),
+                    o->max_running > 0 ? ("%" + std::to_string(o->max_running)).c_str() : "",
+                    part.offset > 0 ? (" (task ids offset by " + std::to_string(part.offset) + ")").c_str() : "");
+        scripts.push_back(script);
+      }
       if (!o->submit) {
-        std::printf("submit it with: sbatch %s\n", script.string().c_str());
+        for (const auto& script : scripts) std::printf("submit it with: sbatch %s\n", script.string().c_str());
         return vgd::cli::kOk;
       }
-      const fs::path log = out / "slurm" / "sbatch.out";
-      fs::remove(log, ec);
-      batch::ProcessOptions po;
-      po.log = log;
-      po.deadline_s = 120;
-      const auto r = batch::run_process("/usr/bin/env", {"sbatch", "--parsable", script.string()}, po);
-      std::string said;
-      try {
-        said = std::string(vgd::trim(vgd::read_file(log)));
-      } catch (const vgd::Error&) {
+      for (std::size_t k = 0; k < scripts.size(); ++k) {
+        const fs::path log = out / "slurm" / "sbatch.out";
+        fs::remove(log, ec);
+        batch::ProcessOptions po;
+        po.log = log;
+        po.deadline_s = 120;
+        const auto r = batch::run_process("/usr/bin/env", {"sbatch", "--parsable", scripts[k].string()}, po);
+        std::string said;
+        try {
+          said = std::string(vgd::trim(vgd::read_file(log)));
+        } catch (const vgd::Error&) {
+        }
+        if (!r.ok()) throw vgd::Error(scripts[k].string(), "", "sbatch " + r.describe() + ": " + said);
+        const std::string job = vgd::split(said, ';').front();
+        std::ofstream(out / "slurm" / "jobs.txt", std::ios::app)
+            << job << " " << batch::array_ranges(arrays[k].indices) << "\n";
+        std::printf("submitted job %s\n", job.c_str());
       }
-      if (!r.ok()) throw vgd::Error(script.string(), "", "sbatch " + r.describe() + ": " + said);
-      const std::string job = vgd::split(said, ';').front();
-      std::ofstream(out / "slurm" / "jobs.txt", std::ios::app) << job << " " << batch::array_ranges(so.indices) << "\n";
-      std::printf("submitted job %s\n", job.c_str());
       return vgd::cli::kOk;
     }
     const bool checksums = !o->sizes_only;
@@ -252,15 +272,18 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
       std::fputs(batch::summary_json(c, s).c_str(), stdout);
       return vgd::cli::kOk;
     }
-    if (collect->parsed()) batch::write_summary(c, out, s);
+    const int pages = collect->parsed() ? batch::write_summary(c, out, s) : 0;
     std::printf("%s: %zu items: %d passed, %d failed, %d partial, %d pending\n", o->catalogue.c_str(),
                 c.items.size(), s.passed, s.failed, s.partial, s.pending);
     for (std::size_t i = 0; i < s.items.size(); ++i)
       if (s.items[i].state == batch::ItemState::partial)
         std::printf("  partial %zu (%s): %s\n", i, c.items[i].name.c_str(), s.items[i].problem.c_str());
     if (collect->parsed())
-      std::printf("wrote %s, %s and %s\n", (out / "summary.csv").string().c_str(),
-                  (out / "summary.json").string().c_str(), (out / "index.html").string().c_str());
+      std::printf("wrote %s, %s and %s%s\n", (out / "summary.csv").string().c_str(),
+                  (out / "summary.json").string().c_str(), (out / "index.html").string().c_str(),
+                  pages > 0 ? (", and " + std::to_string(pages) + " 3-D viewer pages in " + (out / "web").string())
+                                  .c_str()
+                            : "");
     const bool used_slurm = fs::exists(out / "slurm" / "jobs.txt");
     print_failures(c, s, *o, used_slurm);
     return s.failed == 0 && s.pending + s.partial == 0 ? vgd::cli::kOk : vgd::cli::kCheckFailed;

@@ -6,6 +6,7 @@
 
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/io/vrml/web.hpp"
 
 namespace vgd::batch {
 namespace {
@@ -142,7 +143,7 @@ std::string summary_json(const Catalogue& c, const Status& s) {
   return j.dump(2) + "\n";
 }
 
-std::string contact_sheet_html(const Catalogue& c, const Status& s) {
+std::string contact_sheet_html(const Catalogue& c, const Status& s, bool viewer_pages) {
   std::set<std::string> styles, sizes, fabrics, avatars;
   for (const Item& item : c.items) {
     styles.insert(c.styles[item.style].id), sizes.insert(item.size);
@@ -208,6 +209,7 @@ std::string contact_sheet_html(const Catalogue& c, const Status& s) {
              {"certificate.json", "certificate"}, {"garment.wrl", "VRML"}, {"garment-animated.wrl.gz", "animated"},
              {"garment.glb", "glTF"}, {"drape.wvt", "wvt"}, {"drape.trj", "trj"}, {"log.txt", "log"}})
       if (has_file(is, file)) links += " <a href=\"" + html(dir + file) + "\">" + label + "</a>";
+    if (viewer_pages && has_file(is, "garment.wrl")) links = " <a href=\"web/" + item.id + ".html\">3-D view</a>" + links;
     if (!links.empty()) o += "<div class=\"fig\">" + links + "</div>\n";
     o += "</div>\n";
   }
@@ -223,10 +225,34 @@ std::string contact_sheet_html(const Catalogue& c, const Status& s) {
   return o;
 }
 
-void write_summary(const Catalogue& c, const fs::path& out, const Status& s) {
+int write_summary(const Catalogue& c, const fs::path& out, const Status& s, const fs::path& x_ite_dist) {
+  namespace vrml = vgd::io::vrml;
+  std::vector<vrml::WebEntry> pages;
+  const fs::path x_ite = x_ite_dist.empty() ? vrml::default_x_ite_dir() : x_ite_dist;
+  if (!x_ite.empty() && fs::is_regular_file(x_ite / "x_ite.min.js")) {
+    for (const Item& item : c.items) {
+      const ItemStatus& is = s.items[static_cast<std::size_t>(item.index)];
+      if (!has_file(is, "garment.wrl")) continue;
+      vrml::WebEntry e;
+      e.name = item.id;
+      e.title = item.name;
+      const std::string dir = "../items/" + item.id + "/";
+      e.wrl = dir + "garment.wrl";
+      for (const auto& [file, label] : std::vector<std::pair<std::string, std::string>>{
+               {"garment-animated.wrl.gz", "VRML, animated"}, {"garment.glb", "glTF (.glb)"},
+               {"drape.wvt", "trajectory (.wvt)"}, {"certificate.json", "certificate"}})
+        if (has_file(is, file)) e.downloads.push_back({label, dir + file});
+      e.facts = {{"style", c.styles[item.style].id}, {"size", item.size}, {"fabric", c.fabrics[item.fabric].id},
+                 {"body", c.avatars[item.avatar].id}, {"state", to_string(is.state)}};
+      if (is.manifest && !is.manifest->failure_class.empty()) e.facts.push_back({"failure", is.manifest->failure_class});
+      pages.push_back(std::move(e));
+    }
+    if (!pages.empty()) vrml::write_web_catalogue(out / "web", pages, x_ite);
+  }
   write_file_atomic(out / "summary.csv", summary_csv(c, s));
   write_file_atomic(out / "summary.json", summary_json(c, s));
-  write_file_atomic(out / "index.html", contact_sheet_html(c, s));
+  write_file_atomic(out / "index.html", contact_sheet_html(c, s, !pages.empty()));
+  return static_cast<int>(pages.size());
 }
 
 }  // namespace vgd::batch

@@ -155,7 +155,12 @@ std::string slurm_script(const Catalogue& c, const fs::path& out, const SlurmOpt
   s += "# Written by vgd batch slurm: one array task per catalogue item (docs/batch.md).\n";
   s += "# Catalogue: " + c.file.string() + " (" + std::to_string(c.items.size()) + " items)\n";
   s += "#SBATCH --job-name=" + shell_quote("vgd-" + c.name) + "\n";
-  s += "#SBATCH --array=" + array_ranges(indices) + (o.max_running > 0 ? "%" + std::to_string(o.max_running) : "") + "\n";
+  std::vector<int> tasks;
+  for (int i : indices) {
+    if (i < o.offset) throw Error(c.file.string(), "", "item " + std::to_string(i) + " is below the array's offset");
+    tasks.push_back(i - o.offset);
+  }
+  s += "#SBATCH --array=" + array_ranges(tasks) + (o.max_running > 0 ? "%" + std::to_string(o.max_running) : "") + "\n";
   s += "#SBATCH --ntasks=1\n";
   s += "#SBATCH --cpus-per-task=" + std::to_string(c.settings.threads) + "\n";
   s += "#SBATCH --mem=" + std::to_string(c.settings.memory_mb) + "M\n";
@@ -164,8 +169,23 @@ std::string slurm_script(const Catalogue& c, const fs::path& out, const SlurmOpt
   if (!o.partition.empty()) s += "#SBATCH --partition=" + o.partition + "\n";
   s += "set -eu\n";
   s += "exec " + shell_quote(o.exe.string()) + " batch item " + shell_quote(c.file.string()) + " -o " +
-       shell_quote(abs_out.string()) + " --index \"$SLURM_ARRAY_TASK_ID\"\n";
+       shell_quote(abs_out.string()) +
+       (o.offset > 0 ? " --index \"$((SLURM_ARRAY_TASK_ID + " + std::to_string(o.offset) + "))\"\n"
+                     : " --index \"$SLURM_ARRAY_TASK_ID\"\n");
   return s;
+}
+
+std::vector<SlurmArray> slurm_arrays(std::vector<int> indices, int max_array_size) {
+  std::sort(indices.begin(), indices.end());
+  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  std::vector<SlurmArray> arrays;
+  if (indices.empty()) return arrays;
+  if (indices.back() < max_array_size) return {SlurmArray{indices, 0}};
+  for (int i : indices) {
+    if (arrays.empty() || i - arrays.back().offset >= max_array_size) arrays.push_back({{}, i});
+    arrays.back().indices.push_back(i);
+  }
+  return arrays;
 }
 
 }  // namespace vgd::batch

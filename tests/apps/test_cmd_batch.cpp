@@ -70,6 +70,18 @@ TEST(CliBatch, ACatalogueRunsHereResumesAndRedoesOnlyAnEditedStyle) {
     EXPECT_FALSE(fs::exists(d / "drape.trj")) << "not asked for";
   }
   EXPECT_TRUE(fs::is_regular_file(dir / "out/index.html"));
+  // A 3-D viewer page per item (X_ITE, docs/vrml.md), linked from its card.
+  if (fs::is_regular_file(source_dir() / "tests/web/node_modules/x_ite/dist/x_ite.min.js")) {
+    const std::string sheet = read_file(dir / "out/index.html");
+    for (const auto& item : summary["items"]) {
+      const std::string page = "web/" + item["id"].get<std::string>() + ".html";
+      EXPECT_TRUE(fs::is_regular_file(dir / "out" / page)) << page;
+      EXPECT_NE(sheet.find("href=\"" + page + "\""), std::string::npos) << page;
+      EXPECT_NE(read_file(dir / "out" / page).find("../items/" + item["id"].get<std::string>() + "/garment.wrl"),
+                std::string::npos);
+    }
+    EXPECT_TRUE(fs::is_regular_file(dir / "out/web/x_ite/x_ite.min.js"));
+  }
   const auto st = run_vgd({"batch", "status", cat, "-o", out});
   EXPECT_EQ(st.code, 0) << st.out << st.err;
   EXPECT_NE(st.out.find("3 items: 3 passed, 0 failed, 0 partial, 0 pending"), std::string::npos) << st.out;

@@ -170,6 +170,31 @@ TEST(Slurm, TheArrayCoversTheItemsWithTheCataloguesLimits) {
   EXPECT_NE(batch::slurm_script(c, f.dir / "out", o).find("--array=3,7-8%8\n"), std::string::npos);
   o.indices = {24};
   EXPECT_THROW(batch::slurm_script(c, f.dir / "out", o), Error);
+  // Above the cluster's MaxArraySize: task ids offset, the item is the task id plus the offset.
+  o.indices = {20, 21, 23};
+  o.offset = 20;
+  const std::string off = batch::slurm_script(c, f.dir / "out", o);
+  EXPECT_NE(off.find("--array=0-1,3%8\n"), std::string::npos) << off;
+  EXPECT_NE(off.find("--index \"$((SLURM_ARRAY_TASK_ID + 20))\""), std::string::npos) << off;
+}
+
+TEST(Slurm, MoreItemsThanTheArraySizeGoInArraysWithOffsets) {
+  std::vector<int> all(2500);
+  for (int i = 0; i < 2500; ++i) all[static_cast<std::size_t>(i)] = i;
+  const auto a = batch::slurm_arrays(all, 1001);
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a[0].offset, 0);
+  EXPECT_EQ(a[1].offset, 1001);
+  EXPECT_EQ(a[2].offset, 2002);
+  EXPECT_EQ(a[0].indices.size() + a[1].indices.size() + a[2].indices.size(), 2500u);
+  EXPECT_EQ(a[2].indices.back() - a[2].offset, 497);
+  const auto small = batch::slurm_arrays({7, 3, 900}, 1001);
+  ASSERT_EQ(small.size(), 1u);
+  EXPECT_EQ(small[0].offset, 0) << "below the limit: task id = item index";
+  const auto sparse = batch::slurm_arrays({5, 1500, 1501}, 1001);
+  ASSERT_EQ(sparse.size(), 2u);
+  EXPECT_EQ(sparse[1].offset, 1500);
+  EXPECT_EQ(sparse[1].indices, (std::vector<int>{1500, 1501}));
 }
 
 TEST(Slurm, TheIndexComesFromTheSchedulersVariable) {

@@ -22,8 +22,13 @@ struct Status {
 
 Status status(const Catalogue& catalogue, const std::filesystem::path& out, bool checksums = true);
 
-// Writes OUT/summary.csv, OUT/summary.json and OUT/index.html (atomically).
-void write_summary(const Catalogue& catalogue, const std::filesystem::path& out, const Status& status);
+// Writes OUT/summary.csv, OUT/summary.json and OUT/index.html (atomically),
+// and, for the items with a garment.wrl, a 3-D viewer page each in OUT/web/
+// (docs/vrml.md's web catalogue: X_ITE copied once into OUT/web/x_ite from
+// `x_ite_dist`, by default the one this build found; no pages when there is
+// none). Returns the number of viewer pages.
+int write_summary(const Catalogue& catalogue, const std::filesystem::path& out, const Status& status,
+                  const std::filesystem::path& x_ite_dist = {});
 
 std::string summary_csv(const Catalogue& catalogue, const Status& status);
 std::string summary_json(const Catalogue& catalogue, const Status& status);
@@ -31,6 +36,7 @@ std::string summary_json(const Catalogue& catalogue, const Status& status);
 // pass/fail badge, the certificate's key figures, links to its outputs),
 // filterable by style, size, fabric, avatar and state. Self-contained: no
 // script or style from elsewhere.
-std::string contact_sheet_html(const Catalogue& catalogue, const Status& status);
+// `viewer_pages`: link each item with a garment.wrl to web/<id>.html.
+std::string contact_sheet_html(const Catalogue& catalogue, const Status& status, bool viewer_pages = false);
 
 }  // namespace vgd::batch

@@ -49,7 +49,20 @@ struct SlurmOptions {
   int max_running = 0;              // %K: at most K tasks at once; 0 = no limit
   std::vector<int> indices;         // only these (a resubmission); empty = every item
   std::string partition;            // "" = the cluster's default
+  // Array task ids are indices - offset (Slurm refuses task ids of
+  // MaxArraySize or more: 1001 by default); the task runs item
+  // SLURM_ARRAY_TASK_ID + offset.
+  int offset = 0;
 };
+
+// The indices split into arrays whose task ids (index - the array's first
+// index) stay below `max_array_size`: one array when the largest index is
+// below it (offset 0), else as few as that allows, each with its offset.
+struct SlurmArray {
+  std::vector<int> indices;
+  int offset = 0;
+};
+std::vector<SlurmArray> slurm_arrays(std::vector<int> indices, int max_array_size = 1001);
 
 // An sbatch script: `--array=<indices>%K`, a task's time (the item's wall
 // limit plus a margin), memory and CPUs from the catalogue's settings, its
