@@ -30,7 +30,7 @@ struct Options {
   double time_limit = 8.0;
   bool previews = true, json = false, between = true;
   std::string model = "mass-spring";
-  std::string material, material_id, quality = "standard", preview_size = "768";
+  std::string material, material_id, quality = "standard", preview_size = "768", seams;
   double spacing = 0.0;
 };
 
@@ -64,6 +64,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--model", o->model, "Cloth model: mass-spring (the default) or strain-rosette (vgd drape --model)")
       ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
       ->capture_default_str();
+  sub->add_option("--seams", o->seams, "Seam file (JSON, docs/xvc.md \"Seam files\": pieces by name as vgd dress "
+                                       "names them, stretches by index) sewing the garment instead of vgd's suggestions")
+      ->check(CLI::ExistingFile);
   sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's, "
                                              "else data/materials/shirting.xvc)")
       ->check(CLI::ExistingFile);
@@ -102,6 +105,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     po.body_table = o->body_table;
     po.body_size = o->body_size;
     po.avatar = o->avatar;
+    po.seams_file = o->seams;
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
     if (!prep.missing.empty()) {

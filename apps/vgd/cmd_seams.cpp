@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
@@ -102,6 +103,10 @@ vgd::cli::Registrar reg{"seams", 35, [](CLI::App& app, vgd::cli::Common& common)
   add->add_flag("--reverse", o->reverse, "Sew the --to hems against their contour (the usual, untwisted choice)");
   add->add_option("--name", o->name, "Seam name");
   del->add_option("ID", o->ids, "SEAM ids")->required();
+  list->add_option("--seam-file", o->output, "Also write the seams of one size (--size, default the sample) as a "
+                                            "seam file (JSON: pieces by name, stretches by index) for seams apply "
+                                            "or vgd dress --seams");
+  list->add_option("--size", o->size, "The size --seam-file takes its seams from (default: the sample size)");
   apply->add_option("SEAMFILE", o->plan_file, "Seam file (JSON)")->required()->check(CLI::ExistingFile);
   apply->add_option("--size", o->size, "Only this size (default: every size)");
 
@@ -114,6 +119,14 @@ vgd::cli::Registrar reg{"seams", 35, [](CLI::App& app, vgd::cli::Common& common)
     };
     if (list->parsed()) {
       const auto seams = vgd::xvc::list_seams(doc);
+      if (!o->output.empty()) {
+        std::string size = o->size;
+        if (size.empty())
+          if (const auto* g = doc.container("GRADATIONS")) size = std::string(g->attribute("sample_size"));
+        const auto plans = vgd::xvc::seams_as_plans(doc, size);
+        vgd::write_file_atomic(o->output, vgd::xvc::seam_plans_to_json(plans));
+        vgd::cli::say(common, "wrote " + o->output + ": " + std::to_string(plans.size()) + " seams of size " + size);
+      }
       if (o->json) {
         auto a = nlohmann::json::array();
         for (const auto& s : seams) a.push_back({{"id", s.id}, {"name", s.name}, {"hems", hems_json(s.hems)}});

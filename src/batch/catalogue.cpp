@@ -150,13 +150,17 @@ Catalogue load_catalogue(const fs::path& file) {
   for (std::size_t i = 0; i < j["styles"].size(); ++i) {
     const std::string f = "styles[" + std::to_string(i) + "]";
     const json& s = j["styles"][i];
-    r.only_keys(s, f, {"id", "file", "sizes"});
+    r.only_keys(s, f, {"id", "file", "sizes", "seams"});
     Style st;
     if (!s.contains("file")) r.fail(f + ".file", "missing: the style's DXF or XVC file");
     st.file = r.existing_file(s["file"], f + ".file");
     st.id = s.contains("id") ? r.id(s["id"], f + ".id") : st.file.stem().string();
     st.sizes = s.contains("sizes") ? r.strings(s["sizes"], f + ".sizes") : sizes;
     st.sha256 = sha256_file(st.file);
+    if (s.contains("seams")) {
+      st.seams = r.existing_file(s["seams"], f + ".seams");
+      st.sha256 = sha256_hex(st.sha256 + " " + sha256_file(st.seams));
+    }
     c.styles.push_back(std::move(st));
   }
   unique_ids(r, c.styles, "styles");

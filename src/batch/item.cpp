@@ -142,6 +142,7 @@ std::vector<Step> item_steps(const Catalogue& c, const Item& item, const fs::pat
                        "--time-limit", format_double(c.settings.time_limit), "--model", c.settings.model}};
   auto& a = dress.args;
   if (item.size != "sample") a.insert(a.end(), {"--size", item.size});
+  if (!st.seams.empty()) a.insert(a.end(), {"--seams", st.seams.string()});
   if (c.settings.spacing > 0) a.insert(a.end(), {"--spacing", format_double(c.settings.spacing)});
   if (!fa.file.empty()) {
     a.insert(a.end(), {"--material", fa.file.string()});

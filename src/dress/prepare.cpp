@@ -7,6 +7,7 @@
 
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
 #include "vgd/pattern/halves.hpp"
@@ -275,7 +276,18 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
 
-  // Seams: vgd's suggestions when the document has none.
+  // Seams: the seam file's, else vgd's suggestions when the document has none.
+  if (!options.seams_file.empty()) {
+    if (!xvc::list_seams(doc).empty())
+      throw Error(options.seams_file, "", "the document " + file + " has seams of its own: a seam file is for a "
+                                          "document without (a DXF); correct the document's SEAMs instead");
+    const auto plans = xvc::parse_seam_plans(read_file(options.seams_file), options.seams_file);
+    auto nodes = xvc::plan_seam_nodes(doc, plans);
+    const std::size_t n = nodes.size();
+    xvc::execute(doc, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
+    out.decisions.push_back("seams from " + options.seams_file + ": " + std::to_string(plans.size()) + " seams (" +
+                            std::to_string(n) + " SEAMs over the sizes); none suggested");
+  }
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
     so.size = !sample.empty() && !patterns_of(sample).empty() ? sample : out.size;

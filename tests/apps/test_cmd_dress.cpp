@@ -177,3 +177,42 @@ TEST(CliDress, TrousersCutAsHalfLegsDrapeOnBothLegs) {
 }
 
 }  // namespace vgd::test
+
+namespace vgd::test {
+
+// A DXF sewn by the designer's own seam file instead of vgd's suggestions:
+// the seams of the shipped skirt written out by `vgd seams list
+// --seam-file`, one renamed, applied by `vgd dress --seams` to the skirt's
+// DXF; a document that has seams refuses a seam file.
+TEST(CliDress, ASeamFileSewsADxfInsteadOfTheSuggestions) {
+  const auto out = scratch_dir("dress-seam-file");
+  const auto seams = out / "skirt.seams.json";
+  const auto listed = run_vgd({"seams", "list", (source_dir() / "data/garments/a-line-skirt.xvc").string(),
+                               "--seam-file", seams.string()});
+  ASSERT_EQ(listed.code, 0) << listed.err;
+  EXPECT_NE(listed.err.find("3 seams of size 38"), std::string::npos) << listed.err;
+  auto plan = read_json(seams);
+  ASSERT_EQ(plan["seams"].size(), 3u);
+  plan["seams"][2]["name"] = "waistband, as the designer says";
+  write_file_atomic(seams, plan.dump(2));
+  const auto r = run_vgd({"dress", (source_dir() / "data/garments/a-line-skirt.dxf").string(), "--seams",
+                          seams.string(), "--no-previews", "--time-limit", "0.05", "--spacing", "0.03", "-o",
+                          (out / "d").string()});
+  EXPECT_TRUE(r.code == 0 || r.code == 3) << r.err;
+  EXPECT_NE(r.err.find("seams from " + seams.string() + ": 3 seams (15 SEAMs over the sizes); none suggested"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("suggested at size"), std::string::npos) << r.err;
+  const auto doc = xvc::load_file(out / "d/garment.xvc");
+  const auto sewn = xvc::list_seams(doc);
+  ASSERT_EQ(sewn.size(), 15u);
+  EXPECT_EQ(sewn[2].name, "waistband, as the designer says");
+  const json c = read_json(out / "d/certificate.json");
+  EXPECT_EQ(c["seams"].size(), 3u);
+  const auto refused = run_vgd({"dress", (source_dir() / "data/garments/a-line-skirt.xvc").string(), "--seams",
+                                seams.string(), "--no-previews", "-o", (out / "e").string()});
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_NE(refused.err.find("has seams of its own"), std::string::npos) << refused.err;
+}
+
+}  // namespace vgd::test

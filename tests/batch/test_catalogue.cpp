@@ -101,6 +101,20 @@ TEST(Catalogue, ItemIdsFollowTheInputsContentNotTheirPaths) {
   const auto renamed = batch::load_catalogue(f.write(j, "c.json"));
   for (std::size_t i = 0; i < a.items.size(); ++i) EXPECT_EQ(a.items[i].id, renamed.items[i].id);
   EXPECT_EQ(renamed.items[0].name, "a-line 36 garment mannequin");
+
+  // A style's seam file is one of its inputs: editing it redoes its items only.
+  j = two_styles();
+  write_file_atomic(f.dir / "styles/red.seams.json", "{\"seams\": []}");
+  j["styles"][1]["seams"] = "styles/red.seams.json";
+  const auto with_seams = batch::load_catalogue(f.write(j, "d.json"));
+  EXPECT_EQ(with_seams.styles[1].seams.filename(), "red.seams.json");
+  write_file_atomic(f.dir / "styles/red.seams.json", "{\"seams\": [ ]}");
+  const auto seams_edited = batch::load_catalogue(f.dir / "d.json");
+  for (std::size_t i = 0; i < a.items.size(); ++i) {
+    const bool red = a.items[i].name.rfind("red ", 0) == 0;
+    EXPECT_EQ(with_seams.items[i].id != a.items[i].id, red) << a.items[i].name;
+    EXPECT_EQ(seams_edited.items[i].id != with_seams.items[i].id, red) << a.items[i].name;
+  }
 }
 
 TEST(Catalogue, BadCataloguesAreRefusedNamingTheField) {
@@ -112,6 +126,7 @@ TEST(Catalogue, BadCataloguesAreRefusedNamingTheField) {
   const std::vector<Case> cases = {
       {[](json& j) { j["stlyes"] = j["styles"]; }, "stlyes", "unknown key"},
       {[](json& j) { j["styles"][1]["file"] = "styles/nope.dxf"; }, "styles[1].file", "no such file"},
+      {[](json& j) { j["styles"][1]["seams"] = "nope.json"; }, "styles[1].seams", "no such file"},
       {[](json& j) { j["styles"][1]["id"] = "skirt"; }, "styles[1].id", "id of an earlier entry"},
       {[](json& j) { j["styles"] = json::array(); }, "styles", "non-empty list"},
       {[](json& j) { j["sizes"] = {"38", "38"}; }, "sizes[1]", "twice"},

@@ -71,6 +71,7 @@ TEST(BatchItem, TheStepsAreTheCommandsADesignerWouldType) {
   EXPECT_TRUE(has(steps[0], {"--body-size", "40", "--body-table", "en13402-women"}));
   EXPECT_TRUE(has(steps[0], {"--trj", "/o/drape.trj"}));
   EXPECT_TRUE(has(steps[0], {"--views", "front"}));
+  EXPECT_FALSE(has(steps[0], {"--seams"})) << "no seam file: vgd's suggestions";
   EXPECT_EQ(steps[0].args[std::find(steps[0].args.begin(), steps[0].args.end(), "--material") - steps[0].args.begin() + 1]
                 .substr(0, 1),
             "/")

@@ -19,7 +19,8 @@ struct Style {
   std::string id;                 // the catalogue's name for it (unique)
   std::filesystem::path file;     // DXF or XVC (a document vgd dress wrote and a designer corrected)
   std::vector<std::string> sizes; // its own sizes, else the catalogue's ("sample" = the sample size)
-  std::string sha256;             // of the file's content
+  std::filesystem::path seams;    // a seam file sewing it instead of vgd's suggestions (vgd dress --seams); optional
+  std::string sha256;             // of the file's content (and the seam file's)
 };
 
 // A fabric: the garment's own MATERIAL ("garment"), a shipped one

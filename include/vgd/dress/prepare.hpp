@@ -43,6 +43,11 @@ struct PrepareOptions {
   std::string body_size;   // the mannequin's size; "" = the garment's, or the size nearest the pattern
   std::string avatar;      // a body file draped on instead of a mannequin: said, no table chosen
   double min_score = 0.5;  // seam suggestions below are not added
+  // A seam file (JSON, docs/xvc.md "Seam files": pieces by name, stretches by
+  // index) sewing the pieces as they are once joined: its seams are added for
+  // every size instead of vgd's suggestions. Refused (vgd::Error) for a
+  // document with SEAMs of its own.
+  std::string seams_file;
 };
 
 struct Preparation {
