@@ -207,10 +207,29 @@ Catalogue load_catalogue(const fs::path& file) {
         r.fail(f, "'" + a.id + "': a string here must be \"mannequin\" (the mannequin of each item's size); "
                   "give {\"id\": ..., \"mannequin\": SIZE} or {\"id\": ..., \"file\": ...} for another body");
     } else {
-      r.only_keys(v, f, {"id", "mannequin", "table", "file", "unit", "up", "facing"});
-      if (v.contains("mannequin") == v.contains("file"))
-        r.fail(f, "give either \"mannequin\": SIZE or \"file\": a body mesh");
-      if (v.contains("mannequin")) {
+      r.only_keys(v, f, {"id", "mannequin", "table", "file", "unit", "up", "facing", "measurements"});
+      if (int(v.contains("mannequin")) + int(v.contains("file")) + int(v.contains("measurements")) != 1)
+        r.fail(f, "give one of \"mannequin\": SIZE, \"measurements\": {...} or \"file\": a body mesh");
+      if (v.contains("measurements")) {
+        // A measurement set, metres (vgd mannequin's options: what is not given is derived).
+        a.kind = Avatar::Kind::measurements;
+        const std::string mf = f + ".measurements";
+        const json& ms = v["measurements"];
+        r.only_keys(ms, mf, {"sex", "height", "bust", "under_bust", "waist", "hip", "shoulder", "neck", "arm", "inseam"});
+        if (ms.empty()) r.fail(mf, "give at least one measurement (height, bust, waist, hip, ...), in metres");
+        for (const auto& [k, x] : ms.items()) {
+          if (k == "sex") {
+            a.sex = r.string(x, mf + ".sex");
+            if (a.sex != "female" && a.sex != "male") r.fail(mf + ".sex", "'" + a.sex + "' is not female or male");
+            continue;
+          }
+          const double hi = k == "height" ? 2.5 : 2.0;
+          a.measurements.push_back({k, r.number(x, mf + "." + k, 0.05, hi)});
+        }
+        a.id = v.contains("id") ? r.id(v["id"], f + ".id") : "measured-" + std::to_string(i);
+        if (v.contains("table") || v.contains("unit") || v.contains("up") || v.contains("facing"))
+          r.fail(f, "table, unit, up and facing are not for a measurement set (metres, the mannequin's pose)");
+      } else if (v.contains("mannequin")) {
         a.kind = Avatar::Kind::mannequin;
         a.size = r.string(v["mannequin"], f + ".mannequin");
         if (v.contains("table")) a.table = r.string(v["table"], f + ".table");
@@ -319,6 +338,10 @@ Catalogue load_catalogue(const fs::path& file) {
           key["avatar"] = {{"kind", static_cast<int>(av.kind)}, {"size", av.size},   {"table", av.table},
                            {"file", av.sha256},                 {"unit", av.unit},   {"up", av.up},
                            {"facing", av.facing},               {"type", to_lower(av.file.extension().string())}};
+          if (av.kind == Avatar::Kind::measurements) {
+            key["avatar"]["sex"] = av.sex;
+            for (const auto& [k, x] : av.measurements) key["avatar"]["m_" + k] = x;
+          }
           Item it;
           it.index = static_cast<int>(c.items.size());
           it.id = sha256_hex(key.dump()).substr(0, 16);

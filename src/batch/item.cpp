@@ -153,6 +153,17 @@ std::vector<Step> item_steps(const Catalogue& c, const Item& item, const fs::pat
     if (!av.table.empty()) a.insert(a.end(), {"--body-table", av.table});
   } else if (av.kind == Avatar::Kind::file) {
     a.insert(a.end(), {"--avatar", av.file.string(), "--unit", av.unit, "--up", av.up, "--facing", av.facing});
+  } else if (av.kind == Avatar::Kind::measurements) {
+    // The body made first, as vgd mannequin makes it, in vgd's frame.
+    Step body{"mannequin", {"mannequin", "-o", (dir / "body.obj").string()}};
+    if (!av.sex.empty()) body.args.insert(body.args.end(), {"--sex", av.sex});
+    for (const auto& [k, x] : av.measurements) {
+      std::string opt = "--" + k;
+      std::replace(opt.begin(), opt.end(), '_', '-');
+      body.args.insert(body.args.end(), {opt, format_double(x)});
+    }
+    steps.push_back(std::move(body));
+    a.insert(a.end(), {"--avatar", (dir / "body.obj").string(), "--unit", "m", "--up", "y", "--facing", "+z"});
   }
   if (need_trj) a.insert(a.end(), {"--trj", (dir / "drape.trj").string()});
   if (o.previews)
@@ -323,6 +334,11 @@ ItemOutcome run_item(const Catalogue& c, const Item& item, const fs::path& out, 
     }
     const ProcessResult r = run_process(options.exe, step.args, po);
     m.steps.push_back({step.name, r.wall_s, r.describe()});
+    if (step.name == "mannequin" && !r.ok()) {
+      m.failure_class = r.timed_out ? "time-out" : r.signal != 0 ? "crash" : "bad input";
+      m.failure_message = "vgd mannequin " + r.describe() + ": " + last_error_line(log);
+      break;
+    }
     if (step.name == "dress") {
       if (r.timed_out) {
         m.failure_class = "time-out";

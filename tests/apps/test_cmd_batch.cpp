@@ -198,5 +198,31 @@ TEST(CliBatch, OneItemTakesItsIndexFromTheSchedulerAndSaysWhyItFailed) {
   EXPECT_NE(with_failed.out.find("3 items as --array=0-2"), std::string::npos) << with_failed.out;
 }
 
+// A customer's measurements instead of a size's mannequin: the body made by
+// vgd mannequin inside the item, the skirt draped on it.
+TEST(CliBatch, AMeasurementSetIsABodyMadeForTheItem) {
+  const auto dir = scratch_dir("cli-batch-measured");
+  write_file_atomic(dir / "skirt.xvc", read_file(source_dir() / "data/garments/a-line-skirt.xvc"));
+  json anna = {{"id", "anna"}};
+  anna["measurements"] = {{"sex", "female"}, {"height", 1.62}, {"bust", 0.92}, {"waist", 0.76}, {"hip", 1.01}};
+  json j = {{"sizes", {"40"}}, {"outputs", {"certificate"}}};
+  j["styles"] = json::array({{{"id", "skirt"}, {"file", "skirt.xvc"}}});
+  j["avatars"] = json::array({anna});
+  j["settings"] = {{"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3}};
+  write_file_atomic(dir / "catalogue.json", j.dump());
+  const auto r = run_vgd({"batch", "item", (dir / "catalogue.json").string(), "-o", (dir / "out").string(),
+                          "--index", "0"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto items = fs::directory_iterator(dir / "out/items");
+  const fs::path item = items->path();
+  const json m = read_json(item / "manifest.json");
+  EXPECT_EQ(m["state"], "passed") << m.dump();
+  EXPECT_EQ(m["avatar"], "anna");
+  EXPECT_EQ(m["steps"][0]["name"], "mannequin");
+  EXPECT_TRUE(fs::is_regular_file(item / "body.obj"));
+  const std::string log = read_file(item / "log.txt");
+  EXPECT_NE(log.find("--height 1.62"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace vgd::test

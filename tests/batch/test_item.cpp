@@ -79,6 +79,18 @@ TEST(BatchItem, TheStepsAreTheCommandsADesignerWouldType) {
   EXPECT_EQ(steps[1].name, "compress");
   EXPECT_TRUE(has(steps[2], {"--vrml", "static", "-o", "/o/garment.wrl", "--gltf", "/o/garment.glb"}));
   EXPECT_TRUE(has(steps[3], {"--vrml", "animated"}));
+  // A measurement set: the body made by vgd mannequin first, then draped on as a file.
+  json anna = {{"id", "anna"}};
+  anna["measurements"] = {{"sex", "female"}, {"height", 1.62}, {"hip", 0.98}, {"under_bust", 0.76}};
+  const auto measured = catalogue(dir, {{"avatars", json::array({anna})}});
+  const auto ms = batch::item_steps(measured, measured.items[0], "/o");
+  ASSERT_GE(ms.size(), 2u);
+  EXPECT_EQ(ms[0].name, "mannequin");
+  EXPECT_TRUE(has(ms[0], {"mannequin", "-o", "/o/body.obj"}));
+  EXPECT_TRUE(has(ms[0], {"--sex", "female"}));
+  EXPECT_TRUE(has(ms[0], {"--height", "1.62"}));
+  EXPECT_TRUE(has(ms[0], {"--under-bust", "0.76"}));
+  EXPECT_TRUE(has(ms[1], {"--avatar", "/o/body.obj", "--unit", "m", "--up", "y", "--facing", "+z"}));
   // Nothing but the certificate: one step, no trajectory.
   const auto bare = catalogue(dir, {{"outputs", {"certificate"}}});
   const auto one = batch::item_steps(bare, bare.items[0], "/o");

@@ -33,12 +33,16 @@ struct Fabric {
 };
 
 // A body: the mannequin of the item's size ("mannequin"), a mannequin of a
-// fixed size and table, or a body file (OBJ, glTF, FBX, ...).
+// fixed size and table, a mannequin of a measurement set (a customer's
+// measurements: `vgd mannequin --height ... --bust ...`), or a body file
+// (OBJ, glTF, FBX, ...).
 struct Avatar {
-  enum class Kind { garment_size, mannequin, file };
+  enum class Kind { garment_size, mannequin, file, measurements };
   std::string id;
   Kind kind = Kind::garment_size;
   std::string size, table;                        // mannequin
+  std::string sex;                                // measurements: female or male ("" = the mannequin's default)
+  std::vector<std::pair<std::string, double>> measurements;  // vgd mannequin's option names (height, bust, ...), m
   std::filesystem::path file;                     // file
   std::string unit = "auto", up = "auto", facing = "auto";
   std::string sha256;
