@@ -1,0 +1,86 @@
+#pragma once
+// The simulation server's service (docs/server.md), apart from sockets: jobs
+// submitted, run by worker processes, inspected, cancelled and their results
+// served, answered as HTTP responses. http.hpp puts it on the network.
+//
+// API (version 1, JSON unless said):
+//   GET  /v1/health                 {"status": "ok", "version", "jobs": {state: count}}
+//   GET  /v1/metrics                Prometheus text format
+//   POST /v1/jobs                   {"name": "skirt.xvc", "document": "<XVC text>", "settings": {...}}
+//                                   → 202 {"id", "state": "queued"}; 400 with the message naming the field
+//   GET  /v1/jobs                   [{"id", "state", "name", "created", ...}], newest first
+//   GET  /v1/jobs/{id}              the job: state, progress (stage, simulated s, seams, kinetic
+//                                   energy, wall s), failure, the certificate's figures, its files
+//   POST /v1/jobs/{id}/cancel       a queued or running job → cancelled
+//   GET  /v1/jobs/{id}/files/{path} one of its result files (as listed by its manifest)
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "vgd/net/jobs.hpp"
+
+namespace vgd::net {
+
+struct ServiceOptions {
+  std::filesystem::path data = "vgd-data";  // jobs.sqlite and jobs/<id>/
+  std::filesystem::path exe;                // the vgd executable the workers run
+  int workers = 1;                          // jobs at once
+  std::size_t max_document = 16u << 20;     // bytes of a submitted document
+  int max_queued = 1000;                    // queued jobs at most (then 429)
+  // When set, every request but /v1/health needs "Authorization: Bearer
+  // <token>" (compared in constant time, never logged or echoed): 401
+  // without it, 403 with another.
+  std::string token;
+};
+
+struct Request {
+  std::string method, target, body;
+  std::string authorization;  // the Authorization header, if any
+};
+
+struct Response {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::filesystem::path file;  // when set: the body is this file's content
+};
+
+class Service {
+ public:
+  // Opens the job database (jobs left running are queued again) and starts
+  // the runner thread. Throws vgd::Error naming the data folder.
+  explicit Service(ServiceOptions options);
+  ~Service();  // stops: running jobs are killed and queued again
+  Service(const Service&) = delete;
+  Service& operator=(const Service&) = delete;
+
+  Response handle(const Request& request);
+  // Stops the runner: running workers are killed, their jobs queued again for
+  // the next start. Idempotent.
+  void stop();
+  int requeued_at_start() const { return requeued_; }
+
+ private:
+  void run();
+  Response submit(const std::string& body);
+  Response job(const std::string& id);
+  Response cancel(const std::string& id);
+  Response file(const std::string& id, const std::string& path);
+  Response metrics();
+
+  ServiceOptions o_;
+  JobStore store_;
+  int requeued_ = 0;
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;                   // cancels_ and the counters below
+  std::map<std::string, bool> cancels_;  // running job ids asked to cancel
+  std::map<int, long long> responses_;   // status → count
+  long long submitted_ = 0;
+  std::thread runner_;
+};
+
+}  // namespace vgd::net

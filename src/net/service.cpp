@@ -1,0 +1,408 @@
+// The simulation server's service: jobs as catalogue items run by worker
+// processes, answered as HTTP responses (service.hpp).
+#include "vgd/net/service.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "vgd/batch/catalogue.hpp"
+#include "vgd/batch/item.hpp"
+#include "vgd/batch/process.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
+#include "vgd/core/version.hpp"
+#include "vgd/xvc/io.hpp"
+
+namespace vgd::net {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Bytes that are not UTF-8 (a garbled path echoed in a message) are replaced, never thrown on.
+Response json_response(int status, const json& j) {
+  return {status, "application/json", j.dump(2, ' ', false, json::error_handler_t::replace) + "\n", {}};
+}
+Response error(int status, const std::string& message) { return json_response(status, {{"error", message}}); }
+
+std::string new_id() {
+  static std::mutex m;
+  static std::random_device rd;
+  std::lock_guard lock(m);
+  std::uniform_int_distribution<unsigned> d(0, 15);
+  std::string s;
+  for (int i = 0; i < 16; ++i) s += "0123456789abcdef"[d(rd)];
+  return s;
+}
+
+bool valid_id(const std::string& id) {
+  return id.size() == 16 && id.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+fs::path job_dir(const ServiceOptions& o, const std::string& id) { return o.data / "jobs" / id; }
+
+// The job's one catalogue item, or nothing when its catalogue cannot be read.
+std::optional<batch::Item> job_item(const fs::path& dir) {
+  try {
+    return batch::load_catalogue(dir / "catalogue.json").items.at(0);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// The last progress line vgd dress wrote in the item's log:
+// "[####....] settling  t 0.64 s  seams 140/140  KE 6.4e-08 J/particle  wall 5.3 s".
+json progress_of(const fs::path& log) {
+  std::string text;
+  try {
+    text = read_file(log);
+  } catch (const Error&) {
+    return nullptr;
+  }
+  std::string last;
+  for (const auto& line : split(text, '\n'))
+    if (!line.empty() && line[0] == '[' && line.find("] ") != std::string::npos) last = line;
+  if (last.empty()) return nullptr;
+  json p;
+  const auto words = split(last.substr(last.find("] ") + 2), ' ');
+  std::vector<std::string> w;
+  for (const auto& x : words)
+    if (!x.empty()) w.push_back(x);
+  if (!w.empty()) p["stage"] = w[0];
+  for (std::size_t i = 1; i + 1 < w.size(); ++i) {
+    if (w[i] == "t") p["simulated_s"] = parse_double(w[i + 1]).value_or(0.0);
+    if (w[i] == "wall") p["wall_s"] = parse_double(w[i + 1]).value_or(0.0);
+    if (w[i] == "KE") p["kinetic_energy_j"] = parse_double(w[i + 1]).value_or(0.0);
+    if (w[i] == "seams") {
+      const auto ab = split(w[i + 1], '/');
+      if (ab.size() == 2) {
+        p["seams_closed"] = parse_int(ab[0]).value_or(0);
+        p["seam_pairs"] = parse_int(ab[1]).value_or(0);
+      }
+    }
+  }
+  return p;
+}
+
+json job_json(const Job& j) {
+  json o = {{"id", j.id},           {"state", to_string(j.state)}, {"name", j.name},
+            {"created", j.created}, {"started", j.started},        {"finished", j.finished},
+            {"attempts", j.attempts}};
+  o["failure"] = j.failure_class.empty() ? json(nullptr) : json{{"class", j.failure_class}, {"message", j.message}};
+  return o;
+}
+
+const char* content_type(const fs::path& p) {
+  const std::string e = to_lower(p.extension().string());
+  if (e == ".json") return "application/json";
+  if (e == ".png") return "image/png";
+  if (e == ".glb") return "model/gltf-binary";
+  if (e == ".wrl") return "model/vrml";
+  if (e == ".txt" || e == ".obj") return "text/plain; charset=utf-8";
+  if (e == ".xvc") return "application/xml";
+  return "application/octet-stream";
+}
+
+}  // namespace
+
+Service::Service(ServiceOptions options) : o_(std::move(options)), store_(o_.data) {
+  requeued_ = store_.requeue_running();
+  runner_ = std::thread([this] { run(); });
+}
+
+Service::~Service() { stop(); }
+
+void Service::stop() {
+  stop_ = true;
+  if (runner_.joinable()) runner_.join();
+}
+
+void Service::run() {
+  struct Running {
+    std::string id;
+    batch::Process process;
+  };
+  std::vector<std::unique_ptr<Running>> running;
+  while (!stop_) {
+    // Reap.
+    for (auto it = running.begin(); it != running.end();) {
+      Running& r = **it;
+      bool cancel = false;
+      {
+        std::lock_guard lock(mutex_);
+        cancel = cancels_.count(r.id) > 0;
+      }
+      if (cancel) r.process.kill();
+      if (!r.process.poll()) {
+        ++it;
+        continue;
+      }
+      const fs::path dir = job_dir(o_, r.id);
+      if (cancel) {
+        store_.set_state(r.id, JobState::cancelled, "", "cancelled while running");
+        std::lock_guard lock(mutex_);
+        cancels_.erase(r.id);
+      } else if (const auto item = job_item(dir)) {
+        const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);
+        if (s.state == batch::ItemState::passed)
+          store_.set_state(r.id, JobState::passed);
+        else if (s.state == batch::ItemState::failed)
+          store_.set_state(r.id, JobState::failed, s.manifest->failure_class, s.manifest->failure_message);
+        else
+          store_.set_state(r.id, JobState::failed, "crash",
+                           "the worker " + r.process.result().describe() + " before it finished");
+      } else {
+        store_.set_state(r.id, JobState::failed, "bad input", "the job's catalogue cannot be read");
+      }
+      it = running.erase(it);
+    }
+    // Start.
+    while (static_cast<int>(running.size()) < std::max(1, o_.workers)) {
+      const auto next = store_.next_queued();
+      if (!next) break;
+      const fs::path dir = job_dir(o_, next->id);
+      store_.set_state(next->id, JobState::running);
+      try {
+        const auto item = job_item(dir);
+        if (!item) throw Error((dir / "catalogue.json").string(), "", "the job's catalogue cannot be read");
+        batch::ProcessOptions po;
+        po.log = dir / "worker.log";
+        const auto c = batch::load_catalogue(dir / "catalogue.json");
+        po.deadline_s = c.settings.wall_limit + 120.0;
+        running.push_back(std::make_unique<Running>(Running{
+            next->id, batch::Process(o_.exe, {"batch", "item", (dir / "catalogue.json").string(), "-o",
+                                              (dir / "out").string(), "--index", "0"},
+                                     po)}));
+      } catch (const Error& e) {
+        store_.set_state(next->id, JobState::failed, "bad input", e.what());
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  // Stopping: running jobs go back to the queue for the next start.
+  for (auto& r : running) {
+    r->process.kill();
+    r->process.wait();
+    store_.set_state(r->id, JobState::queued);
+  }
+}
+
+Response Service::handle(const Request& req) {
+  Response r = [&]() -> Response {
+    try {
+      std::string path = req.target.substr(0, req.target.find('?'));
+      const auto parts = split(path, '/');  // "", "v1", ...
+      if (parts.size() < 3 || !parts[0].empty() || parts[1] != "v1") return error(404, "no such route: " + path);
+      const std::string& what = parts[2];
+      if (!o_.token.empty() && !(what == "health" && parts.size() == 3)) {
+        const std::string prefix = "Bearer ";
+        if (req.authorization.rfind(prefix, 0) != 0)
+          return error(401, "this server needs a token: Authorization: Bearer <token>");
+        const std::string given = req.authorization.substr(prefix.size());
+        // Constant time in the token's length: every byte compared.
+        unsigned diff = given.size() != o_.token.size() ? 1u : 0u;
+        for (std::size_t k = 0; k < o_.token.size(); ++k)
+          diff |= static_cast<unsigned char>(o_.token[k]) ^ static_cast<unsigned char>(k < given.size() ? given[k] : 0);
+        if (diff != 0) return error(403, "the token is not this server's");
+      }
+      if (what == "health" && parts.size() == 3) {
+        if (req.method != "GET") return error(405, "GET only");
+        json jobs;
+        for (auto s : {JobState::queued, JobState::running, JobState::passed, JobState::failed, JobState::cancelled})
+          jobs[to_string(s)] = store_.count(s);
+        return json_response(200, {{"status", "ok"}, {"version", kVersion}, {"jobs", jobs}});
+      }
+      if (what == "metrics" && parts.size() == 3) return metrics();
+      if (what != "jobs") return error(404, "no such route: " + path);
+      if (parts.size() == 3) {
+        if (req.method == "POST") return submit(req.body);
+        if (req.method != "GET") return error(405, "GET or POST");
+        json list = json::array();
+        for (const auto& j : store_.list()) list.push_back(job_json(j));
+        return json_response(200, list);
+      }
+      const std::string& id = parts[3];
+      if (!valid_id(id)) return error(404, "no job '" + printable(id) + "'");
+      if (parts.size() == 4) {
+        if (req.method != "GET") return error(405, "GET only");
+        return job(id);
+      }
+      if (parts.size() == 5 && parts[4] == "cancel") {
+        if (req.method != "POST") return error(405, "POST only");
+        return cancel(id);
+      }
+      if (parts.size() >= 6 && parts[4] == "files") {
+        if (req.method != "GET") return error(405, "GET only");
+        std::string rel;
+        for (std::size_t k = 5; k < parts.size(); ++k) rel += (k > 5 ? "/" : "") + parts[k];
+        return file(id, rel);
+      }
+      return error(404, "no such route: " + path);
+    } catch (const Error& e) {
+      return error(500, e.what());
+    } catch (const std::exception& e) {
+      return error(500, std::string("internal error: ") + e.what());
+    }
+  }();
+  std::lock_guard lock(mutex_);
+  ++responses_[r.status];
+  return r;
+}
+
+Response Service::submit(const std::string& body) {
+  const json j = json::parse(body, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return error(400, "the request is not a JSON object");
+  for (const auto& [k, v] : j.items())
+    if (k != "name" && k != "document" && k != "settings")
+      return error(400, "unknown key '" + printable(k) + "' (known: name, document, settings)");
+  if (!j.contains("document") || !j["document"].is_string() || j["document"].get<std::string>().empty())
+    return error(400, "document: missing (the XVC document's text)");
+  const std::string doc_text = j["document"];
+  if (doc_text.size() > o_.max_document)
+    return error(413, "document: " + std::to_string(doc_text.size()) + " bytes, more than the server's limit of " +
+                          std::to_string(o_.max_document));
+  std::string name = j.value("name", "garment.xvc");
+  if (!j.value("name", json("garment.xvc")).is_string()) return error(400, "name: expected a string");
+  if (name.empty() || name.size() > 100 || name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
+      name[0] == '.' || !iequals(fs::path(name).extension().string(), ".xvc"))
+    return error(400, "name: '" + printable(name) + "' is not a file name ending in .xvc (letters, digits, '.', '_', '-')");
+  if (store_.count(JobState::queued) >= o_.max_queued)
+    return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
+  try {
+    xvc::load_string(doc_text, name);
+  } catch (const Error& e) {
+    return error(400, e.what());
+  }
+  // Settings: a one-item catalogue (docs/batch.md) checked by the catalogue reader.
+  const json s = j.value("settings", json::object());
+  if (!s.is_object()) return error(400, "settings: expected an object");
+  json cat = {{"name", "job"}};
+  json settings = {{"wall_limit", 900}};
+  for (const auto& [k, v] : s.items()) {
+    if (k == "size" || k == "fabric" || k == "body_size" || k == "body_table" || k == "outputs" || k == "views" ||
+        k == "preview_size")
+      continue;
+    if (k == "quality" || k == "model" || k == "time_limit" || k == "spacing" || k == "wall_limit") {
+      settings[k] = v;
+      continue;
+    }
+    return error(400, "settings." + printable(k) +
+                          ": unknown (known: size, fabric, body_size, body_table, quality, model, time_limit, "
+                          "spacing, wall_limit, outputs, views, preview_size)");
+  }
+  if (s.contains("time_limit") && s["time_limit"].is_number() && s["time_limit"].get<double>() > 60)
+    return error(400, "settings.time_limit: more than the server's 60 simulated seconds");
+  cat["settings"] = settings;
+  cat["styles"] = json::array({{{"id", fs::path(name).stem().string()}, {"file", "input/" + name}}});
+  cat["sizes"] = json::array({s.value("size", json("sample"))});
+  cat["fabrics"] = json::array({s.value("fabric", json("garment"))});
+  if (s.contains("body_size")) {
+    json a = {{"id", "body"}, {"mannequin", s["body_size"]}};
+    if (s.contains("body_table")) a["table"] = s["body_table"];
+    cat["avatars"] = json::array({a});
+  }
+  cat["outputs"] = s.value("outputs", json::array({"certificate", "trj", "wvt", "glb", "previews"}));
+  if (s.contains("views")) cat["views"] = s["views"];
+  if (s.contains("preview_size")) cat["preview_size"] = s["preview_size"];
+
+  const std::string id = new_id();
+  const fs::path dir = job_dir(o_, id);
+  write_file_atomic(dir / "input" / name, doc_text);
+  write_file_atomic(dir / "catalogue.json", cat.dump(2));
+  try {
+    batch::load_catalogue(dir / "catalogue.json");
+  } catch (const Error& e) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    const auto& d = e.diagnostic();
+    std::string field = d.entity;
+    if (field.rfind("sizes", 0) == 0) field = "settings.size";
+    if (field.rfind("fabrics", 0) == 0) field = "settings.fabric";
+    if (field.rfind("avatars", 0) == 0) field = "settings.body_size";
+    return error(400, field + ": " + d.message);
+  }
+  Job job;
+  job.id = id;
+  job.name = name;
+  store_.insert(job);
+  {
+    std::lock_guard lock(mutex_);
+    ++submitted_;
+  }
+  return json_response(202, {{"id", id}, {"state", "queued"}});
+}
+
+Response Service::job(const std::string& id) {
+  const auto j = store_.get(id);
+  if (!j) return error(404, "no job '" + id + "'");
+  json o = job_json(*j);
+  const fs::path dir = job_dir(o_, id);
+  if (const auto item = job_item(dir)) {
+    const fs::path items = dir / "out" / "items";
+    if (j->state == JobState::running) o["progress"] = progress_of(items / (item->id + ".partial") / "log.txt");
+    const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);
+    if (s.manifest) {
+      o["certificate"] = s.manifest->certificate.empty() ? json(nullptr) : json::parse(s.manifest->certificate);
+      o["wall_s"] = s.manifest->wall_s;
+      json files = json::array();
+      for (const auto& f : s.manifest->files) files.push_back({{"path", f.path}, {"bytes", f.bytes}, {"sha256", f.sha256}});
+      o["files"] = files;
+    }
+  }
+  return json_response(200, o);
+}
+
+Response Service::cancel(const std::string& id) {
+  const auto j = store_.get(id);
+  if (!j) return error(404, "no job '" + id + "'");
+  if (j->state == JobState::queued) {
+    store_.set_state(id, JobState::cancelled, "", "cancelled while queued");
+    return json_response(200, {{"id", id}, {"state", "cancelled"}});
+  }
+  if (j->state == JobState::running) {
+    std::lock_guard lock(mutex_);
+    cancels_[id] = true;
+    return json_response(202, {{"id", id}, {"state", "cancelling"}});
+  }
+  return error(409, "job " + id + " has finished (" + to_string(j->state) + "): nothing to cancel");
+}
+
+Response Service::file(const std::string& id, const std::string& path) {
+  const auto j = store_.get(id);
+  if (!j) return error(404, "no job '" + id + "'");
+  const fs::path dir = job_dir(o_, id);
+  const auto item = job_item(dir);
+  if (!item) return error(404, "job " + id + " has no results");
+  const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);
+  if (!s.manifest) return error(404, "job " + id + " has no results yet (" + to_string(j->state) + ")");
+  // Only the files its manifest lists: no path outside the job can be named.
+  for (const auto& f : s.manifest->files)
+    if (f.path == path) {
+      Response r;
+      r.content_type = content_type(path);
+      r.file = batch::item_dir(dir / "out", item->id) / f.path;
+      return r;
+    }
+  return error(404, "job " + id + " has no file '" + printable(path) + "'");
+}
+
+Response Service::metrics() {
+  std::string t;
+  t += "# HELP vgd_jobs Jobs by state.\n# TYPE vgd_jobs gauge\n";
+  for (auto s : {JobState::queued, JobState::running, JobState::passed, JobState::failed, JobState::cancelled})
+    t += std::string("vgd_jobs{state=\"") + to_string(s) + "\"} " + std::to_string(store_.count(s)) + "\n";
+  std::lock_guard lock(mutex_);
+  t += "# HELP vgd_jobs_submitted_total Jobs accepted since the server started.\n"
+       "# TYPE vgd_jobs_submitted_total counter\nvgd_jobs_submitted_total " + std::to_string(submitted_) + "\n";
+  t += "# HELP vgd_http_responses_total Responses by status code since the server started.\n"
+       "# TYPE vgd_http_responses_total counter\n";
+  for (const auto& [code, n] : responses_)
+    t += "vgd_http_responses_total{code=\"" + std::to_string(code) + "\"} " + std::to_string(n) + "\n";
+  t += "# HELP vgd_workers Worker processes at most.\n# TYPE vgd_workers gauge\nvgd_workers " +
+       std::to_string(o_.workers) + "\n";
+  return {200, "text/plain; version=0.0.4", t, {}};
+}
+
+}  // namespace vgd::net

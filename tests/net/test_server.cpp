@@ -1,0 +1,197 @@
+// vgd-server over HTTP on loopback, as a client sees it: started on a free
+// port, a job submitted and its results downloaded, the server killed with
+// SIGKILL mid-job and started again (the job completes), garbage requests
+// answered without the server going down, SIGTERM stopping it cleanly.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "support/test_paths.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+
+namespace vgd::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Reply {
+  int status = 0;
+  std::string body;
+};
+
+// One request on a fresh connection (Connection: close), the whole reply read.
+Reply http(int port, const std::string& method, const std::string& target, const std::string& body = "",
+           const std::string& raw = "") {
+  Reply r;
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return r;
+  }
+  const std::string req = !raw.empty() ? raw
+                                       : method + " " + target + " HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n" +
+                                             "Content-Type: application/json\r\nContent-Length: " +
+                                             std::to_string(body.size()) + "\r\n\r\n" + body;
+  for (std::size_t sent = 0; sent < req.size();) {
+    const ssize_t n = ::send(fd, req.data() + sent, req.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    sent += static_cast<std::size_t>(n);
+  }
+  ::shutdown(fd, SHUT_WR);  // all sent: a cut request ends here instead of waiting for the server's time-out
+  std::string in;
+  char buf[65536];
+  for (ssize_t n; (n = ::recv(fd, buf, sizeof buf, 0)) > 0;) in.append(buf, static_cast<std::size_t>(n));
+  ::close(fd);
+  if (in.rfind("HTTP/1.1 ", 0) == 0) r.status = std::stoi(in.substr(9, 3));
+  const auto split = in.find("\r\n\r\n");
+  if (split != std::string::npos) r.body = in.substr(split + 4);
+  return r;
+}
+
+// vgd-server started on a free port; its stdout in a file.
+struct Server {
+  pid_t pid = -1;
+  int port = 0;
+  fs::path log;
+  Server(const fs::path& data, const fs::path& log_file) : log(log_file) {
+    pid = ::fork();
+    if (pid == 0) {
+      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", data.c_str(), "--vgd", VGD_EXE,
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    for (int i = 0; i < 200 && port == 0; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::string text;
+      try {
+        text = read_file(log);
+      } catch (const Error&) {
+      }
+      const auto at = text.rfind("listening on http://127.0.0.1:");
+      if (at != std::string::npos) port = std::stoi(text.substr(at + 30));
+    }
+  }
+  int stop(int sig) {
+    if (pid <= 0) return -1;
+    ::kill(pid, sig);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    pid = -1;
+    return status;
+  }
+  ~Server() {
+    if (pid > 0) stop(SIGKILL);
+  }
+};
+
+json skirt_job(double time_limit) {
+  return {{"name", "skirt.xvc"},
+          {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
+          {"settings",
+           {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", time_limit},
+            {"outputs", {"certificate", "previews"}}, {"views", {"front"}}, {"preview_size", 128}}}};
+}
+
+std::string state_of(int port, const std::string& id) {
+  const json j = json::parse(http(port, "GET", "/v1/jobs/" + id).body, nullptr, false);
+  return j.is_object() ? j.value("state", "") : "";
+}
+
+TEST(Server, AJobSurvivesTheServerKilledMidRunAndCompletesAfterRestart) {
+  const auto dir = scratch_dir("net-server");
+  const fs::path log = dir / "server.log";
+  std::string id;
+  {
+    Server s(dir / "data", log);
+    ASSERT_GT(s.port, 0) << read_file(log);
+    const Reply h = http(s.port, "GET", "/v1/health");
+    EXPECT_EQ(h.status, 200) << h.body;
+    const Reply sub = http(s.port, "POST", "/v1/jobs", skirt_job(3).dump());
+    ASSERT_EQ(sub.status, 202) << sub.body;
+    id = json::parse(sub.body)["id"];
+    for (int i = 0; i < 400 && state_of(s.port, id) != "running"; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(state_of(s.port, id), "running");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    s.stop(SIGKILL);
+  }
+  // The worker went with the server (it is killed with its parent).
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_NE(std::system(("pgrep -f '[b]atch item " + (dir / "data/jobs" / id).string() + "' > /dev/null").c_str()), 0);
+  Server again(dir / "data", log);
+  ASSERT_GT(again.port, 0) << read_file(log);
+  EXPECT_NE(read_file(log).find("1 jobs that were running when the server stopped are queued again"),
+            std::string::npos);
+  std::string st;
+  for (int i = 0; i < 1200; ++i) {
+    st = state_of(again.port, id);
+    if (st == "passed" || st == "failed") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(st, "passed") << http(again.port, "GET", "/v1/jobs/" + id).body;
+  const json j = json::parse(http(again.port, "GET", "/v1/jobs/" + id).body);
+  EXPECT_EQ(j["attempts"], 2);
+  const Reply png = http(again.port, "GET", "/v1/jobs/" + id + "/files/previews/front.png");
+  EXPECT_EQ(png.status, 200);
+  EXPECT_EQ(png.body.substr(1, 3), "PNG");
+  // SIGTERM: a clean stop.
+  const int status = again.stop(SIGTERM);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_NE(read_file(log).find("vgd-server: stopped"), std::string::npos);
+}
+
+TEST(Server, GarbageAndOversizedRequestsAreAnsweredAndTheServerStaysUp) {
+  const auto dir = scratch_dir("net-garbage");
+  Server s(dir / "data", dir / "server.log");
+  ASSERT_GT(s.port, 0);
+  // Mutations of a valid request: bytes flipped, cut, repeated (bounded: 300).
+  const std::string valid = "POST /v1/jobs HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: 27\r\n\r\n"
+                            "{\"name\": \"a.xvc\", \"doc\": 1}";
+  std::mt19937 rng(7);
+  int answered = 0;
+  for (int i = 0; i < 300; ++i) {
+    std::string m = valid;
+    const int edits = 1 + static_cast<int>(rng() % 8);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t at = rng() % m.size();
+      switch (rng() % 3) {
+        case 0: m[at] = static_cast<char>(rng() % 256); break;
+        case 1: m.erase(at, 1 + rng() % 10); break;
+        default: m.insert(at, std::string(1 + rng() % 50, static_cast<char>(rng() % 256)));
+      }
+      if (m.empty()) m = "x";
+    }
+    const Reply r = http(s.port, "", "", "", m);
+    answered += r.status >= 400 && r.status < 500;
+  }
+  EXPECT_GT(answered, 250) << "mutations get a 4xx (a few: an empty or unparseable start, dropped)";
+  // A document over the server's limit (16 MB): 413.
+  const std::string big = json{{"name", "big.xvc"}, {"document", std::string(17u << 20, 'x')}}.dump();
+  EXPECT_EQ(http(s.port, "POST", "/v1/jobs", big).status, 413);
+  const Reply h = http(s.port, "GET", "/v1/health");
+  EXPECT_EQ(h.status, 200) << "still up";
+  EXPECT_EQ(json::parse(h.body)["jobs"]["queued"], 0);
+}
+
+}  // namespace
+}  // namespace vgd::test
