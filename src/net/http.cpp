@@ -9,17 +9,23 @@
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/version.hpp"
+#include "vgd/io/trj/trj.hpp"
+#include "vgd/net/frames.hpp"
 
 namespace vgd::net {
 
 namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
+namespace websocket = beast::websocket;
 using tcp = asio::ip::tcp;
 
 struct HttpServer::Impl {
@@ -71,6 +77,10 @@ struct HttpServer::Impl {
         break;
       }
       auto& req = parser.get();
+      if (websocket::is_upgrade(req)) {
+        stream_frames(std::move(socket), req);
+        return;
+      }
       Request r{std::string(req.method_string()), std::string(req.target()), req.body(),
                 std::string(req[http::field::authorization])};
       Response out = service.handle(r);
@@ -89,6 +99,92 @@ struct HttpServer::Impl {
     }
     socket.shutdown(tcp::socket::shutdown_send, ec);
     --connections;
+  }
+
+  // GET /v1/jobs/{id}/frames as a WebSocket (frames.hpp): the topology, the
+  // latest frame, then each new one as the worker writes it to the job's
+  // trajectory; a viewer more than kBehind frames behind skips to the
+  // latest and is told how many it skipped.
+  void stream_frames(tcp::socket socket, const http::request<http::string_body>& req) {
+    boost::system::error_code ec;
+    const std::string target(req.target());
+    const std::string prefix = "/v1/jobs/", suffix = "/frames";
+    std::string id;
+    if (target.rfind(prefix, 0) == 0 && target.size() > prefix.size() + suffix.size() &&
+        target.compare(target.size() - suffix.size(), suffix.size(), suffix) == 0)
+      id = target.substr(prefix.size(), target.size() - prefix.size() - suffix.size());
+    if (auto refused = service.check_token(std::string(req[http::field::authorization]))) {
+      write(socket, refused->status, refused->body, false, ec);
+      return;
+    }
+    const auto where = id.empty() ? std::nullopt : service.trajectory(id);
+    if (!where) {
+      write(socket, 404, "{\"error\": \"no job's frames at " + target + "\"}\n", false, ec);
+      return;
+    }
+    websocket::stream<tcp::socket> ws(std::move(socket));
+    ws.accept(req, ec);
+    if (ec) return;
+    constexpr int kBehind = 8;
+    bool topology_sent = false;
+    int next = -1;  // the next frame to send; -1: not decided until the first look at the file
+    bool first_look = true;
+    long long sent = 0, dropped = 0;
+    int frames = 0;
+    std::string state;
+    for (;;) {
+      const auto t = service.trajectory(id);
+      if (!t) break;
+      state = t->state;
+      std::error_code fec;
+      const bool there = std::filesystem::exists(t->file, fec);
+      if (first_look && !there) next = 0;  // here before the first frame: every frame from the first
+      first_look = false;
+      if (there) {
+        try {
+          const io::trj::TrjReader reader(t->file);
+          frames = reader.frame_count();
+          if (!topology_sent) {
+            ws.text(true);
+            ws.write(asio::buffer(topology_message(reader.topology())), ec);
+            if (ec) break;
+            topology_sent = true;
+          }
+          if (frames > 0) {
+            if (next < 0) next = frames - 1;  // a viewer that joined late: the latest first
+            if (frames - next > kBehind) {    // behind: skip to the latest
+              dropped += frames - 1 - next;
+              const nlohmann::json d = {{"type", "dropped"}, {"count", frames - 1 - next}, {"total", dropped}};
+              ws.text(true);
+              ws.write(asio::buffer(d.dump()), ec);
+              next = frames - 1;
+            }
+            for (; next < frames && !ec; ++next) {
+              ws.binary(true);
+              ws.write(asio::buffer(frame_message(static_cast<std::uint32_t>(next), reader.time(next),
+                                                  reader.positions(next))),
+                       ec);
+              ++sent;
+            }
+            if (ec) break;
+          }
+        } catch (const Error&) {
+          // A frame still being written, or a file renamed under us: read again.
+        }
+      }
+      if (t->finished) {
+        // The last look after the job ended: nothing more will come.
+        const auto again = service.trajectory(id);
+        if (again && again->file == t->file) break;
+        continue;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    const nlohmann::json end = {{"type", "end"}, {"state", state}, {"frames", frames}, {"sent", sent}, {"dropped", dropped}};
+    ws.text(true);
+    ws.write(asio::buffer(end.dump()), ec);
+    ws.close(websocket::close_code::normal, ec);
+    service.count_stream(sent, dropped);
   }
 
   static void write(tcp::socket& socket, int status, const std::string& body, bool keep, boost::system::error_code& ec,

@@ -196,17 +196,8 @@ Response Service::handle(const Request& req) {
       const auto parts = split(path, '/');  // "", "v1", ...
       if (parts.size() < 3 || !parts[0].empty() || parts[1] != "v1") return error(404, "no such route: " + path);
       const std::string& what = parts[2];
-      if (!o_.token.empty() && !(what == "health" && parts.size() == 3)) {
-        const std::string prefix = "Bearer ";
-        if (req.authorization.rfind(prefix, 0) != 0)
-          return error(401, "this server needs a token: Authorization: Bearer <token>");
-        const std::string given = req.authorization.substr(prefix.size());
-        // Constant time in the token's length: every byte compared.
-        unsigned diff = given.size() != o_.token.size() ? 1u : 0u;
-        for (std::size_t k = 0; k < o_.token.size(); ++k)
-          diff |= static_cast<unsigned char>(o_.token[k]) ^ static_cast<unsigned char>(k < given.size() ? given[k] : 0);
-        if (diff != 0) return error(403, "the token is not this server's");
-      }
+      if (!(what == "health" && parts.size() == 3))
+        if (auto refused = check_token(req.authorization)) return *refused;
       if (what == "health" && parts.size() == 3) {
         if (req.method != "GET") return error(405, "GET only");
         json jobs;
@@ -249,6 +240,45 @@ Response Service::handle(const Request& req) {
   std::lock_guard lock(mutex_);
   ++responses_[r.status];
   return r;
+}
+
+std::optional<Response> Service::check_token(const std::string& authorization) const {
+  if (o_.token.empty()) return std::nullopt;
+  const std::string prefix = "Bearer ";
+  if (authorization.rfind(prefix, 0) != 0) return error(401, "this server needs a token: Authorization: Bearer <token>");
+  const std::string given = authorization.substr(prefix.size());
+  // Constant time in the token's length: every byte compared.
+  unsigned diff = given.size() != o_.token.size() ? 1u : 0u;
+  for (std::size_t k = 0; k < o_.token.size(); ++k)
+    diff |= static_cast<unsigned char>(o_.token[k]) ^ static_cast<unsigned char>(k < given.size() ? given[k] : 0);
+  if (diff != 0) return error(403, "the token is not this server's");
+  return std::nullopt;
+}
+
+std::optional<Service::Trajectory> Service::trajectory(const std::string& id) {
+  if (!valid_id(id)) return std::nullopt;
+  const auto j = store_.get(id);
+  if (!j) return std::nullopt;
+  Trajectory t;
+  t.state = to_string(j->state);
+  t.finished = j->state == JobState::passed || j->state == JobState::failed || j->state == JobState::cancelled;
+  const fs::path dir = job_dir(o_, id);
+  const auto item = job_item(dir);
+  if (!item) return t;
+  const fs::path done = batch::item_dir(dir / "out", item->id);
+  const fs::path partial = done.string() + ".partial";
+  std::error_code ec;
+  if (fs::exists(done / "drape.trj", ec)) t.file = done / "drape.trj";
+  else if (fs::exists(partial / "drape.trj", ec)) t.file = partial / "drape.trj";
+  else t.file = partial / "drape.trj.partial";
+  return t;
+}
+
+void Service::count_stream(long long frames, long long dropped) {
+  std::lock_guard lock(mutex_);
+  ++streams_;
+  streamed_frames_ += frames;
+  dropped_frames_ += dropped;
 }
 
 Response Service::submit(const std::string& body) {
@@ -400,6 +430,13 @@ Response Service::metrics() {
        "# TYPE vgd_http_responses_total counter\n";
   for (const auto& [code, n] : responses_)
     t += "vgd_http_responses_total{code=\"" + std::to_string(code) + "\"} " + std::to_string(n) + "\n";
+  t += "# HELP vgd_streams_total Live frame streams ended.\n# TYPE vgd_streams_total counter\nvgd_streams_total " +
+       std::to_string(streams_) + "\n";
+  t += "# HELP vgd_stream_frames_total Frames sent to viewers.\n# TYPE vgd_stream_frames_total counter\n"
+       "vgd_stream_frames_total " + std::to_string(streamed_frames_) + "\n";
+  t += "# HELP vgd_stream_frames_dropped_total Frames a slow viewer skipped (never the stored result's).\n"
+       "# TYPE vgd_stream_frames_dropped_total counter\nvgd_stream_frames_dropped_total " +
+       std::to_string(dropped_frames_) + "\n";
   t += "# HELP vgd_workers Worker processes at most.\n# TYPE vgd_workers gauge\nvgd_workers " +
        std::to_string(o_.workers) + "\n";
   return {200, "text/plain; version=0.0.4", t, {}};

@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -59,6 +60,20 @@ class Service {
   Service& operator=(const Service&) = delete;
 
   Response handle(const Request& request);
+
+  // Where job `id`'s frames are now (for the live stream, http.cpp): the
+  // trajectory its worker is writing, or the finished item's; `finished`
+  // once the job will write no more. Nothing when there is no such job.
+  struct Trajectory {
+    std::filesystem::path file;  // may not exist yet
+    bool finished = false;
+    std::string state;
+  };
+  std::optional<Trajectory> trajectory(const std::string& id);
+  // Authorization for a request other than handle() (the live stream): an
+  // error response, or nothing when it may go on.
+  std::optional<Response> check_token(const std::string& authorization) const;
+  void count_stream(long long frames, long long dropped);
   // Stops the runner: running workers are killed, their jobs queued again for
   // the next start. Idempotent.
   void stop();
@@ -80,6 +95,7 @@ class Service {
   std::map<std::string, bool> cancels_;  // running job ids asked to cancel
   std::map<int, long long> responses_;   // status → count
   long long submitted_ = 0;
+  long long streamed_frames_ = 0, dropped_frames_ = 0, streams_ = 0;
   std::thread runner_;
 };
 

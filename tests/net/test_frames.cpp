@@ -1,0 +1,161 @@
+// Live frames over WebSocket (docs/server.md, "Live frames"): a viewer that
+// connects as the job is submitted gets the topology and every frame (or is
+// told how many it skipped), each with a good checksum, in order, up to the
+// last frame of the stored trajectory; a viewer that joins after the end
+// gets the latest frame first. The frame message round-trips.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fcntl.h>
+#include <thread>
+#include <utility>  // before Asio (Boost 1.74)
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
+#include <nlohmann/json.hpp>
+
+#include "support/test_paths.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/io/trj/trj.hpp"
+#include "vgd/net/frames.hpp"
+
+namespace vgd::test {
+namespace {
+
+namespace fs = std::filesystem;
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+using nlohmann::json;
+
+struct Stream {
+  json topology, end;
+  std::vector<net::FrameMessage> frames;
+  long long dropped = 0;
+};
+
+// Reads a job's live frames to the end.
+Stream watch(int port, const std::string& id) {
+  Stream s;
+  asio::io_context ioc;
+  asio::ip::tcp::resolver resolver(ioc);
+  websocket::stream<asio::ip::tcp::socket> ws(ioc);
+  asio::connect(ws.next_layer(), resolver.resolve("127.0.0.1", std::to_string(port)));
+  ws.handshake("127.0.0.1", "/v1/jobs/" + id + "/frames");
+  for (;;) {
+    beast::flat_buffer buf;
+    boost::system::error_code ec;
+    ws.read(buf, ec);
+    if (ec) break;
+    const std::string msg = beast::buffers_to_string(buf.data());
+    if (ws.got_binary()) {
+      s.frames.push_back(net::parse_frame_message(msg));
+      continue;
+    }
+    const json j = json::parse(msg);
+    if (j["type"] == "topology") s.topology = j;
+    if (j["type"] == "dropped") s.dropped += j["count"].get<long long>();
+    if (j["type"] == "end") s.end = j;
+  }
+  return s;
+}
+
+// Minimal HTTP (Connection: close) for the submit and the download.
+std::string http(int port, const std::string& method, const std::string& target, const std::string& body = "") {
+  asio::io_context ioc;
+  asio::ip::tcp::socket sock(ioc);
+  sock.connect({asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)});
+  const std::string req = method + " " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: " +
+                          std::to_string(body.size()) + "\r\n\r\n" + body;
+  asio::write(sock, asio::buffer(req));
+  std::string in;
+  boost::system::error_code ec;
+  char b[65536];
+  for (std::size_t n; (n = sock.read_some(asio::buffer(b), ec)) > 0 || !ec;) in.append(b, n);
+  const auto at = in.find("\r\n\r\n");
+  return at == std::string::npos ? "" : in.substr(at + 4);
+}
+
+TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
+  const auto dir = scratch_dir("net-frames");
+  const fs::path log = dir / "server.log";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
+            VGD_EXE, static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int port = 0;
+  for (int i = 0; i < 200 && port == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    try {
+      const std::string t = read_file(log);
+      const auto at = t.rfind("127.0.0.1:");
+      if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
+    } catch (const Error&) {
+    }
+  }
+  ASSERT_GT(port, 0);
+  const json job = {{"name", "skirt.xvc"},
+                    {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
+                    {"settings",
+                     {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
+                      {"outputs", {"certificate", "trj"}}}}};
+  const std::string id = json::parse(http(port, "POST", "/v1/jobs", job.dump()))["id"];
+  const Stream live = watch(port, id);
+  EXPECT_EQ(live.end["state"], "passed") << live.end.dump();
+  EXPECT_GT(live.topology["particles"].get<int>(), 500);
+  EXPECT_EQ(live.topology["triangles"].size() % 3, 0u);
+  const int frames = live.end["frames"];
+  ASSERT_GT(frames, 5);
+  ASSERT_FALSE(live.frames.empty());
+  for (std::size_t k = 0; k < live.frames.size(); ++k) {
+    EXPECT_TRUE(live.frames[k].checksum_ok) << k;
+    EXPECT_EQ(live.frames[k].positions.size(), 3u * live.topology["particles"].get<std::size_t>());
+    if (k > 0) {
+      EXPECT_GT(live.frames[k].seq, live.frames[k - 1].seq);
+    }
+  }
+  EXPECT_EQ(live.frames.front().seq, 0u) << "connected before the first frame: every frame from the first";
+  EXPECT_EQ(live.frames.back().seq, static_cast<std::uint32_t>(frames - 1));
+  EXPECT_EQ(static_cast<long long>(live.frames.size()) + live.dropped, frames) << "each frame sent or counted as skipped";
+  EXPECT_EQ(live.end["sent"].get<long long>(), static_cast<long long>(live.frames.size()));
+  // The stored trajectory holds every frame, and the last one is the one streamed last.
+  const std::string trj = http(port, "GET", "/v1/jobs/" + id + "/files/drape.trj");
+  const auto reader = io::trj::TrjReader::from_bytes(trj, "drape.trj");
+  EXPECT_EQ(reader.frame_count(), frames);
+  EXPECT_EQ(reader.positions(frames - 1), live.frames.back().positions);
+  // A viewer joining after the end: the topology and the latest frame.
+  const Stream late = watch(port, id);
+  ASSERT_EQ(late.frames.size(), 1u);
+  EXPECT_EQ(late.frames[0].seq, static_cast<std::uint32_t>(frames - 1));
+  EXPECT_EQ(late.end["state"], "passed");
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+}
+
+TEST(ServerFrames, AFrameMessageRoundTripsAndACorruptOneIsSeen) {
+  const std::vector<float> x = {0.1f, 0.2f, 0.3f, -1.5f, 2.25f, 1e-3f};
+  std::string m = net::frame_message(7, 0.28, x);
+  EXPECT_EQ(m.size(), 24u + 6 * 4);
+  auto f = net::parse_frame_message(m);
+  EXPECT_EQ(f.seq, 7u);
+  EXPECT_DOUBLE_EQ(f.t, 0.28);
+  EXPECT_EQ(f.positions, x);
+  EXPECT_TRUE(f.checksum_ok);
+  m[30] ^= 1;
+  EXPECT_FALSE(net::parse_frame_message(m).checksum_ok);
+  EXPECT_THROW(net::parse_frame_message(m.substr(0, 30)), Error);
+  EXPECT_THROW(net::parse_frame_message("VGDX" + m.substr(4)), Error);
+}
+
+}  // namespace
+}  // namespace vgd::test
