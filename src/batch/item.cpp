@@ -322,6 +322,7 @@ ItemOutcome run_item(const Catalogue& c, const Item& item, const fs::path& out, 
   ProcessOptions po;
   po.log = log;
   po.env = {{"OMP_WAIT_POLICY", "PASSIVE"}};
+  po.memory_mb = c.settings.memory_mb;
   bool drape_ran = false;
   for (const Step& step : item_steps(c, item, partial)) {
     const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -367,8 +368,13 @@ ItemOutcome run_item(const Catalogue& c, const Item& item, const fs::path& out, 
         }
       }
       if (r.exit_code != 0 && r.exit_code != 3 && m.failure_class.empty()) {
-        m.failure_class = drape_ran ? "diverged" : "bad input";
         m.failure_message = last_error_line(log);
+        m.failure_class = m.failure_message.find("bad_alloc") != std::string::npos
+                              ? "out of memory"
+                              : drape_ran ? "diverged" : "bad input";
+        if (m.failure_class == "out of memory")
+          m.failure_message = "past settings.memory_mb (" + std::to_string(c.settings.memory_mb) + " MB of address space): " +
+                              m.failure_message;
         if (m.failure_message.empty()) m.failure_message = "vgd dress " + r.describe();
       }
       if (!drape_ran) break;

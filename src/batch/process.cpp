@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -48,6 +49,7 @@ Process::Process(const std::filesystem::path& exe, const std::vector<std::string
   for (auto& e : env_s) envp.push_back(e.data());
   envp.push_back(nullptr);
   const pid_t parent = ::getpid();
+  const long memory_mb = o.memory_mb;
 
   pid_ = ::fork();
   if (pid_ < 0) {
@@ -62,6 +64,10 @@ Process::Process(const std::filesystem::path& exe, const std::vector<std::string
     ::dup2(fd, 1);
     ::dup2(fd, 2);
     if (devnull >= 0) ::dup2(devnull, 0);
+    if (memory_mb > 0) {
+      const rlimit lim{static_cast<rlim_t>(memory_mb) << 20, static_cast<rlim_t>(memory_mb) << 20};
+      ::setrlimit(RLIMIT_AS, &lim);
+    }
     ::execve(argv[0], argv.data(), envp.data());
     const char msg[] = "vgd batch: cannot run the command\n";
     [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);

@@ -314,16 +314,19 @@ Response Service::submit(const std::string& body) {
     if (k == "size" || k == "fabric" || k == "body_size" || k == "body_table" || k == "outputs" || k == "views" ||
         k == "preview_size")
       continue;
-    if (k == "quality" || k == "model" || k == "time_limit" || k == "spacing" || k == "wall_limit") {
+    if (k == "quality" || k == "model" || k == "time_limit" || k == "spacing" || k == "wall_limit" ||
+        k == "memory_mb") {
       settings[k] = v;
       continue;
     }
     return error(400, "settings." + printable(k) +
                           ": unknown (known: size, fabric, body_size, body_table, quality, model, time_limit, "
-                          "spacing, wall_limit, outputs, views, preview_size)");
+                          "spacing, wall_limit, memory_mb, outputs, views, preview_size)");
   }
   if (s.contains("time_limit") && s["time_limit"].is_number() && s["time_limit"].get<double>() > 60)
     return error(400, "settings.time_limit: more than the server's 60 simulated seconds");
+  if (s.contains("memory_mb") && s["memory_mb"].is_number() && s["memory_mb"].get<double>() > 16384)
+    return error(400, "settings.memory_mb: more than the server's 16384 MB");
   cat["settings"] = settings;
   cat["styles"] = json::array({{{"id", fs::path(name).stem().string()}, {"file", "input/" + name}}});
   cat["sizes"] = json::array({s.value("size", json("sample"))});

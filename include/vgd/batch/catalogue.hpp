@@ -54,7 +54,7 @@ struct Settings {
   double time_limit = 8.0;            // s simulated, per drape
   double spacing = 0.0;               // m; 0 = the document's
   double wall_limit = 1800.0;         // s of wall time per item (all its steps), then "time-out"
-  int memory_mb = 4096;               // per item: Slurm's --mem (not enforced by vgd batch run)
+  int memory_mb = 4096;               // per item: its processes' address space (RLIMIT_AS), and Slurm's --mem
   int threads = 1;                    // OpenMP threads per item
 };
 

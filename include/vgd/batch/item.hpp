@@ -18,7 +18,8 @@
 namespace vgd::batch {
 
 // Failure classes, a fixed list (after GarmentCodeData's): an input vgd
-// refused ("bad input"), the engine stopping ("diverged"), the process
+// refused ("bad input"), the engine stopping ("diverged"), an allocation
+// past the item's memory ("out of memory"), the process
 // killed by a signal ("crash"), the item's wall limit ("time-out"), an
 // output step failing ("output"), or the certificate's first failed check
 // ("no rest", "seams open", "open side", "body penetration",

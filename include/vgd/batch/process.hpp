@@ -24,6 +24,9 @@ struct ProcessOptions {
   std::filesystem::path log;  // stdout and stderr appended here; empty = /dev/null
   std::vector<std::pair<std::string, std::string>> env;  // set in the child
   double deadline_s = 0.0;    // wall seconds, then SIGTERM and (5 s later) SIGKILL to its group; 0 = none
+  // Address space of the child and all it starts (RLIMIT_AS), MB; 0 = none.
+  // An allocation past it fails (vgd: "internal error: std::bad_alloc").
+  long memory_mb = 0;
 };
 
 class Process {
