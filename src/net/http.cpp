@@ -129,6 +129,7 @@ struct HttpServer::Impl {
     bool topology_sent = false;
     int next = -1;  // the next frame to send; -1: not decided until the first look at the file
     bool first_look = true;
+    std::string last_progress;
     long long sent = 0, dropped = 0;
     int frames = 0;
     std::string state;
@@ -170,6 +171,16 @@ struct HttpServer::Impl {
           }
         } catch (const Error&) {
           // A frame still being written, or a file renamed under us: read again.
+        }
+      }
+      if (!t->finished) {
+        // The stage, seams and energy with the frames (for a progress bar).
+        const std::string p = service.progress(id);
+        if (!p.empty() && p != last_progress) {
+          ws.text(true);
+          ws.write(asio::buffer("{\"type\": \"progress\", \"progress\": " + p + "}"), ec);
+          if (ec) break;
+          last_progress = p;
         }
       }
       if (t->finished) {

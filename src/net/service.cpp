@@ -274,6 +274,14 @@ std::optional<Service::Trajectory> Service::trajectory(const std::string& id) {
   return t;
 }
 
+std::string Service::progress(const std::string& id) {
+  if (!valid_id(id)) return "";
+  const auto item = job_item(job_dir(o_, id));
+  if (!item) return "";
+  const json p = progress_of(job_dir(o_, id) / "out" / "items" / (item->id + ".partial") / "log.txt");
+  return p.is_null() ? "" : p.dump();
+}
+
 void Service::count_stream(long long frames, long long dropped) {
   std::lock_guard lock(mutex_);
   ++streams_;

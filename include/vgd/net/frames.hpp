@@ -11,6 +11,8 @@
 //           (3N), u32 crc32 (of the positions' bytes, as .trj chunks), then count float32
 //           positions (m; x0 y0 z0 x1 ...); little-endian. A viewer that joins late gets the
 //           latest frame first, then the live ones.
+//   text    {"type": "progress", "progress": {"stage", "simulated_s", "seams_closed", "seam_pairs",
+//            "kinetic_energy_j", "wall_s"}}: when it changes, while the job runs
 //   text    {"type": "dropped", "count": k, "total": K}: frames this viewer skipped because it
 //           read slower than they came (the trajectory keeps them all)
 //   text    {"type": "end", "state": "passed", "frames": F, "sent": S, "dropped": K}

@@ -74,6 +74,9 @@ class Service {
   // error response, or nothing when it may go on.
   std::optional<Response> check_token(const std::string& authorization) const;
   void count_stream(long long frames, long long dropped);
+  // A running job's progress as JSON ({"stage", "simulated_s", "seams_closed",
+  // "seam_pairs", "kinetic_energy_j", "wall_s"}), or "" when there is none.
+  std::string progress(const std::string& id);
   // Stops the runner: running workers are killed, their jobs queued again for
   // the next start. Idempotent.
   void stop();

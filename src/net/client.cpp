@@ -1,0 +1,100 @@
+// vgd-server's client (client.hpp). Beast here as in http.cpp.
+#include "vgd/net/client.hpp"
+
+#include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without it
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/version.hpp"
+
+namespace vgd::net {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = asio::ip::tcp;
+
+ServerUrl parse_server_url(const std::string& url) {
+  std::string rest = url;
+  if (rest.rfind("http://", 0) == 0) rest = rest.substr(7);
+  else if (rest.find("://") != std::string::npos)
+    throw Error(url, "", "only http:// addresses (TLS: a reverse proxy in front of vgd-server, docs/server.md)");
+  while (!rest.empty() && rest.back() == '/') rest.pop_back();
+  ServerUrl u;
+  const auto colon = rest.rfind(':');
+  if (colon == std::string::npos) {
+    u.host = rest;
+    u.port = "80";
+  } else {
+    u.host = rest.substr(0, colon);
+    u.port = rest.substr(colon + 1);
+  }
+  if (u.host.size() > 2 && u.host.front() == '[' && u.host.back() == ']') u.host = u.host.substr(1, u.host.size() - 2);
+  if (u.host.empty() || u.port.empty() || u.port.find_first_not_of("0123456789") != std::string::npos)
+    throw Error(url, "", "not a server address (http://HOST:PORT)");
+  return u;
+}
+
+Client::Client(ServerUrl url, std::string token) : url_(std::move(url)), token_(std::move(token)) {}
+
+Reply Client::request(const std::string& method, const std::string& target, const std::string& body) const {
+  asio::io_context ioc;
+  tcp::resolver resolver(ioc);
+  beast::tcp_stream stream(ioc);
+  boost::system::error_code ec;
+  const auto where = resolver.resolve(url_.host, url_.port, ec);
+  if (!ec) stream.connect(where, ec);
+  const std::string server = "http://" + url_.host + ":" + url_.port;
+  if (ec) throw Error(server, "", "cannot reach the server: " + ec.message());
+  http::request<http::string_body> req{http::string_to_verb(method), target, 11};
+  req.set(http::field::host, url_.host);
+  req.set(http::field::user_agent, std::string("vgd/") + kVersion);
+  if (!token_.empty()) req.set(http::field::authorization, "Bearer " + token_);
+  if (!body.empty()) req.set(http::field::content_type, "application/json");
+  req.body() = body;
+  req.prepare_payload();
+  http::write(stream, req, ec);
+  beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(std::uint64_t{1} << 32);
+  if (!ec) http::read(stream, buffer, parser, ec);
+  if (ec) throw Error(server, target, "no answer: " + ec.message());
+  stream.socket().shutdown(tcp::socket::shutdown_both, ec);
+  auto& res = parser.get();
+  return {static_cast<int>(res.result_int()), std::string(res[http::field::content_type]), std::move(res.body())};
+}
+
+void Client::watch(const std::string& id, const std::function<void(const std::string&)>& on_text,
+                   const std::function<void(const FrameMessage&)>& on_frame) const {
+  asio::io_context ioc;
+  tcp::resolver resolver(ioc);
+  websocket::stream<tcp::socket> ws(ioc);
+  boost::system::error_code ec;
+  const std::string server = "http://" + url_.host + ":" + url_.port;
+  const auto where = resolver.resolve(url_.host, url_.port, ec);
+  if (!ec) asio::connect(ws.next_layer(), where, ec);
+  if (ec) throw Error(server, "", "cannot reach the server: " + ec.message());
+  ws.set_option(websocket::stream_base::decorator([this](websocket::request_type& req) {
+    req.set(http::field::user_agent, std::string("vgd/") + kVersion);
+    if (!token_.empty()) req.set(http::field::authorization, "Bearer " + token_);
+  }));
+  websocket::response_type res;
+  ws.handshake(res, url_.host, "/v1/jobs/" + id + "/frames", ec);
+  if (ec)
+    throw Error(server, "job " + id, "the server refused the frames' stream (HTTP " +
+                                         std::to_string(res.result_int()) + "): " + res.body());
+  for (;;) {
+    beast::flat_buffer buf;
+    ws.read(buf, ec);
+    if (ec) break;  // closed at the end
+    const std::string msg = beast::buffers_to_string(buf.data());
+    if (ws.got_binary()) on_frame(parse_frame_message(msg));
+    else on_text(msg);
+  }
+}
+
+}  // namespace vgd::net

@@ -1,0 +1,114 @@
+// vgd remote against a vgd-server started by the test on a free loopback
+// port: submit and watch a drape to its end, list, status, get its files
+// (checked against the job's SHA-256), cancel; a server with a token refuses
+// a client without it.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "support/json_file.hpp"
+#include "support/run_vgd.hpp"
+#include "support/test_paths.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
+
+namespace vgd::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct ServerProcess {
+  pid_t pid = -1;
+  int port = 0;
+  ServerProcess(const fs::path& dir, const std::string& token_file = "") {
+    const fs::path log = dir / "server.log";
+    pid = ::fork();
+    if (pid == 0) {
+      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      if (token_file.empty())
+        ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
+                VGD_EXE, static_cast<char*>(nullptr));
+      else
+        ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
+                VGD_EXE, "--token-file", token_file.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    for (int i = 0; i < 200 && port == 0; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      try {
+        const std::string t = read_file(log);
+        const auto at = t.rfind("127.0.0.1:");
+        if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
+      } catch (const Error&) {
+      }
+    }
+  }
+  std::string url() const { return "http://127.0.0.1:" + std::to_string(port); }
+  ~ServerProcess() {
+    if (pid > 0) {
+      ::kill(pid, SIGTERM);
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+    }
+  }
+};
+
+TEST(CliRemote, ADrapeSubmittedWatchedListedAndDownloaded) {
+  const auto dir = scratch_dir("cli-remote");
+  ServerProcess server(dir);
+  ASSERT_GT(server.port, 0);
+  const std::string doc = (source_dir() / "data/garments/a-line-skirt.xvc").string();
+  const auto sub = run_vgd({"remote", "--server", server.url(), "submit", doc, "--size", "38", "--quality", "preview",
+                            "--spacing", "0.03", "--time-limit", "3", "--outputs", "certificate", "trj", "glb",
+                            "--watch"});
+  EXPECT_EQ(sub.code, 0) << sub.err;
+  const std::string id(trim(sub.out));
+  ASSERT_EQ(id.size(), 16u) << sub.out;
+  EXPECT_NE(sub.err.find("job " + id + ": passed"), std::string::npos) << sub.err;
+  EXPECT_NE(sub.err.find("seams"), std::string::npos) << "the progress line: " << sub.err;
+  EXPECT_NE(sub.err.find("frames "), std::string::npos) << sub.err;
+
+  const auto list = run_vgd({"remote", "--server", server.url(), "list"});
+  EXPECT_EQ(list.code, 0);
+  EXPECT_NE(list.out.find(id + "  passed"), std::string::npos) << list.out;
+  const auto status = run_vgd({"remote", "--server", server.url(), "status", id, "--json"});
+  const json st = json::parse(status.out);
+  EXPECT_EQ(st["state"], "passed");
+  const auto get = run_vgd({"remote", "--server", server.url(), "get", id, "-o", (dir / "got").string()});
+  EXPECT_EQ(get.code, 0) << get.err;
+  for (const auto& f : st["files"]) EXPECT_TRUE(fs::is_regular_file(dir / "got" / f["path"].get<std::string>())) << f;
+  EXPECT_TRUE(read_json(dir / "got/certificate.json")["passed"].get<bool>());
+  const auto again = run_vgd({"remote", "--server", server.url(), "watch", id});
+  EXPECT_EQ(again.code, 0) << "a finished job's stream: its last frame and its end";
+  const auto cancel = run_vgd({"remote", "--server", server.url(), "cancel", id});
+  EXPECT_EQ(cancel.code, 1);
+  EXPECT_NE(cancel.err.find("409"), std::string::npos) << cancel.err;
+  const auto nobody = run_vgd({"remote", "--server", "http://127.0.0.1:1", "list"});
+  EXPECT_EQ(nobody.code, 1);
+  EXPECT_NE(nobody.err.find("cannot reach the server"), std::string::npos) << nobody.err;
+}
+
+TEST(CliRemote, AServerWithATokenRefusesAClientWithout) {
+  const auto dir = scratch_dir("cli-remote-token");
+  write_file_atomic(dir / "token", "a-token-of-more-than-16-characters\n");
+  ServerProcess server(dir, (dir / "token").string());
+  ASSERT_GT(server.port, 0);
+  const auto without = run_vgd({"remote", "--server", server.url(), "list"});
+  EXPECT_EQ(without.code, 1);
+  EXPECT_NE(without.err.find("401"), std::string::npos) << without.err;
+  const auto with = run_vgd({"remote", "--server", server.url(), "--token-file", (dir / "token").string(), "list"});
+  EXPECT_EQ(with.code, 0) << with.err;
+}
+
+}  // namespace
+}  // namespace vgd::test
