@@ -39,7 +39,7 @@ bool loopback(const std::string& host) { return host == "127.0.0.1" || host == "
 int main(int argc, char** argv) {
   CLI::App app{"vgd-server — the simulation server: garment drapes as jobs over HTTP (docs/server.md)"};
   app.set_version_flag("--version", std::string("vgd-server ") + vgd::kVersion);
-  std::string listen = "127.0.0.1:8765", data = "vgd-data", token_file, vgd_exe;
+  std::string listen = "127.0.0.1:8765", data = "vgd-data", token_file, vgd_exe, three;
   int workers = 1;
   app.add_option("--listen", listen, "Address and port (port 0: any free port, printed)")->capture_default_str();
   app.add_option("--workers", workers, "Jobs run at once, each in its own process")->check(CLI::Range(1, 256))
@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
                                              "required for an address other than loopback")
       ->check(CLI::ExistingFile);
   app.add_option("--vgd", vgd_exe, "The vgd executable the workers run (default: the one beside vgd-server)");
+  app.add_option("--three", three, "three.js's build folder (three.module.js, three.core.js) for the browser page "
+                                   "at / (default: the copy this build found)");
   app.footer("Exit codes: 0 stopped by a signal, 1 cannot start (address in use, data folder, no vgd), 2 usage.");
   CLI11_PARSE(app, argc, argv);
 
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
     so.data = data;
     so.workers = workers;
     so.exe = vgd_exe.empty() ? find_vgd() : fs::path(vgd_exe);
+    so.three_dir = three;
     if (so.exe.empty() || !fs::is_regular_file(so.exe))
       throw vgd::Error(so.exe.string(), "", "the vgd executable is not there: give --vgd PATH");
     if (!token_file.empty()) so.token = std::string(vgd::trim(vgd::read_file(token_file)));

@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 
 #include <atomic>
+#include <cctype>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without it
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
@@ -107,13 +108,31 @@ struct HttpServer::Impl {
   // latest and is told how many it skipped.
   void stream_frames(tcp::socket socket, const http::request<http::string_body>& req) {
     boost::system::error_code ec;
-    const std::string target(req.target());
+    const std::string full(req.target());
+    const std::string target = full.substr(0, full.find('?'));
+    const std::string query = full.size() > target.size() ? full.substr(target.size() + 1) : "";
     const std::string prefix = "/v1/jobs/", suffix = "/frames";
     std::string id;
     if (target.rfind(prefix, 0) == 0 && target.size() > prefix.size() + suffix.size() &&
         target.compare(target.size() - suffix.size(), suffix.size(), suffix) == 0)
       id = target.substr(prefix.size(), target.size() - prefix.size() - suffix.size());
-    if (auto refused = service.check_token(std::string(req[http::field::authorization]))) {
+    // A browser's WebSocket cannot send headers: the token may come as ?token=.
+    std::string authorization(req[http::field::authorization]);
+    if (authorization.empty() && query.rfind("token=", 0) == 0) {
+      std::string t;
+      const std::string v = query.substr(6, query.find('&') == std::string::npos ? std::string::npos : query.find('&') - 6);
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        if (v[k] == '%' && k + 2 < v.size() && std::isxdigit(static_cast<unsigned char>(v[k + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(v[k + 2]))) {
+          t += static_cast<char>(std::stoi(v.substr(k + 1, 2), nullptr, 16));
+          k += 2;
+        } else {
+          t += v[k] == '+' ? ' ' : v[k];
+        }
+      }
+      authorization = "Bearer " + t;
+    }
+    if (auto refused = service.check_token(authorization)) {
       write(socket, refused->status, refused->body, false, ec);
       return;
     }

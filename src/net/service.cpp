@@ -13,6 +13,7 @@
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/core/version.hpp"
+#include "vgd/net/page.hpp"
 #include "vgd/xvc/io.hpp"
 
 namespace vgd::net {
@@ -107,6 +108,13 @@ const char* content_type(const fs::path& p) {
 
 }  // namespace
 
+fs::path Service::three_dir() const {
+#ifdef VGD_THREE_DIR
+  if (o_.three_dir.empty()) return VGD_THREE_DIR;
+#endif
+  return o_.three_dir;
+}
+
 Service::Service(ServiceOptions options) : o_(std::move(options)), store_(o_.data) {
   requeued_ = store_.requeue_running();
   runner_ = std::thread([this] { run(); });
@@ -193,6 +201,20 @@ Response Service::handle(const Request& req) {
   Response r = [&]() -> Response {
     try {
       std::string path = req.target.substr(0, req.target.find('?'));
+      // The browser page and its three.js: no token (nothing of a job's in them).
+      if (path == "/" || path == "/index.html") {
+        if (req.method != "GET") return error(405, "GET only");
+        return {200, "text/html; charset=utf-8", std::string(browser_page()), {}};
+      }
+      if (path == "/web/three/three.module.js" || path == "/web/three/three.core.js") {
+        const fs::path f = three_dir() / fs::path(path).filename();
+        if (three_dir().empty() || !fs::is_regular_file(f))
+          return error(404, "three.js is not installed for this server (give --three with its build folder)");
+        Response js;
+        js.content_type = "text/javascript";
+        js.file = f;
+        return js;
+      }
       const auto parts = split(path, '/');  // "", "v1", ...
       if (parts.size() < 3 || !parts[0].empty() || parts[1] != "v1") return error(404, "no such route: " + path);
       const std::string& what = parts[2];

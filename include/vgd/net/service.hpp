@@ -13,6 +13,7 @@
 //                                   energy, wall s), failure, the certificate's figures, its files
 //   POST /v1/jobs/{id}/cancel       a queued or running job → cancelled
 //   GET  /v1/jobs/{id}/files/{path} one of its result files (as listed by its manifest)
+//   GET  /                          the browser page (page.hpp); /web/three/*.js its three.js
 #include <atomic>
 #include <filesystem>
 #include <map>
@@ -36,6 +37,9 @@ struct ServiceOptions {
   // <token>" (compared in constant time, never logged or echoed): 401
   // without it, 403 with another.
   std::string token;
+  // three.js's build folder (three.module.js, three.core.js) for the browser
+  // page; "" = the copy this build found (tests/web/node_modules), if any.
+  std::filesystem::path three_dir;
 };
 
 struct Request {
@@ -89,6 +93,7 @@ class Service {
   Response cancel(const std::string& id);
   Response file(const std::string& id, const std::string& path);
   Response metrics();
+  std::filesystem::path three_dir() const;
 
   ServiceOptions o_;
   JobStore store_;
