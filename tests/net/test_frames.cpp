@@ -142,6 +142,69 @@ TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
   ::waitpid(pid, &status, 0);
 }
 
+// Two viewers on one job get the same frames; a job cancelled while they
+// watch ends both streams with "cancelled".
+TEST(ServerFrames, TwoViewersOnOneJobAndACancelWhileStreaming) {
+  const auto dir = scratch_dir("net-frames-two");
+  const fs::path log = dir / "server.log";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
+            VGD_EXE, static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int port = 0;
+  for (int i = 0; i < 200 && port == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    try {
+      const std::string t = read_file(log);
+      const auto at = t.rfind("127.0.0.1:");
+      if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
+    } catch (const Error&) {
+    }
+  }
+  ASSERT_GT(port, 0);
+  const json job = {{"name", "skirt.xvc"},
+                    {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
+                    {"settings",
+                     {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
+                      {"outputs", {"certificate", "trj"}}}}};
+  // Both watch one job to its end.
+  const std::string a = json::parse(http(port, "POST", "/v1/jobs", job.dump()))["id"];
+  Stream first, second;
+  std::thread t1([&] { first = watch(port, a); });
+  std::thread t2([&] { second = watch(port, a); });
+  t1.join();
+  t2.join();
+  EXPECT_EQ(first.end["state"], "passed");
+  EXPECT_EQ(second.end["state"], "passed");
+  ASSERT_FALSE(first.frames.empty());
+  ASSERT_FALSE(second.frames.empty());
+  EXPECT_EQ(first.frames.back().seq, second.frames.back().seq);
+  EXPECT_EQ(first.frames.back().positions, second.frames.back().positions);
+  // A job cancelled while streaming: the stream ends, saying so.
+  json longer = job;
+  longer["settings"]["time_limit"] = 30;
+  longer["settings"]["quality"] = "precise";
+  const std::string b = json::parse(http(port, "POST", "/v1/jobs", longer.dump()))["id"];
+  Stream cancelled;
+  std::thread t3([&] { cancelled = watch(port, b); });
+  for (int i = 0; i < 300; ++i) {
+    const json j = json::parse(http(port, "GET", "/v1/jobs/" + b), nullptr, false);
+    if (j.is_object() && j.contains("progress") && j["progress"].is_object()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  http(port, "POST", "/v1/jobs/" + b + "/cancel");
+  t3.join();
+  EXPECT_EQ(cancelled.end["state"], "cancelled") << cancelled.end.dump();
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+}
+
 TEST(ServerFrames, AFrameMessageRoundTripsAndACorruptOneIsSeen) {
   const std::vector<float> x = {0.1f, 0.2f, 0.3f, -1.5f, 2.25f, 1e-3f};
   std::string m = net::frame_message(7, 0.28, x);
