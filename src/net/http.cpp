@@ -61,6 +61,9 @@ struct HttpServer::Impl {
 
   void serve(tcp::socket socket) {
     ++connections;
+    boost::system::error_code aec;
+    const auto remote = socket.remote_endpoint(aec);
+    const std::string client = aec ? std::string("?") : remote.address().to_string();
     beast::flat_buffer buffer;
     boost::system::error_code ec;
     for (;;) {
@@ -83,7 +86,7 @@ struct HttpServer::Impl {
         return;
       }
       Request r{std::string(req.method_string()), std::string(req.target()), req.body(),
-                std::string(req[http::field::authorization])};
+                std::string(req[http::field::authorization]), client};
       Response out = service.handle(r);
       std::string body = std::move(out.body);
       if (!out.file.empty()) {

@@ -114,6 +114,10 @@ JobStore::JobStore(const std::filesystem::path& data_dir) : db_(std::make_unique
       "name TEXT NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL DEFAULT '', finished TEXT NOT NULL DEFAULT '', "
       "failure_class TEXT NOT NULL DEFAULT '', message TEXT NOT NULL DEFAULT '', attempts INTEGER NOT NULL DEFAULT 0)");
   db_->exec("CREATE INDEX IF NOT EXISTS jobs_state ON jobs(state, seq)");
+  // The client column (added to a database made before it had one).
+  char* err = nullptr;
+  sqlite3_exec(db_->db, "ALTER TABLE jobs ADD COLUMN client TEXT NOT NULL DEFAULT ''", nullptr, nullptr, &err);
+  sqlite3_free(err);
 }
 
 JobStore::~JobStore() {
@@ -122,9 +126,10 @@ JobStore::~JobStore() {
 
 void JobStore::insert(const Job& j) {
   std::lock_guard lock(db_->mutex);
-  Db::Stmt st(*db_, "INSERT INTO jobs (id, seq, state, name, created) VALUES (?, "
-                    "(SELECT COALESCE(MAX(seq), 0) + 1 FROM jobs), ?, ?, ?)");
+  Db::Stmt st(*db_, "INSERT INTO jobs (id, seq, state, name, created, client) VALUES (?, "
+                    "(SELECT COALESCE(MAX(seq), 0) + 1 FROM jobs), ?, ?, ?, ?)");
   st.text(1, j.id).text(2, to_string(j.state)).text(3, j.name).text(4, j.created.empty() ? utc_now() : j.created);
+  st.text(5, j.client);
   st.step();
 }
 
@@ -169,6 +174,14 @@ int JobStore::requeue_running() {
   std::lock_guard lock(db_->mutex);
   db_->exec("UPDATE jobs SET state = 'queued', started = '' WHERE state = 'running'");
   return sqlite3_changes(db_->db);
+}
+
+long long JobStore::active_of(const std::string& client) const {
+  std::lock_guard lock(db_->mutex);
+  Db::Stmt st(*db_, "SELECT COUNT(*) FROM jobs WHERE client = ? AND state IN ('queued', 'running')");
+  st.text(1, client);
+  st.step();
+  return sqlite3_column_int64(st.s, 0);
 }
 
 long long JobStore::count(JobState state) const {

@@ -230,7 +230,7 @@ Response Service::handle(const Request& req) {
       if (what == "metrics" && parts.size() == 3) return metrics();
       if (what != "jobs") return error(404, "no such route: " + path);
       if (parts.size() == 3) {
-        if (req.method == "POST") return submit(req.body);
+        if (req.method == "POST") return submit(req.body, req.client);
         if (req.method != "GET") return error(405, "GET or POST");
         json list = json::array();
         for (const auto& j : store_.list()) list.push_back(job_json(j));
@@ -311,7 +311,7 @@ void Service::count_stream(long long frames, long long dropped) {
   dropped_frames_ += dropped;
 }
 
-Response Service::submit(const std::string& body) {
+Response Service::submit(const std::string& body, const std::string& client) {
   const json j = json::parse(body, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return error(400, "the request is not a JSON object");
   for (const auto& [k, v] : j.items())
@@ -328,6 +328,10 @@ Response Service::submit(const std::string& body) {
   if (name.empty() || name.size() > 100 || name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
       name[0] == '.' || !iequals(fs::path(name).extension().string(), ".xvc"))
     return error(400, "name: '" + printable(name) + "' is not a file name ending in .xvc (letters, digits, '.', '_', '-')");
+  if (store_.active_of(client) >= o_.max_per_client)
+    return error(429, "this client has " + std::to_string(store_.active_of(client)) +
+                          " jobs queued or running (the server's limit per client is " +
+                          std::to_string(o_.max_per_client) + "): wait for some to finish");
   if (store_.count(JobState::queued) >= o_.max_queued)
     return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
   try {
@@ -389,6 +393,7 @@ Response Service::submit(const std::string& body) {
   Job job;
   job.id = id;
   job.name = name;
+  job.client = client;
   store_.insert(job);
   {
     std::lock_guard lock(mutex_);

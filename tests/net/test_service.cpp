@@ -131,6 +131,21 @@ TEST(ServerService, QueuedAndRunningJobsCanBeCancelled) {
   EXPECT_EQ(ja["state"], "cancelled") << ja.dump();
 }
 
+TEST(ServerService, OneClientCannotFillTheQueue) {
+  auto o = options(scratch_dir("net-per-client"));
+  o.max_per_client = 2;
+  net::Service s(o);
+  const json j = skirt_job(20);
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", j.dump(), "", "10.0.0.1"}).status, 202);
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", j.dump(), "", "10.0.0.1"}).status, 202);
+  const Response third = s.handle({"POST", "/v1/jobs", j.dump(), "", "10.0.0.1"});
+  EXPECT_EQ(third.status, 429);
+  EXPECT_NE(body(third)["error"].get<std::string>().find("2 jobs queued or running"), std::string::npos) << third.body;
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", j.dump(), "", "10.0.0.2"}).status, 202) << "another client is not held up";
+  for (const auto& job : body(s.handle({"GET", "/v1/jobs", ""})))
+    s.handle({"POST", "/v1/jobs/" + job["id"].get<std::string>() + "/cancel", ""});
+}
+
 TEST(ServerService, ATokenGuardsEveryRouteButHealth) {
   auto o = options(scratch_dir("net-token"));
   o.token = "0123456789abcdef-secret";

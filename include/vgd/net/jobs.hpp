@@ -28,6 +28,7 @@ struct Job {
   std::string created, started, finished;  // UTC, ISO 8601 ("" when not yet)
   std::string failure_class, message;
   int attempts = 0;        // times a worker started it (a restart requeues a running job)
+  std::string client;      // the submitting client's address
 };
 
 class JobStore {
@@ -47,6 +48,8 @@ class JobStore {
   // Jobs left running by a server that stopped: queued again. Returns how many.
   int requeue_running();
   long long count(JobState state) const;
+  // Jobs of `client` queued or running.
+  long long active_of(const std::string& client) const;
 
   struct Db;  // the SQLite connection (jobs.cpp)
 

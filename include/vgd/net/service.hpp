@@ -33,6 +33,7 @@ struct ServiceOptions {
   int workers = 1;                          // jobs at once
   std::size_t max_document = 16u << 20;     // bytes of a submitted document
   int max_queued = 1000;                    // queued jobs at most (then 429)
+  int max_per_client = 100;                 // queued and running jobs of one client address at most (then 429)
   // When set, every request but /v1/health needs "Authorization: Bearer
   // <token>" (compared in constant time, never logged or echoed): 401
   // without it, 403 with another.
@@ -45,6 +46,7 @@ struct ServiceOptions {
 struct Request {
   std::string method, target, body;
   std::string authorization;  // the Authorization header, if any
+  std::string client;         // the client's address ("" in tests without sockets)
 };
 
 struct Response {
@@ -88,7 +90,7 @@ class Service {
 
  private:
   void run();
-  Response submit(const std::string& body);
+  Response submit(const std::string& body, const std::string& client);
   Response job(const std::string& id);
   Response cancel(const std::string& id);
   Response file(const std::string& id, const std::string& path);
