@@ -108,7 +108,8 @@ struct HttpServer::Impl {
   // GET /v1/jobs/{id}/frames as a WebSocket (frames.hpp): the topology, the
   // latest frame, then each new one as the worker writes it to the job's
   // trajectory; a viewer more than kBehind frames behind skips to the
-  // latest and is told how many it skipped.
+  // latest and is told how many it skipped (the frames a worker writes
+  // between two looks, 100 ms apart, are far fewer).
   void stream_frames(tcp::socket socket, const http::request<http::string_body>& req) {
     boost::system::error_code ec;
     const std::string full(req.target());
@@ -147,7 +148,7 @@ struct HttpServer::Impl {
     websocket::stream<tcp::socket> ws(std::move(socket));
     ws.accept(req, ec);
     if (ec) return;
-    constexpr int kBehind = 8;
+    constexpr int kBehind = 64;
     bool topology_sent = false;
     int next = -1;  // the next frame to send; -1: not decided until the first look at the file
     bool first_look = true;

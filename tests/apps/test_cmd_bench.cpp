@@ -61,3 +61,21 @@ TEST(CliBench, DressComesToRestWithEveryCheckPassed) {
 
 }  // namespace
 }  // namespace vgd::test
+
+namespace vgd::test {
+
+// vgd bench server, small: three clients at once, every frame of every job
+// received or counted as skipped, none corrupted or lost, no request failed.
+TEST(CliBenchServer, ThreeClientsReceiveEveryFrame) {
+  const auto r = run_vgd({"bench", "server", "--clients", "3", "--json"});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["watched"]["completed"], 3);
+  EXPECT_EQ(j["unwatched"]["completed"], 3);
+  EXPECT_EQ(j["watched"]["lost"], 0);
+  EXPECT_EQ(j["watched"]["corrupted"], 0);
+  EXPECT_GT(j["watched"]["frames"].get<long long>(), 3 * 5);
+  EXPECT_GT(j["server_peak_rss_kb"].get<long>(), 1000);
+}
+
+}  // namespace vgd::test

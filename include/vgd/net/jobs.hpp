@@ -25,7 +25,7 @@ struct Job {
   long long seq = 0;       // submission order
   JobState state = JobState::queued;
   std::string name;        // the document's file name as submitted
-  std::string created, started, finished;  // UTC, ISO 8601 ("" when not yet)
+  std::string created, started, finished;  // UTC, ISO 8601 with milliseconds ("" when not yet)
   std::string failure_class, message;
   int attempts = 0;        // times a worker started it (a restart requeues a running job)
   std::string client;      // the submitting client's address
