@@ -6,6 +6,8 @@
 
 #include <atomic>
 #include <cctype>
+#include <cstring>
+#include <functional>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without it
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
@@ -81,7 +83,7 @@ struct HttpServer::Impl {
         break;
       }
       auto& req = parser.get();
-      if (websocket::is_upgrade(req)) {
+      if (websocket::is_upgrade(req) || is_frames_target(std::string(req.target()))) {
         stream_frames(std::move(socket), req);
         return;
       }
@@ -145,14 +147,55 @@ struct HttpServer::Impl {
       write(socket, 404, "{\"error\": \"no job's frames at " + target + "\"}\n", false, ec);
       return;
     }
-    websocket::stream<tcp::socket> ws(std::move(socket));
-    ws.accept(req, ec);
+    if (websocket::is_upgrade(req)) {
+      websocket::stream<tcp::socket> ws(std::move(socket));
+      ws.accept(req, ec);
+      if (ec) return;
+      pump(id, [&](bool binary, const std::string& msg) {
+        ws.binary(binary);
+        ws.write(asio::buffer(msg), ec);
+        return !ec;
+      });
+      ws.close(websocket::close_code::normal, ec);
+      return;
+    }
+    // The chunked-HTTP fallback, for clients without WebSocket: the same
+    // messages, each as [u32 length][u8 kind: 0 text, 1 binary][payload].
+    http::response<http::empty_body> res{http::status::ok, req.version()};
+    res.set(http::field::server, std::string("vgd-server/") + kVersion);
+    res.set(http::field::content_type, "application/x-vgd-frames");
+    res.chunked(true);
+    res.keep_alive(false);
+    http::response_serializer<http::empty_body> sr{res};
+    http::write_header(socket, sr, ec);
     if (ec) return;
+    pump(id, [&](bool binary, const std::string& msg) {
+      std::string framed(5, '\0');
+      const auto n = static_cast<std::uint32_t>(msg.size());
+      std::memcpy(framed.data(), &n, 4);
+      framed[4] = binary ? 1 : 0;
+      framed += msg;
+      asio::write(socket, http::make_chunk(asio::buffer(framed)), ec);
+      return !ec;
+    });
+    asio::write(socket, http::make_chunk_last(), ec);
+    socket.shutdown(tcp::socket::shutdown_send, ec);
+  }
+
+  static bool is_frames_target(const std::string& full) {
+    const std::string target = full.substr(0, full.find('?'));
+    return target.rfind("/v1/jobs/", 0) == 0 && target.size() > 16 &&
+           target.compare(target.size() - 7, 7, "/frames") == 0;
+  }
+
+  // The frames of job `id`, sent as messages (frames.hpp) until the job ends.
+  void pump(const std::string& id, const std::function<bool(bool binary, const std::string&)>& send) {
     constexpr int kBehind = 64;
     bool topology_sent = false;
     int next = -1;  // the next frame to send; -1: not decided until the first look at the file
     bool first_look = true;
     std::string last_progress;
+    bool ok = true;
     long long sent = 0, dropped = 0;
     int frames = 0;
     std::string state;
@@ -169,9 +212,8 @@ struct HttpServer::Impl {
           const io::trj::TrjReader reader(t->file);
           frames = reader.frame_count();
           if (!topology_sent) {
-            ws.text(true);
-            ws.write(asio::buffer(topology_message(reader.topology())), ec);
-            if (ec) break;
+            if (!send(false, topology_message(reader.topology()))) ok = false;
+            if (!ok) break;
             topology_sent = true;
           }
           if (frames > 0) {
@@ -179,18 +221,14 @@ struct HttpServer::Impl {
             if (frames - next > kBehind) {    // behind: skip to the latest
               dropped += frames - 1 - next;
               const nlohmann::json d = {{"type", "dropped"}, {"count", frames - 1 - next}, {"total", dropped}};
-              ws.text(true);
-              ws.write(asio::buffer(d.dump()), ec);
+              ok = send(false, d.dump());
               next = frames - 1;
             }
-            for (; next < frames && !ec; ++next) {
-              ws.binary(true);
-              ws.write(asio::buffer(frame_message(static_cast<std::uint32_t>(next), reader.time(next),
-                                                  reader.positions(next))),
-                       ec);
+            for (; next < frames && ok; ++next) {
+              ok = send(true, frame_message(static_cast<std::uint32_t>(next), reader.time(next), reader.positions(next)));
               ++sent;
             }
-            if (ec) break;
+            if (!ok) break;
           }
         } catch (const Error&) {
           // A frame still being written, or a file renamed under us: read again.
@@ -200,9 +238,7 @@ struct HttpServer::Impl {
         // The stage, seams and energy with the frames (for a progress bar).
         const std::string p = service.progress(id);
         if (!p.empty() && p != last_progress) {
-          ws.text(true);
-          ws.write(asio::buffer("{\"type\": \"progress\", \"progress\": " + p + "}"), ec);
-          if (ec) break;
+          if (!send(false, "{\"type\": \"progress\", \"progress\": " + p + "}")) break;
           last_progress = p;
         }
       }
@@ -215,9 +251,7 @@ struct HttpServer::Impl {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
     const nlohmann::json end = {{"type", "end"}, {"state", state}, {"frames", frames}, {"sent", sent}, {"dropped", dropped}};
-    ws.text(true);
-    ws.write(asio::buffer(end.dump()), ec);
-    ws.close(websocket::close_code::normal, ec);
+    if (ok) send(false, end.dump());
     service.count_stream(sent, dropped);
   }
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <fcntl.h>
 #include <thread>
 #include <utility>  // before Asio (Boost 1.74)
@@ -137,6 +138,31 @@ TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
   ASSERT_EQ(late.frames.size(), 1u);
   EXPECT_EQ(late.frames[0].seq, static_cast<std::uint32_t>(frames - 1));
   EXPECT_EQ(late.end["state"], "passed");
+  // The chunked-HTTP fallback (no WebSocket): the same messages, each
+  // [u32 length][u8 kind][payload].
+  {
+    FILE* p = popen(("curl -s http://127.0.0.1:" + std::to_string(port) + "/v1/jobs/" + id + "/frames").c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string raw;
+    char buf[65536];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) raw.append(buf, n);
+    pclose(p);
+    std::vector<std::pair<int, std::string>> messages;
+    for (std::size_t at = 0; at + 5 <= raw.size();) {
+      std::uint32_t n = 0;
+      std::memcpy(&n, raw.data() + at, 4);
+      ASSERT_LE(at + 5 + n, raw.size());
+      messages.emplace_back(raw[at + 4], raw.substr(at + 5, n));
+      at += 5 + n;
+    }
+    ASSERT_EQ(messages.size(), 3u) << "topology, the latest frame, end";
+    EXPECT_EQ(json::parse(messages[0].second)["type"], "topology");
+    EXPECT_EQ(messages[1].first, 1);
+    const auto f = net::parse_frame_message(messages[1].second);
+    EXPECT_TRUE(f.checksum_ok);
+    EXPECT_EQ(f.seq, static_cast<std::uint32_t>(frames - 1));
+    EXPECT_EQ(json::parse(messages[2].second)["state"], "passed");
+  }
   ::kill(pid, SIGTERM);
   int status = 0;
   ::waitpid(pid, &status, 0);
