@@ -23,7 +23,7 @@ using nlohmann::json;
 
 struct Options {
   std::string server = "http://127.0.0.1:8765", token_file, id, document, output = ".";
-  std::string size, quality, fabric, body_size, body_table, model;
+  std::string size, quality, fabric, body_size, body_table, model, avatar, unit = "auto", up = "auto", facing = "auto";
   double time_limit = 0, spacing = 0;
   std::vector<std::string> outputs, files;
   bool watch = false, json = false;
@@ -120,6 +120,13 @@ vgd::cli::Registrar reg{"remote", 95, [](CLI::App& app, vgd::cli::Common& common
   submit->add_option("--body-size", o->body_size, "The mannequin's size when it is not the garment's");
   submit->add_option("--body-table", o->body_table, "Its size table");
   submit->add_option("--outputs", o->outputs, "certificate, trj, wvt, vrml, vrml-animated, glb, previews");
+  submit->add_option("--avatar", o->avatar, "A body file to drape on (OBJ, PLY, STL, glTF/GLB, FBX, Collada), sent "
+                                            "with the job")
+      ->check(CLI::ExistingFile);
+  submit->add_option("--unit", o->unit, "--avatar's unit: auto, m, dm, cm, mm, in")->capture_default_str();
+  submit->add_option("--up", o->up, "--avatar's up axis: auto, x, y, z, -x, -y, -z")->capture_default_str();
+  submit->add_option("--facing", o->facing, "Where --avatar faces once up is +Y: auto, +z, -z, +x, -x")
+      ->capture_default_str();
   submit->add_flag("--watch", o->watch, "Then follow it to its end (as vgd remote watch)");
   auto* list = sub->add_subcommand("list", "The server's jobs, newest first");
   auto* status = sub->add_subcommand("status", "One job: state, progress, certificate, files");
@@ -145,9 +152,15 @@ vgd::cli::Registrar reg{"remote", 95, [](CLI::App& app, vgd::cli::Common& common
       if (!o->body_size.empty()) settings["body_size"] = o->body_size;
       if (!o->body_table.empty()) settings["body_table"] = o->body_table;
       if (!o->outputs.empty()) settings["outputs"] = o->outputs;
-      const json req = {{"name", fs::path(o->document).filename().string()},
-                        {"document", vgd::read_file(o->document)},
-                        {"settings", settings}};
+      json req = {{"name", fs::path(o->document).filename().string()},
+                  {"document", vgd::read_file(o->document)},
+                  {"settings", settings}};
+      if (!o->avatar.empty())
+        req["avatar"] = {{"name", fs::path(o->avatar).filename().string()},
+                         {"data", vgd::net::base64_encode(vgd::read_file(o->avatar))},
+                         {"unit", o->unit},
+                         {"up", o->up},
+                         {"facing", o->facing}};
       const json j = answer(c.request("POST", "/v1/jobs", req.dump()), o->document);
       const std::string id = j["id"];
       std::printf("%s\n", id.c_str());

@@ -2,6 +2,8 @@
 // processes, answered as HTTP responses (service.hpp).
 #include "vgd/net/service.hpp"
 
+#include <openssl/evp.h>
+
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -36,6 +38,22 @@ std::string new_id() {
   std::string s;
   for (int i = 0; i < 16; ++i) s += "0123456789abcdef"[d(rd)];
   return s;
+}
+
+// Standard base64 (RFC 4648, OpenSSL's decoder); nothing for anything else.
+std::optional<std::string> base64_decode(const std::string& in) {
+  if (in.size() % 4 != 0 || in.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=") !=
+                                std::string::npos)
+    return std::nullopt;
+  std::string out(in.size() / 4 * 3, '\0');
+  const int n = EVP_DecodeBlock(reinterpret_cast<unsigned char*>(out.data()),
+                                reinterpret_cast<const unsigned char*>(in.data()), static_cast<int>(in.size()));
+  if (n < 0) return std::nullopt;
+  // EVP_DecodeBlock counts the padding as zero bytes.
+  std::size_t pad = 0;
+  for (auto it = in.rbegin(); it != in.rend() && *it == '=' && pad < 2; ++it) ++pad;
+  out.resize(static_cast<std::size_t>(n) - pad);
+  return out;
 }
 
 bool valid_id(const std::string& id) {
@@ -315,8 +333,8 @@ Response Service::submit(const std::string& body, const std::string& client) {
   const json j = json::parse(body, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return error(400, "the request is not a JSON object");
   for (const auto& [k, v] : j.items())
-    if (k != "name" && k != "document" && k != "settings")
-      return error(400, "unknown key '" + printable(k) + "' (known: name, document, settings)");
+    if (k != "name" && k != "document" && k != "settings" && k != "avatar")
+      return error(400, "unknown key '" + printable(k) + "' (known: name, document, settings, avatar)");
   if (!j.contains("document") || !j["document"].is_string() || j["document"].get<std::string>().empty())
     return error(400, "document: missing (the XVC document's text)");
   const std::string doc_text = j["document"];
@@ -370,6 +388,31 @@ Response Service::submit(const std::string& body, const std::string& client) {
     if (s.contains("body_table")) a["table"] = s["body_table"];
     cat["avatars"] = json::array({a});
   }
+  // An uploaded body: {"name": "scan.glb", "data": BASE64, "unit", "up", "facing"}.
+  std::string avatar_name, avatar_bytes;
+  if (j.contains("avatar")) {
+    const json& a = j["avatar"];
+    if (!a.is_object() || !a.contains("name") || !a["name"].is_string() || !a.contains("data") || !a["data"].is_string())
+      return error(400, "avatar: expected {\"name\": \"body.glb\", \"data\": BASE64, \"unit\", \"up\", \"facing\"}");
+    for (const auto& [k, v] : a.items())
+      if (k != "name" && k != "data" && k != "unit" && k != "up" && k != "facing")
+        return error(400, "avatar." + printable(k) + ": unknown (known: name, data, unit, up, facing)");
+    avatar_name = a["name"];
+    const std::string ext = to_lower(fs::path(avatar_name).extension().string());
+    if (avatar_name.empty() || avatar_name.size() > 100 || avatar_name[0] == '.' ||
+        avatar_name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
+        (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".glb" && ext != ".gltf" && ext != ".fbx" && ext != ".dae"))
+      return error(400, "avatar.name: '" + printable(avatar_name) +
+                            "' is not a body file name (letters, digits, '.', '_', '-'; .obj .ply .stl .glb .gltf .fbx .dae)");
+    if (s.contains("body_size")) return error(400, "avatar: give an uploaded body or settings.body_size, not both");
+    const auto decoded = base64_decode(a["data"].get<std::string>());
+    if (!decoded) return error(400, "avatar.data: not base64");
+    avatar_bytes = *decoded;
+    json entry = {{"id", fs::path(avatar_name).stem().string()}, {"file", "input/" + avatar_name}};
+    for (const char* k : {"unit", "up", "facing"})
+      if (a.contains(k)) entry[k] = a[k];
+    cat["avatars"] = json::array({entry});
+  }
   cat["outputs"] = s.value("outputs", json::array({"certificate", "trj", "wvt", "glb", "previews"}));
   if (s.contains("views")) cat["views"] = s["views"];
   if (s.contains("preview_size")) cat["preview_size"] = s["preview_size"];
@@ -377,6 +420,7 @@ Response Service::submit(const std::string& body, const std::string& client) {
   const std::string id = new_id();
   const fs::path dir = job_dir(o_, id);
   write_file_atomic(dir / "input" / name, doc_text);
+  if (!avatar_name.empty()) write_file_atomic(dir / "input" / avatar_name, avatar_bytes);
   write_file_atomic(dir / "catalogue.json", cat.dump(2));
   try {
     batch::load_catalogue(dir / "catalogue.json");
@@ -387,7 +431,7 @@ Response Service::submit(const std::string& body, const std::string& client) {
     std::string field = d.entity;
     if (field.rfind("sizes", 0) == 0) field = "settings.size";
     if (field.rfind("fabrics", 0) == 0) field = "settings.fabric";
-    if (field.rfind("avatars", 0) == 0) field = "settings.body_size";
+    if (field.rfind("avatars", 0) == 0) field = avatar_name.empty() ? "settings.body_size" : "avatar" + field.substr(10);
     return error(400, field + ": " + d.message);
   }
   Job job;

@@ -98,6 +98,21 @@ TEST(CliRemote, ADrapeSubmittedWatchedListedAndDownloaded) {
   EXPECT_NE(nobody.err.find("cannot reach the server"), std::string::npos) << nobody.err;
 }
 
+TEST(CliRemote, AJobOnABodyFileOfTheClients) {
+  const auto dir = scratch_dir("cli-remote-avatar");
+  ServerProcess server(dir);
+  ASSERT_GT(server.port, 0);
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "40", "-o", (dir / "body.glb").string(), "-q"}).code, 0);
+  const auto sub = run_vgd({"remote", "--server", server.url(), "submit",
+                            (source_dir() / "data/garments/a-line-skirt.xvc").string(), "--size", "40", "--quality",
+                            "preview", "--spacing", "0.03", "--time-limit", "3", "--outputs", "certificate",
+                            "--avatar", (dir / "body.glb").string(), "--watch"});
+  EXPECT_EQ(sub.code, 0) << sub.err;
+  const std::string id(trim(sub.out));
+  const auto body = read_file(dir / "data/jobs" / id / "input/body.glb");
+  EXPECT_EQ(body, read_file(dir / "body.glb")) << "the file arrives as it was";
+}
+
 TEST(CliRemote, AServerWithATokenRefusesAClientWithout) {
   const auto dir = scratch_dir("cli-remote-token");
   write_file_atomic(dir / "token", "a-token-of-more-than-16-characters\n");

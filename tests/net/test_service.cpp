@@ -131,6 +131,37 @@ TEST(ServerService, QueuedAndRunningJobsCanBeCancelled) {
   EXPECT_EQ(ja["state"], "cancelled") << ja.dump();
 }
 
+// A job on an uploaded body: the mannequin written as OBJ by vgd mannequin,
+// sent base64 with the document, draped on as a body file.
+TEST(ServerService, AJobDrapesOnAnUploadedBody) {
+  const auto dir = scratch_dir("net-avatar");
+  ASSERT_EQ(std::system((std::string(VGD_EXE) + " -q mannequin --size 38 -o '" + (dir / "body.obj").string() + "'").c_str()), 0);
+  const std::string obj = read_file(dir / "body.obj");
+  // base64 by coreutils, as a client would make it.
+  ASSERT_EQ(std::system(("base64 -w 0 '" + (dir / "body.obj").string() + "' > '" + (dir / "body.b64").string() + "'").c_str()), 0);
+  net::Service s(options(dir / "data"));
+  json j = skirt_job();
+  j["avatar"] = {{"name", "body.obj"}, {"data", read_file(dir / "body.b64")}, {"unit", "m"}, {"up", "y"}, {"facing", "+z"}};
+  const Response sub = s.handle({"POST", "/v1/jobs", j.dump()});
+  ASSERT_EQ(sub.status, 202) << sub.body;
+  const std::string id = body(sub)["id"];
+  EXPECT_EQ(read_file(dir / "data/jobs" / id / "input/body.obj"), obj) << "the bytes sent";
+  const json done = wait_finished(s, id);
+  EXPECT_EQ(done["state"], "passed") << done.dump(2);
+  // Draped on that body, not a mannequin.
+  bool on_it = false;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "data/jobs" / id / "out/items"))
+    if (e.path().filename() == "log.txt") on_it = read_file(e.path()).find("body.obj (as asked), not a mannequin") != std::string::npos;
+  EXPECT_TRUE(on_it);
+  json bad = skirt_job();
+  bad["avatar"] = {{"name", "body.obj"}, {"data", "not base64!"}};
+  EXPECT_EQ(body(s.handle({"POST", "/v1/jobs", bad.dump()}))["error"], "avatar.data: not base64");
+  bad["avatar"] = {{"name", "../body.obj"}, {"data", "AAAA"}};
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", bad.dump()}).status, 400);
+  bad["avatar"] = {{"name", "body.exe"}, {"data", "AAAA"}};
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", bad.dump()}).status, 400);
+}
+
 TEST(ServerService, OneClientCannotFillTheQueue) {
   auto o = options(scratch_dir("net-per-client"));
   o.max_per_client = 2;

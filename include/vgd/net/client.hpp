@@ -3,6 +3,7 @@
 // HTTP/1.1 requests and the live frames' WebSocket, over Boost.Beast.
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "vgd/net/frames.hpp"
 
@@ -15,6 +16,9 @@ struct ServerUrl {
 // "http://host:port" (or "host:port"); throws vgd::Error for another scheme
 // (https: put a reverse proxy's address here only over a trusted network).
 ServerUrl parse_server_url(const std::string& url);
+
+// Standard base64 (RFC 4648), for uploading a body file with a job.
+std::string base64_encode(std::string_view bytes);
 
 struct Reply {
   int status = 0;
