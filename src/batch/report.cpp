@@ -21,20 +21,7 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-std::string html(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&#39;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
+std::string html(const std::string& s) { return html_escape(s); }
 
 json figures(const ItemStatus& s) {
   if (!s.manifest || s.manifest->certificate.empty()) return json::object();

@@ -189,4 +189,20 @@ std::string json_error_message(std::string_view what, std::string_view lead) {
   return printable(std::string(lead) + (where.empty() ? ": " : " at " + where + ": ") + s);
 }
 
+std::string html_escape(std::string_view s) {
+  std::string o;
+  o.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      case '\'': o += "&#39;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
 }  // namespace vgd

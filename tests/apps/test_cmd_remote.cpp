@@ -14,6 +14,7 @@
 
 #include "support/json_file.hpp"
 #include "support/run_vgd.hpp"
+#include "support/server_process.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -24,44 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-struct ServerProcess {
-  pid_t pid = -1;
-  int port = 0;
-  ServerProcess(const fs::path& dir, const std::string& token_file = "") {
-    const fs::path log = dir / "server.log";
-    pid = ::fork();
-    if (pid == 0) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-      if (token_file.empty())
-        ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
-                VGD_EXE, static_cast<char*>(nullptr));
-      else
-        ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
-                VGD_EXE, "--token-file", token_file.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    for (int i = 0; i < 200 && port == 0; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      try {
-        const std::string t = read_file(log);
-        const auto at = t.rfind("127.0.0.1:");
-        if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
-      } catch (const Error&) {
-      }
-    }
-  }
-  std::string url() const { return "http://127.0.0.1:" + std::to_string(port); }
-  ~ServerProcess() {
-    if (pid > 0) {
-      ::kill(pid, SIGTERM);
-      int status = 0;
-      ::waitpid(pid, &status, 0);
-    }
-  }
-};
 
 TEST(CliRemote, ADrapeSubmittedWatchedListedAndDownloaded) {
   const auto dir = scratch_dir("cli-remote");
@@ -116,7 +79,7 @@ TEST(CliRemote, AJobOnABodyFileOfTheClients) {
 TEST(CliRemote, AServerWithATokenRefusesAClientWithout) {
   const auto dir = scratch_dir("cli-remote-token");
   write_file_atomic(dir / "token", "a-token-of-more-than-16-characters\n");
-  ServerProcess server(dir, (dir / "token").string());
+  ServerProcess server(dir, {"--token-file", (dir / "token").string()});
   ASSERT_GT(server.port, 0);
   const auto without = run_vgd({"remote", "--server", server.url(), "list"});
   EXPECT_EQ(without.code, 1);

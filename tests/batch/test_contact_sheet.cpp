@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "support/command.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/batch/catalogue.hpp"
 #include "vgd/batch/item.hpp"
@@ -22,17 +23,6 @@ namespace batch = vgd::batch;
 using nlohmann::json;
 
 const fs::path kWeb = VGD_WEB_TESTS_DIR;
-
-std::string run(const std::string& command) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
 
 TEST(ContactSheet, ABrowserShowsEveryCardWithItsPreviewAndFiltersThem) {
   if (std::system("node --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "SKIPPED: node not found";
@@ -61,7 +51,7 @@ TEST(ContactSheet, ABrowserShowsEveryCardWithItsPreviewAndFiltersThem) {
   unsetenv("FAKE_VGD");
   unsetenv("FAKE_PNG");
   batch::write_summary(c, out, batch::status(c, out));
-  const std::string text = run("cd '" + kWeb.string() + "' && node contact_sheet.mjs '" + out.string() +
+  const std::string text = command_output("cd '" + kWeb.string() + "' && node contact_sheet.mjs '" + out.string() +
                                "' '{\"size\": \"38\", \"state\": \"failed\"}'");
   const json r = json::parse(text, nullptr, false);
   ASSERT_FALSE(r.is_discarded()) << text;

@@ -87,3 +87,9 @@ TEST(JsonErrorMessage, SaysNlohmannsErrorsInWords) {
   EXPECT_EQ(json_error_message("[json.exception.type_error.302] type must be number, but is string", "not a seam file"),
             "not a seam file: type must be number, but is string");
 }
+
+TEST(HtmlEscape, TheFiveCharactersHtmlMindsAreReferences) {
+  EXPECT_EQ(vgd::html_escape("<a href=\"x\">Tom & Jerry's</a>"),
+            "&lt;a href=&quot;x&quot;&gt;Tom &amp; Jerry&#39;s&lt;/a&gt;");
+  EXPECT_EQ(vgd::html_escape("skirt 38 — denim"), "skirt 38 — denim");
+}

@@ -18,6 +18,7 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
+#include "support/server_process.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -83,26 +84,8 @@ std::string http(int port, const std::string& method, const std::string& target,
 
 TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
   const auto dir = scratch_dir("net-frames");
-  const fs::path log = dir / "server.log";
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
-            VGD_EXE, static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  int port = 0;
-  for (int i = 0; i < 200 && port == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    try {
-      const std::string t = read_file(log);
-      const auto at = t.rfind("127.0.0.1:");
-      if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
-    } catch (const Error&) {
-    }
-  }
+  ServerProcess server(dir);
+  const int port = server.port;
   ASSERT_GT(port, 0);
   const json job = {{"name", "skirt.xvc"},
                     {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
@@ -163,35 +146,14 @@ TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
     EXPECT_EQ(f.seq, static_cast<std::uint32_t>(frames - 1));
     EXPECT_EQ(json::parse(messages[2].second)["state"], "passed");
   }
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
 }
 
 // Two viewers on one job get the same frames; a job cancelled while they
 // watch ends both streams with "cancelled".
 TEST(ServerFrames, TwoViewersOnOneJobAndACancelWhileStreaming) {
   const auto dir = scratch_dir("net-frames-two");
-  const fs::path log = dir / "server.log";
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
-            VGD_EXE, static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  int port = 0;
-  for (int i = 0; i < 200 && port == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    try {
-      const std::string t = read_file(log);
-      const auto at = t.rfind("127.0.0.1:");
-      if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
-    } catch (const Error&) {
-    }
-  }
+  ServerProcess server(dir);
+  const int port = server.port;
   ASSERT_GT(port, 0);
   const json job = {{"name", "skirt.xvc"},
                     {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
@@ -226,9 +188,6 @@ TEST(ServerFrames, TwoViewersOnOneJobAndACancelWhileStreaming) {
   http(port, "POST", "/v1/jobs/" + b + "/cancel");
   t3.join();
   EXPECT_EQ(cancelled.end["state"], "cancelled") << cancelled.end.dump();
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
 }
 
 TEST(ServerFrames, AFrameMessageRoundTripsAndACorruptOneIsSeen) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "support/command.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/net/service.hpp"
@@ -24,19 +25,8 @@ using nlohmann::json;
 
 const fs::path kWeb = VGD_WEB_TESTS_DIR;
 
-std::string run(const std::string& command) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
-
 json check(const fs::path& spec) {
-  return json::parse(run("cd '" + kWeb.string() + "' && node check_openapi.mjs '" + spec.string() + "'"), nullptr,
+  return json::parse(command_output("cd '" + kWeb.string() + "' && node check_openapi.mjs '" + spec.string() + "'"), nullptr,
                      false);
 }
 

@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "support/command.hpp"
+#include "support/server_process.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -27,17 +29,6 @@ using nlohmann::json;
 
 const fs::path kWeb = VGD_WEB_TESTS_DIR;
 
-std::string run(const std::string& command) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
-
 TEST(ServerPage, ABrowserDrawsAJobsDrapeLiveWithThreeJs) {
   if (std::system("node --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "SKIPPED: node not found";
   for (const char* m : {"playwright-core", "three"})
@@ -45,26 +36,8 @@ TEST(ServerPage, ABrowserDrawsAJobsDrapeLiveWithThreeJs) {
       GTEST_SKIP() << "SKIPPED: " << m << " not in " << kWeb / "node_modules" << " (run .ci/install-deps)";
   if (!fs::is_regular_file("/usr/bin/chromium")) GTEST_SKIP() << "SKIPPED: /usr/bin/chromium not installed";
   const auto dir = scratch_dir("net-page");
-  const fs::path log = dir / "server.log";
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", (dir / "data").c_str(), "--vgd",
-            VGD_EXE, static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  int port = 0;
-  for (int i = 0; i < 200 && port == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    try {
-      const std::string t = read_file(log);
-      const auto at = t.rfind("127.0.0.1:");
-      if (at != std::string::npos) port = std::stoi(t.substr(at + 10));
-    } catch (const Error&) {
-    }
-  }
+  ServerProcess server(dir);
+  const int port = server.port;
   ASSERT_GT(port, 0);
   const std::string base = "http://127.0.0.1:" + std::to_string(port);
   const json job = {{"name", "skirt.xvc"},
@@ -72,16 +45,14 @@ TEST(ServerPage, ABrowserDrawsAJobsDrapeLiveWithThreeJs) {
                     {"settings", {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
                                   {"outputs", {"certificate", "trj"}}}}};
   write_file_atomic(dir / "job.json", job.dump());
-  const json sub = json::parse(run("curl -s -X POST --data-binary @'" + (dir / "job.json").string() + "' " + base +
+  const json sub = json::parse(command_output("curl -s -X POST --data-binary @'" + (dir / "job.json").string() + "' " + base +
                                    "/v1/jobs"),
                                nullptr, false);
   ASSERT_TRUE(sub.is_object() && sub.contains("id")) << sub.dump();
   const std::string id = sub["id"];
-  const std::string text = run("cd '" + kWeb.string() + "' && node server_page.mjs " + base + " " + id + " '" +
+  const std::string text = command_output("cd '" + kWeb.string() + "' && node server_page.mjs " + base + " " + id + " '" +
                                (dir / "page.png").string() + "'");
-  ::kill(pid, SIGTERM);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  server.stop();
   const json r = json::parse(text, nullptr, false);
   ASSERT_TRUE(r.is_object()) << text;
   EXPECT_TRUE(r["page_errors"].empty()) << r["page_errors"].dump();

@@ -17,6 +17,7 @@
 #include <random>
 #include <thread>
 
+#include "support/server_process.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -65,45 +66,6 @@ Reply http(int port, const std::string& method, const std::string& target, const
   return r;
 }
 
-// vgd-server started on a free port; its stdout in a file.
-struct Server {
-  pid_t pid = -1;
-  int port = 0;
-  fs::path log;
-  Server(const fs::path& data, const fs::path& log_file) : log(log_file) {
-    pid = ::fork();
-    if (pid == 0) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-      ::execl(VGD_SERVER_EXE, VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", data.c_str(), "--vgd", VGD_EXE,
-              static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    for (int i = 0; i < 200 && port == 0; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      std::string text;
-      try {
-        text = read_file(log);
-      } catch (const Error&) {
-      }
-      const auto at = text.rfind("listening on http://127.0.0.1:");
-      if (at != std::string::npos) port = std::stoi(text.substr(at + 30));
-    }
-  }
-  int stop(int sig) {
-    if (pid <= 0) return -1;
-    ::kill(pid, sig);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    pid = -1;
-    return status;
-  }
-  ~Server() {
-    if (pid > 0) stop(SIGKILL);
-  }
-};
-
 json skirt_job(double time_limit) {
   return {{"name", "skirt.xvc"},
           {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
@@ -122,7 +84,7 @@ TEST(Server, AJobSurvivesTheServerKilledMidRunAndCompletesAfterRestart) {
   const fs::path log = dir / "server.log";
   std::string id;
   {
-    Server s(dir / "data", log);
+    ServerProcess s(dir);
     ASSERT_GT(s.port, 0) << read_file(log);
     const Reply h = http(s.port, "GET", "/v1/health");
     EXPECT_EQ(h.status, 200) << h.body;
@@ -138,7 +100,7 @@ TEST(Server, AJobSurvivesTheServerKilledMidRunAndCompletesAfterRestart) {
   // The worker went with the server (it is killed with its parent).
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_NE(std::system(("pgrep -f '[b]atch item " + (dir / "data/jobs" / id).string() + "' > /dev/null").c_str()), 0);
-  Server again(dir / "data", log);
+  ServerProcess again(dir);
   ASSERT_GT(again.port, 0) << read_file(log);
   EXPECT_NE(read_file(log).find("1 jobs that were running when the server stopped are queued again"),
             std::string::npos);
@@ -162,7 +124,7 @@ TEST(Server, AJobSurvivesTheServerKilledMidRunAndCompletesAfterRestart) {
 
 TEST(Server, GarbageAndOversizedRequestsAreAnsweredAndTheServerStaysUp) {
   const auto dir = scratch_dir("net-garbage");
-  Server s(dir / "data", dir / "server.log");
+  ServerProcess s(dir);
   ASSERT_GT(s.port, 0);
   // Mutations of a valid request: bytes flipped, cut, repeated (bounded: 1 000).
   const std::string valid = "POST /v1/jobs HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: 27\r\n\r\n"

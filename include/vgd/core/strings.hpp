@@ -39,6 +39,9 @@ void append_utf8(std::string& out, std::uint32_t code_point);
 // sequence written as \xNN (a binary file's bytes echoed in a message).
 std::string printable(std::string_view s);
 
+// Text for HTML: & < > " ' as character references.
+std::string html_escape(std::string_view s);
+
 // nlohmann::json's exception text in words, after `lead`: with lead "not valid
 // JSON", "[json.exception.parse_error.101] parse error at line 1, column 19:
 // syntax error while parsing object key - invalid string: missing closing

@@ -5,6 +5,7 @@
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
 
 namespace vgd::io::vrml {
 
@@ -12,19 +13,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string html(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
+std::string html(const std::string& s) { return html_escape(s); }
 
 // A relative URL from a file name: spaces and the few characters HTML attributes mind, escaped.
 std::string url(const std::string& file) {
