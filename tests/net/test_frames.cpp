@@ -82,16 +82,21 @@ std::string http(int port, const std::string& method, const std::string& target,
   return at == std::string::npos ? "" : in.substr(at + 4);
 }
 
+// The shipped skirt, coarse and quick, recording its trajectory.
+json skirt_job() {
+  return {{"name", "skirt.xvc"},
+          {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
+          {"settings",
+           {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
+            {"outputs", {"certificate", "trj"}}}}};
+}
+
 TEST(ServerFrames, AViewerGetsEveryFrameInOrderWithItsChecksum) {
   const auto dir = scratch_dir("net-frames");
   ServerProcess server(dir);
   const int port = server.port;
   ASSERT_GT(port, 0);
-  const json job = {{"name", "skirt.xvc"},
-                    {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
-                    {"settings",
-                     {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
-                      {"outputs", {"certificate", "trj"}}}}};
+  const json job = skirt_job();
   const std::string id = json::parse(http(port, "POST", "/v1/jobs", job.dump()))["id"];
   const Stream live = watch(port, id);
   EXPECT_EQ(live.end["state"], "passed") << live.end.dump();
@@ -155,11 +160,7 @@ TEST(ServerFrames, TwoViewersOnOneJobAndACancelWhileStreaming) {
   ServerProcess server(dir);
   const int port = server.port;
   ASSERT_GT(port, 0);
-  const json job = {{"name", "skirt.xvc"},
-                    {"document", read_file(source_dir() / "data/garments/a-line-skirt.xvc")},
-                    {"settings",
-                     {{"size", "38"}, {"quality", "preview"}, {"spacing", 0.03}, {"time_limit", 3},
-                      {"outputs", {"certificate", "trj"}}}}};
+  const json job = skirt_job();
   // Both watch one job to its end.
   const std::string a = json::parse(http(port, "POST", "/v1/jobs", job.dump()))["id"];
   Stream first, second;

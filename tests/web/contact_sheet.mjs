@@ -9,28 +9,15 @@
 // Output: {"cards", "shown", "images", "loaded", "counts": "...",
 //          "filtered": {"size=38": n, ...}, "errors": [...]}
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
+import { chromiumArgs, serveFolder } from './serve.mjs';
 
 const [dir, filtersJson] = process.argv.slice(2);
 const filters = JSON.parse(filtersJson || '{}');
 const root = path.resolve(dir);
-const types = { '.html': 'text/html', '.png': 'image/png', '.json': 'application/json' };
-const server = http.createServer((req, res) => {
-  const rel = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-  const file = path.join(root, path.normalize(rel));
-  if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
-    res.writeHead(404);
-    res.end();
-    return;
-  }
-  res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const base = `http://127.0.0.1:${server.address().port}/`;
+const { server, base } = await serveFolder(root);
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'vgd-chromium-'));
 let context;
 const out = { errors: [], filtered: {} };
@@ -39,8 +26,7 @@ try {
     executablePath: '/usr/bin/chromium',
     headless: true,
     viewport: { width: 1200, height: 900 },
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    args: chromiumArgs,
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => out.errors.push(String(e)));

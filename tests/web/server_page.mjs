@@ -11,6 +11,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
+import { chromiumArgs } from './serve.mjs';
 
 const [base, job, shot] = process.argv.slice(2);
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'vgd-chromium-'));
@@ -21,8 +22,8 @@ try {
     executablePath: '/usr/bin/chromium',
     headless: true,
     viewport: { width: 900, height: 600 },
-    args: ['--headless', '--no-sandbox', '--disable-quic', '--no-first-run', '--use-angle=swiftshader',
-      '--enable-unsafe-swiftshader', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    // WebGL on SwiftShader: the GPU flag of the shared options left out.
+    args: [...chromiumArgs.filter((a) => a !== '--disable-gpu'), '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
   });
   const page = await context.newPage();
   page.on('pageerror', (e) => out.page_errors.push(String(e)));

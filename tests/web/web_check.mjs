@@ -13,34 +13,16 @@
 // Output: {"pages": [{"page", "event": "load"|"error"|"timeout", "ms", "lengths": {...},
 //          "motion": {"count", "max_moved", "pinned_moved"}, "fps", "pixels": {...}}]}
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
+import { chromiumArgs, serveFolder } from './serve.mjs';
 
 const [dir, specFile] = process.argv.slice(2);
 const spec = JSON.parse(fs.readFileSync(specFile, 'utf8'));
 const root = path.resolve(dir);
 
-// A static file server for DIR, on the loopback interface only.
-const types = {
-  '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
-  '.wasm': 'application/wasm', '.wrl': 'model/vrml', '.json': 'application/json', '.png': 'image/png',
-  '.jpg': 'image/jpeg', '.svg': 'image/svg+xml', '.woff2': 'font/woff2', '.ttf': 'font/ttf', '.xml': 'text/xml',
-};
-const server = http.createServer((req, res) => {
-  const rel = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-  const file = path.join(root, path.normalize(rel));
-  if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
-    res.writeHead(404);
-    res.end();
-    return;
-  }
-  res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const base = `http://127.0.0.1:${server.address().port}/`;
+const { server, base } = await serveFolder(root);
 
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'vgd-chromium-'));
 let context;
@@ -50,8 +32,7 @@ try {
     executablePath: '/usr/bin/chromium',
     headless: true,
     viewport: { width: 800, height: 600 },
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    args: chromiumArgs,
   });
   // X_ITE fires a DOM load (or error) event on the element: catch it however early it comes.
   await context.addInitScript(() => {

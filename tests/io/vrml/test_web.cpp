@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "support/command.hpp"
 #include "support/test_paths.hpp"
 #include "tube_skirt.hpp"
 #include "vgd/core/file.hpp"
@@ -43,16 +44,7 @@ bool have_module(const char* name) { return fs::is_regular_file(kWeb / "node_mod
   } while (0)
 
 // Runs a command in tests/web, returns its stdout.
-std::string run(const std::string& command) {
-  std::string out;
-  FILE* p = popen(("cd '" + kWeb.string() + "' && " + command).c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
+std::string run(const std::string& command) { return test::command_output("cd '" + kWeb.string() + "' && " + command); }
 
 // Distinct output vertices each piece's faces use.
 std::vector<std::size_t> piece_vertex_counts(const vrml::Garment& g, bool welded) {
