@@ -49,7 +49,13 @@ Process::Process(const std::filesystem::path& exe, const std::vector<std::string
   for (auto& e : env_s) envp.push_back(e.data());
   envp.push_back(nullptr);
   const pid_t parent = ::getpid();
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer reserves terabytes of address space for its shadow
+  // memory: an address-space limit would stop every sanitized child at start.
+  const long memory_mb = 0;
+#else
   const long memory_mb = o.memory_mb;
+#endif
 
   pid_ = ::fork();
   if (pid_ < 0) {

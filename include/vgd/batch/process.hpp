@@ -26,6 +26,7 @@ struct ProcessOptions {
   double deadline_s = 0.0;    // wall seconds, then SIGTERM and (5 s later) SIGKILL to its group; 0 = none
   // Address space of the child and all it starts (RLIMIT_AS), MB; 0 = none.
   // An allocation past it fails (vgd: "internal error: std::bad_alloc").
+  // Not applied in an AddressSanitizer build (its shadow memory needs terabytes of address space).
   long memory_mb = 0;
 };
 
