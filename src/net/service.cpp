@@ -64,8 +64,19 @@ fs::path job_dir(const ServiceOptions& o, const std::string& id) { return o.data
 
 // The job's one catalogue item, or nothing when its catalogue cannot be read.
 std::optional<batch::Item> job_item(const fs::path& dir) {
+  // A job's catalogue never changes once submitted: read (and its files
+  // hashed) once, not on every look of a live stream, 10 times a second.
+  static std::mutex m;
+  static std::map<std::string, batch::Item> known;
+  {
+    std::lock_guard lock(m);
+    if (const auto it = known.find(dir.string()); it != known.end()) return it->second;
+  }
   try {
-    return batch::load_catalogue(dir / "catalogue.json").items.at(0);
+    const batch::Item item = batch::load_catalogue(dir / "catalogue.json").items.at(0);
+    std::lock_guard lock(m);
+    known.emplace(dir.string(), item);
+    return item;
   } catch (const std::exception&) {
     return std::nullopt;
   }
