@@ -10,8 +10,11 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
 #include "vgd/render/image.hpp"
 #include "vgd/studio/harness.hpp"
 #include "vgd/studio/studio.hpp"
@@ -21,9 +24,17 @@ namespace {
 struct Options {
   std::string file, script, screenshot;
   std::string avatar, unit = "auto", up = "auto", facing = "auto";
+  std::string server, token_file;
   bool headless = false;
   int width = 1280, height = 800, threads = 1, quit_after = 0;
 };
+
+// The server's token: --token-file, else $VGD_TOKEN (as vgd remote).
+std::string token(const Options& o) {
+  if (!o.token_file.empty()) return std::string(vgd::trim(vgd::read_file(o.token_file)));
+  if (const char* t = std::getenv("VGD_TOKEN")) return t;
+  return "";
+}
 
 int run_window(const Options& o) {
   glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "vgd-studio: GLFW %d: %s\n", code, text); });
@@ -53,6 +64,7 @@ int run_window(const Options& o) {
       vgd::studio::Studio studio;
       studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
       if (!o.avatar.empty()) studio.set_body(o.avatar, o.unit, o.up, o.facing);
+      studio.set_server(o.server, token(o));
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
       for (int frame = 1; !studio.quit_confirmed(); ++frame) {
         // The close button asks about unsaved changes first (Studio::request_close).
@@ -94,6 +106,7 @@ int run_window(const Options& o) {
 int run_headless(const Options& o) {
   vgd::studio::Harness h(o.width, o.height);
   if (!o.avatar.empty()) h.studio().set_body(o.avatar, o.unit, o.up, o.facing);
+  h.studio().set_server(o.server, token(o));
   if (!o.file.empty() && !h.studio().open(o.file)) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
     return 1;
@@ -124,6 +137,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "x", "y", "z", "-x", "-y", "-z"}))->capture_default_str();
   app.add_option("--facing", o.facing, "Where --avatar faces once up is +Y: auto (from the feet), +z, -z, +x, -x")
       ->check(CLI::IsMember({"auto", "+z", "-z", "+x", "-x"}))->capture_default_str();
+  app.add_option("--server", o.server, "A vgd-server for \"Simulate on server\" (http://HOST:PORT; also in the simulate panel)");
+  app.add_option("--token-file", o.token_file, "File holding that server's token (default: $VGD_TOKEN)")
+      ->check(CLI::ExistingFile);
   app.add_option("--screenshot", o.screenshot, "Write the last frame to this PNG (a window: with --quit-after)");
   app.add_option("--quit-after", o.quit_after, "A window: close after this many frames (smoke tests)")
       ->check(CLI::PositiveNumber);

@@ -21,7 +21,7 @@ namespace vgd::cli {
 int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
 // cmd_bench_dress.cpp
 int bench_dress(double spacing, const std::string& size, double time_limit, bool between_particles, bool json);
-int bench_server(int clients, int workers, bool json);
+int bench_server(int clients, int workers, const std::string& job, bool json);
 int bench_robustness(const RobustnessArgs& args);
 }  // namespace vgd::cli
 
@@ -230,14 +230,19 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::IsMember({"mass-spring", "strain-rosette"}));
   robust->add_option("--jitters", ra->jitters, "Jittered runs per case (default 2; --quick 1)")->check(CLI::NonNegativeNumber);
   auto* server = sub->add_subcommand(
-      "server", "vgd-server under load: N clients at once submit a small drape each and read all its frames, then "
+      "server", "vgd-server under load: N clients at once submit a small job each (a scene or a drape) and read all its frames, then "
                 "the same jobs unwatched; jobs/min, first-frame latency, frames lost or corrupted, overhead, memory");
   server->add_flag("--json", o->json, "Print the figures as JSON on stdout");
   auto server_clients = std::make_shared<int>(50);
   auto server_workers = std::make_shared<int>(2);
+  auto server_job = std::make_shared<std::string>("scene");
   server->add_option("--clients", *server_clients, "Clients at once, one job each")->check(CLI::Range(1, 1000))
       ->capture_default_str();
   server->add_option("--workers", *server_workers, "The server's workers")->check(CLI::Range(1, 64))->capture_default_str();
+  server->add_option("--job", *server_job,
+                     "scene (data/scenes/cloth-on-sphere.json: 20 x 20 cloth on a sphere, 0.5 s), drape (the shipped "
+                     "skirt, preview quality, 5 cm mesh, 0.5 s) or a self-contained scene file")
+      ->capture_default_str();
   std::vector<CLI::App*> scene_cmds;
   for (const auto& [name, what] :
        {std::pair{"drape-sphere", "A 71 x 71 cloth dropped on a 4 992-triangle sphere, 2.4 s (data/scenes/drape-sphere.json)"},
@@ -254,8 +259,8 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
   }
   return vgd::cli::Command{sub, [o, &common, engine, effects, accuracy, accuracy_out, accuracy_problems, scene_cmds,
                                  scene_duration, scene_self, dress, dress_spacing, dress_size, dress_limit, dress_between, robust,
-                                 ra, server, server_clients, server_workers]() -> int {
-    if (server->parsed()) return vgd::cli::bench_server(*server_clients, *server_workers, o->json);
+                                 ra, server, server_clients, server_workers, server_job]() -> int {
+    if (server->parsed()) return vgd::cli::bench_server(*server_clients, *server_workers, *server_job, o->json);
     if (robust->parsed()) {
       ra->quick = o->quick;
       ra->json = o->json;

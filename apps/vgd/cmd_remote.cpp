@@ -107,8 +107,11 @@ vgd::cli::Registrar reg{"remote", 95, [](CLI::App& app, vgd::cli::Common& common
   sub->add_option("--server", o->server, "The server (http://HOST:PORT)")->capture_default_str();
   sub->add_option("--token-file", o->token_file, "File holding the server's token (default: $VGD_TOKEN)")
       ->check(CLI::ExistingFile);
-  auto* submit = sub->add_subcommand("submit", "Submit an XVC document; prints the job's id");
-  submit->add_option("DOCUMENT", o->document, "XVC document (vgd dress writes one: DIR/garment.xvc)")
+  auto* submit = sub->add_subcommand("submit", "Submit an XVC document (a drape) or a scene file (run as vgd "
+                                               "simulate runs it); prints the job's id");
+  submit->add_option("DOCUMENT", o->document,
+                     "XVC document (vgd dress writes one: DIR/garment.xvc), or a self-contained scene .json "
+                     "(materials inline, cloth as grids; docs/server.md)")
       ->required()
       ->check(CLI::ExistingFile);
   submit->add_option("--size", o->size, "The garment's size (default: the sample size)");
@@ -142,27 +145,20 @@ vgd::cli::Registrar reg{"remote", 95, [](CLI::App& app, vgd::cli::Common& common
   return vgd::cli::Command{sub, [=, &common]() -> int {
     const auto c = client(*o);
     if (submit->parsed()) {
-      json settings = json::object();
-      if (!o->size.empty()) settings["size"] = o->size;
-      if (!o->quality.empty()) settings["quality"] = o->quality;
-      if (o->time_limit > 0) settings["time_limit"] = o->time_limit;
-      if (o->spacing > 0) settings["spacing"] = o->spacing;
-      if (!o->model.empty()) settings["model"] = o->model;
-      if (!o->fabric.empty()) settings["fabric"] = o->fabric;
-      if (!o->body_size.empty()) settings["body_size"] = o->body_size;
-      if (!o->body_table.empty()) settings["body_table"] = o->body_table;
-      if (!o->outputs.empty()) settings["outputs"] = o->outputs;
-      json req = {{"name", fs::path(o->document).filename().string()},
-                  {"document", vgd::read_file(o->document)},
-                  {"settings", settings}};
-      if (!o->avatar.empty())
-        req["avatar"] = {{"name", fs::path(o->avatar).filename().string()},
-                         {"data", vgd::net::base64_encode(vgd::read_file(o->avatar))},
-                         {"unit", o->unit},
-                         {"up", o->up},
-                         {"facing", o->facing}};
-      const json j = answer(c.request("POST", "/v1/jobs", req.dump()), o->document);
-      const std::string id = j["id"];
+      vgd::net::JobRequest job;
+      job.name = fs::path(o->document).filename().string();
+      // A scene file (.json) is a scene job, run by the server's vgd simulate.
+      if (vgd::iequals(fs::path(o->document).extension().string(), ".json")) job.scene = vgd::read_file(o->document);
+      else job.document = vgd::read_file(o->document);
+      job.size = o->size, job.quality = o->quality, job.model = o->model, job.fabric = o->fabric;
+      job.body_size = o->body_size, job.body_table = o->body_table;
+      job.time_limit = o->time_limit, job.spacing = o->spacing, job.outputs = o->outputs;
+      if (!o->avatar.empty()) {
+        job.avatar_name = fs::path(o->avatar).filename().string();
+        job.avatar_bytes = vgd::read_file(o->avatar);
+        job.unit = o->unit, job.up = o->up, job.facing = o->facing;
+      }
+      const std::string id = c.submit(job);
       std::printf("%s\n", id.c_str());
       std::fflush(stdout);
       if (!o->watch) return vgd::cli::kOk;

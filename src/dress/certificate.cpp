@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <numbers>
 #include <optional>
 
 #include "vgd/body/mannequin.hpp"
+#include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/surface_checks.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
@@ -481,6 +483,187 @@ std::string to_json(const Certificate& c) {
   j["kinetic_energy"] = {{"unit", "J per particle"}, {"times_s", c.times}, {"values", c.kinetic_energy}};
   j["passed"] = c.passed();
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+namespace {
+
+// certificate_from_json's reading of one field: `path` names it in errors.
+struct Reader {
+  const std::string& source;
+  using json = nlohmann::json;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw Error(source, path, what + " (not a certificate written by vgd)");
+  }
+  const json& at(const json& j, const std::string& key, const std::string& path) const {
+    if (!j.is_object()) fail(path, "expected an object");
+    const auto it = j.find(key);
+    if (it == j.end()) fail(path.empty() ? key : path + "." + key, "missing");
+    return *it;
+  }
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, "expected a number");
+    return j.get<double>();
+  }
+  long long integer(const json& j, const std::string& path) const {
+    if (!j.is_number_integer()) fail(path, "expected an integer");
+    return j.get<long long>();
+  }
+  int int32(const json& j, const std::string& path) const {
+    const long long v = integer(j, path);
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) fail(path, "out of range");
+    return static_cast<int>(v);
+  }
+  std::string text(const json& j, const std::string& path) const {
+    if (!j.is_string()) fail(path, "expected a string");
+    return j.get<std::string>();
+  }
+  const json& array(const json& j, const std::string& path) const {
+    if (!j.is_array()) fail(path, "expected an array");
+    return j;
+  }
+  Vec3 vec3(const json& j, const std::string& path) const {
+    if (!j.is_array() || j.size() != 3) fail(path, "expected [x, y, z]");
+    return {number(j[0], path), number(j[1], path), number(j[2], path)};
+  }
+  Percentiles percentiles(const json& j, const std::string& path) const {
+    Percentiles p;
+    p.min = number(at(j, "min", path), path + ".min");
+    p.p5 = number(at(j, "p5", path), path + ".p5");
+    p.p50 = number(at(j, "p50", path), path + ".p50");
+    p.p95 = number(at(j, "p95", path), path + ".p95");
+    p.max = number(at(j, "max", path), path + ".max");
+    return p;
+  }
+  std::map<std::string, int> counts(const json& j, const std::string& path) const {
+    if (!j.is_object()) fail(path, "expected an object");
+    std::map<std::string, int> out;
+    for (const auto& [k, v] : j.items()) out[k] = int32(v, path + "." + k);
+    return out;
+  }
+  std::vector<double> numbers(const json& j, const std::string& path) const {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < array(j, path).size(); ++i) out.push_back(number(j[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+};
+
+}  // namespace
+
+Certificate certificate_from_json(std::string_view text, const std::string& source) {
+  using nlohmann::json;
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) throw Error(source, "", "not JSON (a certificate.json is)");
+  const Reader r{source};
+  if (!j.is_object()) r.fail("", "expected an object");
+  Certificate c;
+  c.version = r.text(r.at(j, "vgd_version", ""), "vgd_version");
+  const auto pairs = [&](const char* key) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const json& o = r.at(j, key, "");
+    if (!o.is_object()) r.fail(key, "expected an object");
+    for (const auto& [k, v] : o.items()) out.emplace_back(k, r.text(v, std::string(key) + "." + k));
+    return out;
+  };
+  c.inputs = pairs("inputs");
+  c.settings = pairs("settings");
+  const json& stop = r.at(j, "stop", "");
+  c.stop_reason = r.text(r.at(stop, "reason", "stop"), "stop.reason");
+  c.stop_message = r.text(r.at(stop, "message", "stop"), "stop.message");
+  c.simulated_s = r.number(r.at(stop, "simulated_s", "stop"), "stop.simulated_s");
+  c.wall_s = r.number(r.at(stop, "wall_s", "stop"), "stop.wall_s");
+  c.frames = r.int32(r.at(stop, "frames", "stop"), "stop.frames");
+  c.frames_on_fewer_threads = r.int32(r.at(stop, "frames_on_fewer_threads", "stop"), "stop.frames_on_fewer_threads");
+  const json& stages = r.array(r.at(j, "stages", ""), "stages");
+  for (std::size_t i = 0; i < stages.size(); ++i) {
+    const std::string p = "stages[" + std::to_string(i) + "]";
+    c.stages.push_back({r.text(r.at(stages[i], "name", p), p + ".name"), r.number(r.at(stages[i], "wall_s", p), p + ".wall_s"),
+                        r.number(r.at(stages[i], "simulated_s", p), p + ".simulated_s")});
+  }
+  const json& prof = r.at(j, "profile", "");
+  const json& eff = r.at(prof, "effect_seconds", "profile");
+  if (!eff.is_object()) r.fail("profile.effect_seconds", "expected an object");
+  for (const auto& [k, v] : eff.items()) c.effect_seconds.emplace_back(k, r.number(v, "profile.effect_seconds." + k));
+  c.steps = static_cast<long>(r.integer(r.at(prof, "steps", "profile"), "profile.steps"));
+  c.force_evaluations = static_cast<long>(r.integer(r.at(prof, "force_evaluations", "profile"), "profile.force_evaluations"));
+  c.linear_iterations = static_cast<long>(r.integer(r.at(prof, "linear_iterations", "profile"), "profile.linear_iterations"));
+  if (prof.contains("self_collision")) {
+    const json& s = prof["self_collision"];
+    const std::string p = "profile.self_collision";
+    c.self_detections = static_cast<long>(r.integer(r.at(s, "detections", p), p + ".detections"));
+    c.self_pairs = static_cast<long>(r.integer(r.at(s, "pairs", p), p + ".pairs"));
+    c.self_reverted = static_cast<long>(r.integer(r.at(s, "reverted_particles", p), p + ".reverted_particles"));
+    c.self_untangled = static_cast<long>(r.integer(r.at(s, "untangling_moves", p), p + ".untangling_moves"));
+  }
+  const json& cloth = r.at(j, "cloth", "");
+  c.particles = r.int32(r.at(cloth, "particles", "cloth"), "cloth.particles");
+  c.triangles = r.int32(r.at(cloth, "triangles", "cloth"), "cloth.triangles");
+  const json& pen = r.at(j, "penetration", "");
+  c.max_penetration = r.number(r.at(pen, "max_m", "penetration"), "penetration.max_m");
+  c.particles_inside = r.int32(r.at(pen, "particles_inside", "penetration"), "penetration.particles_inside");
+  c.deepest_at = r.vec3(r.at(pen, "deepest_at_m", "penetration"), "penetration.deepest_at_m");
+  c.penetration_limit = r.number(r.at(pen, "limit_m", "penetration"), "penetration.limit_m");
+  if (j.contains("body_through_cloth")) {
+    c.body_through_cloth = r.int32(j["body_through_cloth"], "body_through_cloth");
+    c.max_body_through = r.number(r.at(j, "body_through_cloth_max_m", ""), "body_through_cloth_max_m");
+    if (j.contains("body_through_cloth_by_piece"))
+      c.body_through_by_piece = r.counts(j["body_through_cloth_by_piece"], "body_through_cloth_by_piece");
+    c.body_through_opening = r.int32(r.at(j, "body_through_opening", ""), "body_through_opening");
+    if (j.contains("body_through_opening_by_piece"))
+      c.body_through_opening_by_piece = r.counts(j["body_through_opening_by_piece"], "body_through_opening_by_piece");
+  }
+  if (j.contains("triangle_intersections")) {
+    c.triangle_intersections = r.int32(j["triangle_intersections"], "triangle_intersections");
+    if (j.contains("triangle_intersections_by_pieces"))
+      c.crossings_by_pieces = r.counts(j["triangle_intersections_by_pieces"], "triangle_intersections_by_pieces");
+  }
+  const json& seams = r.array(r.at(j, "seams", ""), "seams");
+  for (std::size_t i = 0; i < seams.size(); ++i) {
+    const std::string p = "seams[" + std::to_string(i) + "]";
+    SeamState s;
+    s.name = r.text(r.at(seams[i], "name", p), p + ".name");
+    s.pairs = r.int32(r.at(seams[i], "pairs", p), p + ".pairs");
+    s.closed = r.int32(r.at(seams[i], "closed", p), p + ".closed");
+    s.max_gap = r.number(r.at(seams[i], "max_gap_m", p), p + ".max_gap_m");
+    s.mean_gap = r.number(r.at(seams[i], "mean_gap_m", p), p + ".mean_gap_m");
+    if (seams[i].contains("widest_at_m")) s.widest_at = r.vec3(seams[i]["widest_at_m"], p + ".widest_at_m");
+    c.seams.push_back(std::move(s));
+  }
+  const json& strain = r.array(r.at(j, "strain", ""), "strain");
+  for (std::size_t i = 0; i < strain.size(); ++i) {
+    const std::string p = "strain[" + std::to_string(i) + "]";
+    c.strain.push_back({r.text(r.at(strain[i], "piece", p), p + ".piece"),
+                        r.percentiles(r.at(strain[i], "warp", p), p + ".warp"),
+                        r.percentiles(r.at(strain[i], "weft", p), p + ".weft"),
+                        r.percentiles(r.at(strain[i], "shear_deg", p), p + ".shear_deg")});
+  }
+  const json& where = r.array(r.at(j, "placement", ""), "placement");
+  for (std::size_t i = 0; i < where.size(); ++i) {
+    const std::string p = "placement[" + std::to_string(i) + "]";
+    c.placement.push_back({r.text(r.at(where[i], "piece", p), p + ".piece"),
+                           r.text(r.at(where[i], "segment", p), p + ".segment"),
+                           r.vec3(r.at(where[i], "moved_m", p), p + ".moved_m")});
+  }
+  const json& open = r.array(r.at(j, "open_sides", ""), "open_sides");
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    const std::string p = "open_sides[" + std::to_string(i) + "]";
+    c.open_sides.push_back({r.text(r.at(open[i], "side", p), p + ".side"), r.number(r.at(open[i], "top_m", p), p + ".top_m"),
+                            r.number(r.at(open[i], "bottom_m", p), p + ".bottom_m"),
+                            r.number(r.at(open[i], "widest_deg", p), p + ".widest_deg")});
+  }
+  const json& limits = r.at(j, "limits", "");
+  c.strain_limit = r.number(r.at(limits, "strain_p95", "limits"), "limits.strain_p95");
+  c.displacement_limit = r.number(r.at(limits, "displacement_m", "limits"), "limits.displacement_m");
+  c.open_limit_deg = r.number(r.at(limits, "open_side_deg", "limits"), "limits.open_side_deg");
+  const json& contact = r.at(j, "contact", "");
+  c.contact.particles = r.int32(r.at(contact, "particles", "contact"), "contact.particles");
+  c.contact.area = r.number(r.at(contact, "area_m2", "contact"), "contact.area_m2");
+  c.contact.force = r.number(r.at(contact, "force_n", "contact"), "contact.force_n");
+  c.contact.pressure = r.percentiles(r.at(contact, "pressure_pa", "contact"), "contact.pressure_pa");
+  const json& ke = r.at(j, "kinetic_energy", "");
+  c.times = r.numbers(r.at(ke, "times_s", "kinetic_energy"), "kinetic_energy.times_s");
+  c.kinetic_energy = r.numbers(r.at(ke, "values", "kinetic_energy"), "kinetic_energy.values");
+  return c;
 }
 
 }  // namespace vgd::dress

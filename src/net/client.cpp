@@ -9,6 +9,8 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/version.hpp"
 
@@ -76,6 +78,68 @@ Reply Client::request(const std::string& method, const std::string& target, cons
   stream.socket().shutdown(tcp::socket::shutdown_both, ec);
   auto& res = parser.get();
   return {static_cast<int>(res.result_int()), std::string(res[http::field::content_type]), std::move(res.body())};
+}
+
+std::string to_json(const JobRequest& job) {
+  using nlohmann::json;
+  if (!job.scene.empty()) {
+    json scene = json::parse(job.scene, nullptr, false);
+    if (scene.is_discarded()) throw Error(job.name, "", "not JSON (a scene file is, docs/scene.md)");
+    return json{{"name", job.name}, {"scene", scene}}.dump(-1, ' ', false, json::error_handler_t::replace);
+  }
+  json settings = json::object();
+  if (!job.size.empty()) settings["size"] = job.size;
+  if (!job.quality.empty()) settings["quality"] = job.quality;
+  if (job.time_limit > 0) settings["time_limit"] = job.time_limit;
+  if (job.spacing > 0) settings["spacing"] = job.spacing;
+  if (!job.model.empty()) settings["model"] = job.model;
+  if (!job.fabric.empty()) settings["fabric"] = job.fabric;
+  if (!job.body_size.empty()) settings["body_size"] = job.body_size;
+  if (!job.body_table.empty()) settings["body_table"] = job.body_table;
+  if (!job.outputs.empty()) settings["outputs"] = job.outputs;
+  json req = {{"name", job.name}, {"document", job.document}, {"settings", settings}};
+  if (!job.avatar_name.empty())
+    req["avatar"] = {{"name", job.avatar_name},
+                     {"data", base64_encode(job.avatar_bytes)},
+                     {"unit", job.unit},
+                     {"up", job.up},
+                     {"facing", job.facing}};
+  return req.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+namespace {
+
+// The server's error message ({"error": "..."}), else its body.
+std::string refusal(const Reply& r) {
+  const auto j = nlohmann::json::parse(r.body, nullptr, false);
+  if (j.is_object() && j.contains("error") && j["error"].is_string()) return j["error"].get<std::string>();
+  return r.body.substr(0, 300);
+}
+
+}  // namespace
+
+std::string Client::submit(const JobRequest& job) const {
+  const Reply r = request("POST", "/v1/jobs", to_json(job));
+  if (r.status != 202 && r.status != 200)
+    throw Error(job.name, "", "the server refused the job (HTTP " + std::to_string(r.status) + "): " + refusal(r));
+  const auto j = nlohmann::json::parse(r.body, nullptr, false);
+  if (!j.is_object() || !j.contains("id") || !j["id"].is_string())
+    throw Error("http://" + url_.host + ":" + url_.port, "/v1/jobs", "the answer has no job id: " + r.body.substr(0, 200));
+  return j["id"].get<std::string>();
+}
+
+void Client::cancel(const std::string& id) const {
+  const Reply r = request("POST", "/v1/jobs/" + id + "/cancel");
+  if (r.status != 200 && r.status != 202)
+    throw Error("job " + id, "", "the server refused to cancel it (HTTP " + std::to_string(r.status) + "): " + refusal(r));
+}
+
+std::string Client::get(const std::string& target) const {
+  const Reply r = request("GET", target);
+  if (r.status != 200)
+    throw Error("http://" + url_.host + ":" + url_.port, target,
+                "HTTP " + std::to_string(r.status) + ": " + refusal(r));
+  return r.body;
 }
 
 void Client::watch(const std::string& id, const std::function<void(const std::string&)>& on_text,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <thread>
 
 #include "vgd/batch/process.hpp"
@@ -51,7 +52,9 @@ LoadRun round(const Client& client, const LoadOptions& o, bool watch) {
   LoadRun run;
   run.jobs = o.clients;
   std::mutex m;
-  const json request = {{"name", "load.xvc"}, {"document", o.document}, {"settings", json::parse(o.settings_json)}};
+  const json request = o.scene.empty()
+                           ? json{{"name", "load.xvc"}, {"document", o.document}, {"settings", json::parse(o.settings_json)}}
+                           : json{{"name", "load.json"}, {"scene", json::parse(o.scene)}};
   const std::string body = request.dump();
   const auto t0 = Clock::now();
   std::vector<std::string> ids(static_cast<std::size_t>(o.clients));
@@ -115,14 +118,16 @@ LoadRun round(const Client& client, const LoadOptions& o, bool watch) {
       done += st == "passed" || st == "failed" || st == "cancelled";
     }
     if (done == o.clients) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   run.wall_s = since(t0);
   for (const auto& id : ids) {
     if (id.empty()) continue;
     const json j = json::parse(client.request("GET", "/v1/jobs/" + id).body, nullptr, false);
-    if (j.is_object() && j.value("state", "") != "cancelled") ++run.completed;
-    if (j.is_object() && j.contains("wall_s")) run.job_wall_s.push_back(j["wall_s"].get<double>());
+    if (!j.is_object()) continue;
+    if (j.value("state", "") != "cancelled") ++run.completed;
+    const double started = parse_utc(j.value("started", "")), finished = parse_utc(j.value("finished", ""));
+    if (std::isfinite(started) && std::isfinite(finished)) run.job_wall_s.push_back(finished - started);
   }
   run.jobs_per_minute = 60.0 * run.completed / run.wall_s;
   return run;
@@ -132,6 +137,10 @@ LoadRun round(const Client& client, const LoadOptions& o, bool watch) {
 
 double LoadResult::overhead() const {
   return unwatched.wall_s > 0 ? (watched.wall_s - unwatched.wall_s) / unwatched.wall_s : 0.0;
+}
+
+double LoadResult::server_overhead() const {
+  return direct_wall_s > 0 ? (unwatched.wall_s - direct_wall_s) / direct_wall_s : std::nan("");
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -173,6 +182,33 @@ LoadResult run_load(const LoadOptions& o, const std::function<void(const std::st
   r.server_peak_rss_kb = peak_rss_kb(server.pid());
   server.kill();
   server.wait();
+  if (!o.scene_file.empty()) {
+    if (say) say("direct: the same scenes run by vgd simulate, " + std::to_string(o.workers) + " at once, no server");
+    const auto t0 = Clock::now();
+    std::vector<std::unique_ptr<batch::Process>> running;
+    int started = 0, failed = 0;
+    while (started < o.clients || !running.empty()) {
+      for (auto it = running.begin(); it != running.end();) {
+        if ((*it)->poll()) {
+          failed += !(*it)->result().ok();
+          it = running.erase(it);
+        } else {
+          ++it;
+        }
+      }
+      while (started < o.clients && static_cast<int>(running.size()) < std::max(1, o.workers)) {
+        const fs::path trj = o.data / ("direct-" + std::to_string(started) + ".trj");
+        batch::ProcessOptions dpo;
+        dpo.log = o.data / "direct.log";
+        running.push_back(std::make_unique<batch::Process>(
+            o.vgd_exe, std::vector<std::string>{"simulate", o.scene_file.string(), "--trj", trj.string()}, dpo));
+        ++started;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    r.direct_wall_s = since(t0);
+    if (failed > 0) throw Error(o.scene_file.string(), "", std::to_string(failed) + " of its direct vgd simulate runs failed");
+  }
   return r;
 }
 

@@ -16,6 +16,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/core/version.hpp"
 #include "vgd/net/page.hpp"
+#include "vgd/scene/json.hpp"
 #include "vgd/xvc/io.hpp"
 
 namespace vgd::net {
@@ -80,6 +81,57 @@ std::optional<batch::Item> job_item(const fs::path& dir) {
   } catch (const std::exception&) {
     return std::nullopt;
   }
+}
+
+// A scene job (docs/server.md, "Scene jobs"): its scene in input/scene.json,
+// run by `vgd simulate`, its trajectory in out/scene.trj.
+bool is_scene_job(const fs::path& dir) {
+  std::error_code ec;
+  return fs::exists(dir / "input" / "scene.json", ec);
+}
+
+// The files a finished scene job offers: its trajectory.
+json scene_files(const fs::path& dir) {
+  json files = json::array();
+  std::error_code ec;
+  const fs::path trj = dir / "out" / "scene.trj";
+  if (fs::exists(trj, ec)) {
+    const std::string bytes = read_file(trj);
+    files.push_back({{"path", "scene.trj"}, {"bytes", bytes.size()}, {"sha256", batch::sha256_hex(bytes)}});
+  }
+  return files;
+}
+
+// Keys a scene job may not use: each names a file (materials' XVC documents,
+// garments, body files) or writes one (OBJ frames) on the server. Returns the
+// JSON path of the first, or "".
+std::string file_key(const json& j, const std::string& path) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      const std::string here = path + "." + k;
+      if (k == "xvc" || k == "file" || k == "path" || k == "garment" || k == "output") return here;
+      if (auto deeper = file_key(v, here); !deeper.empty()) return deeper;
+    }
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i)
+      if (auto deeper = file_key(j[i], path + "[" + std::to_string(i) + "]"); !deeper.empty()) return deeper;
+  }
+  return "";
+}
+
+// Why a scene job's worker ended without its trajectory: the last message
+// vgd wrote in the log.
+std::string last_message(const fs::path& log) {
+  std::string text;
+  try {
+    text = read_file(log);
+  } catch (const Error&) {
+    return "";
+  }
+  std::string last;
+  for (const auto& line : split(text, '\n'))
+    if (line.rfind("vgd", 0) == 0 || line.find("error") != std::string::npos) last = line;
+  return last;
 }
 
 // The last progress line vgd dress wrote in the item's log:
@@ -152,7 +204,11 @@ Service::Service(ServiceOptions options) : o_(std::move(options)), store_(o_.dat
 Service::~Service() { stop(); }
 
 void Service::stop() {
-  stop_ = true;
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
   if (runner_.joinable()) runner_.join();
 }
 
@@ -181,6 +237,21 @@ void Service::run() {
         store_.set_state(r.id, JobState::cancelled, "", "cancelled while running");
         std::lock_guard lock(mutex_);
         cancels_.erase(r.id);
+      } else if (is_scene_job(dir)) {
+        std::error_code ec;
+        const auto res = r.process.result();
+        if (res.ok() && fs::exists(dir / "out" / "scene.trj", ec)) {
+          store_.set_state(r.id, JobState::passed);
+        } else {
+          std::string msg = last_message(dir / "worker.log");
+          const std::string what = "the worker " + res.describe();
+          const std::string cls = res.timed_out ? "time-out"
+                                  : res.signal != 0 ? "crash"
+                                  : msg.find("diverg") != std::string::npos || msg.find("non-finite") != std::string::npos
+                                      ? "diverged"
+                                      : "bad input";
+          store_.set_state(r.id, JobState::failed, cls, msg.empty() ? what : msg);
+        }
       } else if (const auto item = job_item(dir)) {
         const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);
         if (s.state == batch::ItemState::passed)
@@ -202,6 +273,18 @@ void Service::run() {
       const fs::path dir = job_dir(o_, next->id);
       store_.set_state(next->id, JobState::running);
       try {
+        if (is_scene_job(dir)) {
+          batch::ProcessOptions po;
+          po.log = dir / "worker.log";
+          po.deadline_s = o_.scene_wall_limit;
+          po.memory_mb = o_.scene_memory_mb;
+          fs::create_directories(dir / "out");
+          running.push_back(std::make_unique<Running>(Running{
+              next->id, batch::Process(o_.exe, {"simulate", (dir / "input" / "scene.json").string(), "--trj",
+                                                (dir / "out" / "scene.trj").string()},
+                                       po)}));
+          continue;
+        }
         const auto item = job_item(dir);
         if (!item) throw Error((dir / "catalogue.json").string(), "", "the job's catalogue cannot be read");
         batch::ProcessOptions po;
@@ -216,7 +299,10 @@ void Service::run() {
         store_.set_state(next->id, JobState::failed, "bad input", e.what());
       }
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    // Until a job is submitted or cancelled, or 20 ms (a worker's end).
+    std::unique_lock lock(mutex_);
+    wake_.wait_for(lock, std::chrono::milliseconds(20), [this] { return woken_ || stop_; });
+    woken_ = false;
   }
   // Stopping: running jobs go back to the queue for the next start.
   for (auto& r : running) {
@@ -314,11 +400,16 @@ std::optional<Service::Trajectory> Service::trajectory(const std::string& id) {
   t.state = to_string(j->state);
   t.finished = j->state == JobState::passed || j->state == JobState::failed || j->state == JobState::cancelled;
   const fs::path dir = job_dir(o_, id);
+  std::error_code ec;
+  if (is_scene_job(dir)) {
+    t.file = dir / "out" / "scene.trj";
+    if (!fs::exists(t.file, ec)) t.file += ".partial";
+    return t;
+  }
   const auto item = job_item(dir);
   if (!item) return t;
   const fs::path done = batch::item_dir(dir / "out", item->id);
   const fs::path partial = done.string() + ".partial";
-  std::error_code ec;
   if (fs::exists(done / "drape.trj", ec)) t.file = done / "drape.trj";
   else if (fs::exists(partial / "drape.trj", ec)) t.file = partial / "drape.trj";
   else t.file = partial / "drape.trj.partial";
@@ -327,6 +418,11 @@ std::optional<Service::Trajectory> Service::trajectory(const std::string& id) {
 
 std::string Service::progress(const std::string& id) {
   if (!valid_id(id)) return "";
+  if (is_scene_job(job_dir(o_, id))) {
+    // vgd simulate writes no progress lines to a log; the frames say how far it is.
+    const auto j = store_.get(id);
+    return j && j->state == JobState::running ? R"({"stage":"simulating"})" : "";
+  }
   const auto item = job_item(job_dir(o_, id));
   if (!item) return "";
   const json p = progress_of(job_dir(o_, id) / "out" / "items" / (item->id + ".partial") / "log.txt");
@@ -343,6 +439,7 @@ void Service::count_stream(long long frames, long long dropped) {
 Response Service::submit(const std::string& body, const std::string& client) {
   const json j = json::parse(body, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return error(400, "the request is not a JSON object");
+  if (j.contains("scene")) return submit_scene(j, client);
   for (const auto& [k, v] : j.items())
     if (k != "name" && k != "document" && k != "settings" && k != "avatar")
       return error(400, "unknown key '" + printable(k) + "' (known: name, document, settings, avatar)");
@@ -453,7 +550,69 @@ Response Service::submit(const std::string& body, const std::string& client) {
   {
     std::lock_guard lock(mutex_);
     ++submitted_;
+    woken_ = true;
   }
+  wake_.notify_one();
+  return json_response(202, {{"id", id}, {"state", "queued"}});
+}
+
+// A scene job: {"name": "x.json", "scene": {...}} (docs/scene.md), run by
+// `vgd simulate`. Self-contained: materials inline, grids of cloth, a
+// mannequin or a simple solid; nothing that names a file on the server.
+Response Service::submit_scene(const json& j, const std::string& client) {
+  for (const auto& [k, v] : j.items())
+    if (k != "name" && k != "scene") return error(400, "unknown key '" + printable(k) + "' in a scene job (known: name, scene)");
+  if (!j["scene"].is_object()) return error(400, "scene: expected the scene's JSON object (docs/scene.md)");
+  if (!j.value("name", json("scene.json")).is_string()) return error(400, "name: expected a string");
+  const std::string name = j.value("name", "scene.json");
+  if (name.empty() || name.size() > 100 || name[0] == '.' ||
+      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
+      !iequals(fs::path(name).extension().string(), ".json"))
+    return error(400, "name: '" + printable(name) + "' is not a file name ending in .json (letters, digits, '.', '_', '-')");
+  const std::string text = j["scene"].dump(2, ' ', false, json::error_handler_t::replace);
+  if (text.size() > o_.max_document)
+    return error(413, "scene: " + std::to_string(text.size()) + " bytes, more than the server's limit of " +
+                          std::to_string(o_.max_document));
+  if (const std::string k = file_key(j["scene"], "scene"); !k.empty())
+    return error(400, k + ": a scene job cannot name files on the server (give materials inline, cloth as grids, "
+                          "the body as a mannequin or a solid; submit an XVC document for garments)");
+  if (store_.active_of(client) >= o_.max_per_client)
+    return error(429, "this client has " + std::to_string(store_.active_of(client)) +
+                          " jobs queued or running (the server's limit per client is " +
+                          std::to_string(o_.max_per_client) + "): wait for some to finish");
+  if (store_.count(JobState::queued) >= o_.max_queued)
+    return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
+  scene::SceneDef def;
+  try {
+    def = scene::parse_scene(text, name);
+  } catch (const Error& e) {
+    return error(400, e.what());
+  }
+  long particles = 0;
+  for (const auto& c : def.cloth) {
+    if (!c.grid) return error(400, "scene.cloth: '" + printable(c.name) + "' is not a grid (a scene job's cloth is)");
+    particles += static_cast<long>(c.grid->nu) * c.grid->nv;
+  }
+  if (particles > o_.max_particles)
+    return error(400, "scene.cloth: " + std::to_string(particles) + " particles, more than the server's " +
+                          std::to_string(o_.max_particles));
+  if (!(def.run.duration <= o_.max_simulated_s))
+    return error(400, "scene.frames.duration: " + format_fixed(def.run.duration, 2) + " s, more than the server's " +
+                          format_fixed(o_.max_simulated_s, 0) + " simulated seconds");
+  const std::string id = new_id();
+  const fs::path dir = job_dir(o_, id);
+  write_file_atomic(dir / "input" / "scene.json", text);
+  Job job;
+  job.id = id;
+  job.name = name;
+  job.client = client;
+  store_.insert(job);
+  {
+    std::lock_guard lock(mutex_);
+    ++submitted_;
+    woken_ = true;
+  }
+  wake_.notify_one();
   return json_response(202, {{"id", id}, {"state", "queued"}});
 }
 
@@ -462,7 +621,10 @@ Response Service::job(const std::string& id) {
   if (!j) return error(404, "no job '" + id + "'");
   json o = job_json(*j);
   const fs::path dir = job_dir(o_, id);
-  if (const auto item = job_item(dir)) {
+  o["kind"] = is_scene_job(dir) ? "scene" : "garment";
+  if (is_scene_job(dir)) {
+    if (j->state == JobState::passed) o["files"] = scene_files(dir);
+  } else if (const auto item = job_item(dir)) {
     const fs::path items = dir / "out" / "items";
     if (j->state == JobState::running) o["progress"] = progress_of(items / (item->id + ".partial") / "log.txt");
     const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);
@@ -485,8 +647,12 @@ Response Service::cancel(const std::string& id) {
     return json_response(200, {{"id", id}, {"state", "cancelled"}});
   }
   if (j->state == JobState::running) {
-    std::lock_guard lock(mutex_);
-    cancels_[id] = true;
+    {
+      std::lock_guard lock(mutex_);
+      cancels_[id] = true;
+      woken_ = true;
+    }
+    wake_.notify_one();
     return json_response(202, {{"id", id}, {"state", "cancelling"}});
   }
   return error(409, "job " + id + " has finished (" + to_string(j->state) + "): nothing to cancel");
@@ -496,6 +662,15 @@ Response Service::file(const std::string& id, const std::string& path) {
   const auto j = store_.get(id);
   if (!j) return error(404, "no job '" + id + "'");
   const fs::path dir = job_dir(o_, id);
+  if (is_scene_job(dir)) {
+    // Only its trajectory, once the job passed: no other path can be named.
+    if (j->state != JobState::passed) return error(404, "job " + id + " has no results yet (" + to_string(j->state) + ")");
+    if (path != "scene.trj") return error(404, "job " + id + " has no file '" + printable(path) + "'");
+    Response r;
+    r.content_type = content_type(path);
+    r.file = dir / "out" / "scene.trj";
+    return r;
+  }
   const auto item = job_item(dir);
   if (!item) return error(404, "job " + id + " has no results");
   const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);

@@ -1,7 +1,8 @@
 #pragma once
-// The studio's drape on a worker thread: dress::run_drape with a sink that
-// keeps the latest frame for the live preview, progress for the bar, and a
-// stop request honoured at the next frame. Private to src/studio.
+// The studio's drapes on a worker thread: here, dress::run_drape with a sink
+// that keeps the latest frame for the live preview, progress for the bar, and
+// a stop request honoured at the next frame; or on a vgd-server, its frames'
+// stream read into the same preview. Private to src/studio.
 #include <atomic>
 #include <mutex>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "vgd/mesh/surface.hpp"
 #include "vgd/dress/drape.hpp"
+#include "vgd/net/client.hpp"
 #include "vgd/studio/studio.hpp"
 
 namespace vgd::studio {
@@ -26,14 +28,15 @@ struct LiveCloth {
   double t = 0;                                 // s simulated
 };
 
-class DrapeJob {
+// A drape the studio follows: its progress, the newest cloth and body for the
+// preview, the certificate once it ends. Run here (DrapeJob) or on a
+// vgd-server (RemoteJob); the studio draws both the same way.
+class LiveJob {
  public:
-  ~DrapeJob();
-  // Starts the drape of `def` (threads: OpenMP threads of the engine). The
-  // previous run must have finished.
-  void start(scene::SceneDef def, int threads);
-  void request_stop() { stop_ = true; }
-  void wait();
+  virtual ~LiveJob() = default;
+  // Ends the run at the next frame (here) or cancels the job (server).
+  virtual void request_stop() = 0;
+  virtual void wait() = 0;
   bool running() const;
   DrapeStatus status() const;
 
@@ -43,11 +46,12 @@ class DrapeJob {
   // The certificate once, when a run finished with one.
   std::optional<dress::Certificate> take_certificate();
 
- private:
-  void run(scene::SceneDef def, int threads);
+ protected:
+  // The run's start and end, for the status.
+  void begin(double time_limit, const std::string& stage);
+  void finish(const std::string& stage, const std::string& message);
+  void show_body(body::Avatar avatar);
 
-  std::thread thread_;
-  std::atomic<bool> stop_{false};
   mutable std::mutex m_;
   DrapeStatus status_;
   LiveCloth cloth_;
@@ -55,6 +59,46 @@ class DrapeJob {
   std::optional<mesh::SurfaceMesh> body_;
   bool body_new_ = false;
   std::optional<dress::Certificate> cert_;
+};
+
+// The drape on a worker thread of this process.
+class DrapeJob : public LiveJob {
+ public:
+  ~DrapeJob() override;
+  // Starts the drape of `def` (threads: OpenMP threads of the engine). The
+  // previous run must have finished.
+  void start(scene::SceneDef def, int threads);
+  void request_stop() override { stop_ = true; }
+  void wait() override;
+
+ private:
+  void run(scene::SceneDef def, int threads);
+
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+};
+
+// The drape as a job of a vgd-server (docs/server.md): submitted, then its
+// frames' stream read on a worker thread into the preview as they come; the
+// body is built here from the same definition (the server does not send it);
+// the certificate is the job's certificate.json. Stopping cancels the job.
+class RemoteJob : public LiveJob {
+ public:
+  ~RemoteJob() override;
+  // `body`: the scene whose avatar is shown (the job's body); may have none.
+  void start(net::Client client, net::JobRequest job, scene::SceneDef body, double time_limit);
+  void request_stop() override;
+  void wait() override;
+  // The job's id once the server took it ("" before).
+  std::string id() const;
+
+ private:
+  void run(net::Client client, net::JobRequest job, scene::SceneDef body);
+
+  std::thread thread_, canceller_;
+  std::optional<net::Client> client_;
+  std::string id_;
+  bool stop_ = false;  // under m_
 };
 
 }  // namespace vgd::studio

@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -111,7 +112,11 @@ struct Studio::Impl {
   std::string body_text;  // the body file typed in; "" = the mannequin of the size
   std::vector<std::string> body_notes;  // what the importer decided for the last drape's body
   std::vector<std::string> preparation;  // what the last drape decided for the document (dress::Preparation)
-  DrapeJob job;
+  DrapeJob here;          // draped in this process
+  RemoteJob on_server;    // draped by a vgd-server
+  LiveJob* job = &here;   // the one the panels follow: the last started
+  std::string server_url;    // "" = no server
+  std::string server_token;  // Authorization: Bearer (never shown)
   std::optional<dress::Certificate> cert;
   fs::path work_dir;
 
@@ -142,8 +147,10 @@ struct Studio::Impl {
   std::string path_text;
 
   ~Impl() {
-    job.request_stop();
-    job.wait();
+    for (LiveJob* j : {static_cast<LiveJob*>(&here), static_cast<LiveJob*>(&on_server)}) {
+      j->request_stop();
+      j->wait();
+    }
     gl::delete_texture(texture);
     if (!work_dir.empty()) {
       std::error_code ec;
@@ -329,7 +336,7 @@ struct Studio::Impl {
       if (ImGui::MenuItem("Save as...")) want_save_as = true;
       track("Save as...");
       ImGui::Separator();
-      if (ImGui::MenuItem("Export VRML...", nullptr, false, !cloth.positions.empty() && !job.running()))
+      if (ImGui::MenuItem("Export VRML...", nullptr, false, !cloth.positions.empty() && !job->running()))
         want_export = true;
       track("Export VRML...");
       ImGui::EndMenu();
@@ -350,9 +357,12 @@ struct Studio::Impl {
     const bool sim_open = ImGui::BeginMenu("Simulate");
     track("Simulate");
     if (sim_open) {
-      if (ImGui::MenuItem("Drape", "F5", false, !job.running())) start_drape();
+      if (ImGui::MenuItem("Drape", "F5", false, !job->running())) start_drape();
       track("Drape menu");
-      if (ImGui::MenuItem("Stop", nullptr, false, job.running())) job.request_stop();
+      if (ImGui::MenuItem("Simulate on server", nullptr, false, !job->running() && !server_url.empty()))
+        start_drape(/*remote=*/true);
+      track("Simulate on server menu");
+      if (ImGui::MenuItem("Stop", nullptr, false, job->running())) job->request_stop();
       track("Stop menu");
       ImGui::EndMenu();
     }
@@ -403,7 +413,7 @@ struct Studio::Impl {
       } catch (const std::exception&) {
       }
     }
-    if (pattern && !job.running()) {
+    if (pattern && !job->running()) {
       const std::string size(pattern->attribute("size"));
       if (std::find(sizes.begin(), sizes.end(), size) != sizes.end()) drape.size = size;
     }
@@ -603,7 +613,7 @@ struct Studio::Impl {
   }
 
   void simulate_panel() {
-    const bool running = job.running();
+    const bool running = job->running();
     ImGui::BeginDisabled(running);
     ImGui::SetNextItemWidth(120);
     if (ImGui::BeginCombo("size", drape.size.empty() ? "-" : drape.size.c_str())) {
@@ -641,19 +651,27 @@ struct Studio::Impl {
       drape.time_limit = std::clamp(drape.time_limit, 0.04, 120.0);
     track("time limit");
     body_row();
+    server_row();
     ImGui::EndDisabled();
 
     ImGui::BeginDisabled(running || pieces.empty());
     if (ImGui::Button("Drape")) start_drape();
     track("Drape");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(server_url.empty());
+    if (ImGui::Button("Simulate on server")) start_drape(/*remote=*/true);
+    track("Simulate on server");
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(server_url.empty() ? "Give a vgd-server's address above first"
+                                           : "Send the document to the server and watch its drape here as it runs");
+    ImGui::EndDisabled();
     ImGui::EndDisabled();
     ImGui::SameLine();
     ImGui::BeginDisabled(!running);
-    if (ImGui::Button("Stop")) job.request_stop();
+    if (ImGui::Button("Stop")) job->request_stop();
     track("Stop");
     ImGui::EndDisabled();
-    ImGui::SameLine();
-    const DrapeStatus s = job.status();
+    const DrapeStatus s = job->status();
     const float f = s.time_limit > 0 ? static_cast<float>(std::min(1.0, s.t / s.time_limit)) : 0.0f;
     std::string overlay = s.stage;
     if (s.running && s.stage != "placing")
@@ -719,8 +737,25 @@ struct Studio::Impl {
     for (const auto& n : body_notes) ImGui::TextDisabled("%s", n.c_str());
   }
 
-  void start_drape() {
-    if (job.running()) return;
+  // The vgd-server that "Simulate on server" sends the drape to.
+  void server_row() {
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("server").x - ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::InputTextWithHint("server", "a vgd-server to simulate on (http://127.0.0.1:8765)", &server_url);
+    track("server");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("vgd-server's address; its token comes from vgd-studio --token-file or $VGD_TOKEN");
+  }
+
+  // A name the server takes (letters, digits, '.', '_', '-').
+  static std::string server_name(const std::string& name, const std::string& fallback) {
+    std::string out;
+    for (char ch : name) out += std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-' ? ch : '_';
+    while (!out.empty() && out[0] == '.') out.erase(0, 1);
+    return out.empty() || out.size() > 100 ? fallback : out;
+  }
+
+  void start_drape(bool remote = false) {
+    if (job->running()) return;
     if (pieces.empty()) {
       say("Nothing to drape: the document has no pieces in this size.", true);
       return;
@@ -762,11 +797,42 @@ struct Studio::Impl {
         for (const auto& n : prep.left_out) made += " " + n;
       }
       scene::SceneDef def = dress::drape_scene(d);
+      const std::string quality = kQualityNames[static_cast<int>(drape.quality)];
+      if (remote) {
+        // The same document and settings as a job (docs/server.md): the
+        // server's vgd dress makes the same decisions from them.
+        net::JobRequest r;
+        r.name = server_name(copy.filename().string(), "garment.xvc");
+        if (fs::path(r.name).extension() != ".xvc") r.name += ".xvc";
+        r.document = read_file(copy);
+        r.size = prep.size;
+        r.quality = quality;
+        r.time_limit = drape.time_limit;
+        r.spacing = drape.spacing;
+        r.outputs = {"certificate", "trj"};
+        if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) {
+          r.avatar_name = server_name(drape.avatar->file.filename().string(), "body" + drape.avatar->file.extension().string());
+          r.avatar_bytes = read_file(drape.avatar->file);
+          r.unit = drape.avatar->unit, r.up = drape.avatar->up, r.facing = drape.avatar->facing;
+        } else {
+          r.body_size = prep.body_size;
+          r.body_table = prep.body_table;
+        }
+        net::Client client(net::parse_server_url(server_url), server_token);
+        cert.reset();
+        cloth = {};
+        job = &on_server;
+        on_server.start(std::move(client), std::move(r), std::move(def), drape.time_limit);
+        was_running = true;
+        say("Draping size " + prep.size + " at quality " + quality + " on " + server_url + made + "...");
+        return;
+      }
       cert.reset();
       cloth = {};
-      job.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
+      job = &here;
+      here.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
       was_running = true;
-      say("Draping size " + prep.size + " at quality " + kQualityNames[static_cast<int>(drape.quality)] + made + "...");
+      say("Draping size " + prep.size + " at quality " + quality + made + "...");
     } catch (const std::exception& e) {
       say(std::string("The drape cannot start: ") + e.what(), true);
     }
@@ -774,11 +840,11 @@ struct Studio::Impl {
 
   void poll_job() {
     mesh::SurfaceMesh b;
-    if (job.take_body(b)) body = std::move(b), preview_dirty = true;
-    if (job.take_cloth(cloth)) preview_dirty = true;
-    if (auto c = job.take_certificate()) cert = std::move(c);
+    if (job->take_body(b)) body = std::move(b), preview_dirty = true;
+    if (job->take_cloth(cloth)) preview_dirty = true;
+    if (auto c = job->take_certificate()) cert = std::move(c);
     // The outcome goes to the status bar once, when the run ends.
-    const DrapeStatus s = job.status();
+    const DrapeStatus s = job->status();
     if (was_running && !s.running) say("Drape " + s.message + ".", s.stage == "failed");
     if (!s.body_notes.empty() && body_notes != s.body_notes) {
       body_notes = s.body_notes;
@@ -819,7 +885,7 @@ struct Studio::Impl {
   void preview_panel() {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));
-    const bool running = job.running();
+    const bool running = job->running();
     const double now = ImGui::GetTime();
     const bool resized = w != tex_w || h != tex_h;
     if ((body || !cloth.positions.empty()) && gl::ready() &&
@@ -953,7 +1019,7 @@ Studio::~Studio() = default;
 
 bool Studio::open(const fs::path& path, bool discard_changes) {
   Impl& I = *impl_;
-  if (I.job.running()) {
+  if (I.job->running()) {
     I.say("Stop the drape before opening another document.", true);
     return false;
   }
@@ -1016,7 +1082,7 @@ bool Studio::save(const fs::path& path) {
 
 bool Studio::export_vrml(const fs::path& path) {
   Impl& I = *impl_;
-  if (I.cloth.positions.empty() || I.job.running()) {
+  if (I.cloth.positions.empty() || I.job->running()) {
     I.say("Nothing to export: drape the garment first, and let the drape finish.", true);
     return false;
   }
@@ -1089,8 +1155,9 @@ void Studio::draw() {
   ImGui::SameLine();
   ImGui::BeginChild("right", {right_w, body_h});
   // Rows: size and quality; self-collision, spacing, limit; body; its unit,
-  // up, facing; Drape and progress; the certificate; the body's notes.
-  const float sim_rows = 5.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
+  // up, facing; server; Drape, Simulate on server, Stop; progress; the
+  // certificate; the body's notes.
+  const float sim_rows = 7.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
   ImGui::BeginChild("simulate", {0, sim_rows * ImGui::GetFrameHeightWithSpacing() + 8}, true);
   I.simulate_panel();
   ImGui::EndChild();
@@ -1125,10 +1192,16 @@ void Studio::set_body(const std::filesystem::path& file, const std::string& unit
   a.file = file, a.unit = unit, a.up = up, a.facing = facing;
   impl_->drape.avatar = a;
 }
-DrapeStatus Studio::drape_status() const { return impl_->job.status(); }
+void Studio::set_server(const std::string& url, const std::string& token) {
+  impl_->server_url = url;
+  impl_->server_token = token;
+}
+const std::string& Studio::server() const { return impl_->server_url; }
+std::string Studio::server_job() const { return impl_->job == &impl_->on_server ? impl_->on_server.id() : ""; }
+DrapeStatus Studio::drape_status() const { return impl_->job->status(); }
 const std::optional<dress::Certificate>& Studio::certificate() const { return impl_->cert; }
 const std::vector<std::string>& Studio::preparation() const { return impl_->preparation; }
-void Studio::wait_for_drape() { impl_->job.wait(); }
+void Studio::wait_for_drape() { impl_->job->wait(); }
 const std::string& Studio::selected() const { return impl_->selected; }
 const std::vector<std::pair<std::string, std::string>>& Studio::picked() const { return impl_->picked; }
 void Studio::set_restore_context(std::function<void()> restore) { impl_->restore = std::move(restore); }

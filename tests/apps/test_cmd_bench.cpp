@@ -76,6 +76,10 @@ TEST(CliBenchServer, ThreeClientsReceiveEveryFrame) {
   EXPECT_EQ(j["watched"]["corrupted"], 0);
   EXPECT_GT(j["watched"]["frames"].get<long long>(), 3 * 5);
   EXPECT_GT(j["server_peak_rss_kb"].get<long>(), 1000);
+  EXPECT_EQ(j["job"], "scene");
+  EXPECT_EQ(j["watched"]["frames"].get<long long>() + j["watched"]["dropped"].get<long long>(), 3 * 13)
+      << "cloth-on-sphere: 13 frames each, every one received or counted as skipped";
+  EXPECT_GT(j["direct_wall_s"].get<double>(), 0.0) << "the same scenes by vgd simulate, no server";
 }
 
 }  // namespace vgd::test

@@ -11,6 +11,7 @@
 #include "support/run_vgd.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/dress/certificate.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
@@ -40,6 +41,9 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
   EXPECT_EQ(c["placement"].size(), 4u) << "front, back and two sleeves";
   EXPECT_TRUE(std::filesystem::exists(out / "previews" / "front.png"));
+  // Read back (as the studio reads a server's), it writes the same text.
+  const std::string cert_text = vgd::read_file(out / "certificate.json");
+  EXPECT_EQ(dress::to_json(dress::certificate_from_json(cert_text, "certificate.json")), cert_text);
   // The document it draped: its seams are in it, and vgd drape runs it again.
   const auto again = run_vgd({"seams", "list", (out / "garment.xvc").string()});
   EXPECT_EQ(again.code, 0) << again.err;

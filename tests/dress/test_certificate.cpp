@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/certificate.hpp"
 
 namespace vgd::dress {
@@ -105,6 +106,64 @@ TEST(Certificate, LimitsAreInclusive) {
   EXPECT_TRUE(c.passed()) << classes(c);
   c.strain.front().warp.p95 = c.strain_limit * 1.01;
   EXPECT_EQ(classes(c), "over-stretched|");
+}
+
+// certificate.json read back (the studio reads the server's): every field
+// to_json writes comes back, so writing the read certificate gives the same
+// text, and its verdict is the same.
+TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
+  Certificate c = good();
+  c.version = "1.2.3";
+  c.inputs = {{"garment", "skirt.xvc"}, {"size", "38"}};
+  c.settings = {{"quality", "standard"}, {"spacing", "0.015 m"}};
+  c.stop_message = "kinetic energy below 1e-6 J per particle";
+  c.wall_s = 3.25, c.frames = 51, c.frames_on_fewer_threads = 2;
+  c.stages = {{"placing", 0.5, 0.0}, {"sewing", 1.5, 0.6}, {"settling", 1.25, 1.4}};
+  c.effect_seconds = {{"gravity", 0.01}, {"springs", 0.75}};
+  c.steps = 200, c.force_evaluations = 410, c.linear_iterations = 9000;
+  c.self_detections = 20, c.self_pairs = 3000, c.self_reverted = 4, c.self_untangled = 1;
+  c.particles = 1234, c.triangles = 2222;
+  c.particles_inside = 1, c.deepest_at = Vec3(0.1, 1.2, -0.05);
+  c.body_through_cloth = 3, c.max_body_through = 0.002, c.body_through_by_piece = {{"FRONT_38", 3}};
+  c.body_through_opening = 0;
+  c.crossings_by_pieces = {};
+  c.seams.push_back({"right side seam", 30, 12, 0.04, 0.01, Vec3(-0.2, 1.0, 0.0)});
+  c.open_sides.push_back({"right", 1.1, 0.9, 41.5});
+  c.contact = {120, 0.05, 3.5, {0.1, 1, 2, 3, 4}};
+  c.times = {0.0, 0.04, 0.08}, c.kinetic_energy = {1e-3, 5e-4, 1e-7};
+  c.strain.back().shear_deg = {-3, -1, 0.5, 2, 4};
+  const std::string text = to_json(c);
+  const Certificate back = certificate_from_json(text, "certificate.json");
+  EXPECT_EQ(to_json(back), text);
+  EXPECT_EQ(classes(back), classes(c));
+  EXPECT_EQ(classes(back), "seams open|open side|");
+  EXPECT_EQ(back.seam_totals().closed, 42);
+  EXPECT_EQ(back.seams[1].widest_at.x(), -0.2);
+}
+
+TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {
+  const auto error_of = [](const std::string& text) {
+    try {
+      certificate_from_json(text, "job/certificate.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  EXPECT_NE(error_of("{not json").find("job/certificate.json"), std::string::npos);
+  EXPECT_NE(error_of("{not json").find("not JSON"), std::string::npos);
+  EXPECT_NE(error_of("[]").find("expected an object"), std::string::npos);
+  std::string text = to_json(good());
+  EXPECT_EQ(error_of(text), "read");
+  const auto at = text.find("\"reason\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string renamed = text.substr(0, at) + "\"cause\"" + text.substr(at + 8);
+  EXPECT_NE(error_of(renamed).find("stop.reason"), std::string::npos) << error_of(renamed);
+  EXPECT_NE(error_of(renamed).find("missing"), std::string::npos);
+  const auto frames = text.find("\"frames\": ");
+  ASSERT_NE(frames, std::string::npos);
+  const std::string wrong = text.substr(0, frames) + "\"frames\": \"many\"," + text.substr(text.find('\n', frames) + 1);
+  EXPECT_NE(error_of(wrong).find("stop.frames"), std::string::npos) << error_of(wrong);
 }
 
 }  // namespace

@@ -191,6 +191,34 @@ TEST(ServerFrames, TwoViewersOnOneJobAndACancelWhileStreaming) {
   EXPECT_EQ(cancelled.end["state"], "cancelled") << cancelled.end.dump();
 }
 
+// A scene job streams as a drape does: every frame of `vgd simulate`'s
+// trajectory, in order, the last one the stored one; its progress says it is
+// simulating.
+TEST(ServerFrames, ASceneJobStreamsEveryFrame) {
+  const auto dir = scratch_dir("net-frames-scene");
+  ServerProcess server(dir);
+  const int port = server.port;
+  ASSERT_GT(port, 0);
+  const json scene = json::parse(read_file(source_dir() / "data/scenes/cloth-on-sphere.json"));
+  const std::string id = json::parse(http(port, "POST", "/v1/jobs", json{{"scene", scene}}.dump()))["id"];
+  const Stream live = watch(port, id);
+  EXPECT_EQ(live.end["state"], "passed") << live.end.dump();
+  EXPECT_EQ(live.topology["particles"], 400);
+  EXPECT_EQ(live.topology["triangles"].size(), 3u * 722u);
+  ASSERT_EQ(live.end["frames"], 13);
+  ASSERT_FALSE(live.frames.empty());
+  for (const auto& f : live.frames) EXPECT_TRUE(f.checksum_ok);
+  EXPECT_EQ(static_cast<long long>(live.frames.size()) + live.dropped, 13);
+  const std::string trj = http(port, "GET", "/v1/jobs/" + id + "/files/scene.trj");
+  const auto reader = io::trj::TrjReader::from_bytes(trj, "scene.trj");
+  EXPECT_EQ(reader.positions(12), live.frames.back().positions);
+  // The cloth came to rest on the sphere (radius 0.15 m): its centre particle
+  // sits on the top, not fallen past it.
+  const auto& x = live.frames.back().positions;
+  const std::size_t centre = 10 * 20 + 10;
+  EXPECT_NEAR(x[3 * centre + 1], 0.15, 0.02);
+}
+
 TEST(ServerFrames, AFrameMessageRoundTripsAndACorruptOneIsSeen) {
   const std::vector<float> x = {0.1f, 0.2f, 0.3f, -1.5f, 2.25f, 1e-3f};
   std::string m = net::frame_message(7, 0.28, x);

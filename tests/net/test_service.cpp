@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/io/trj/trj.hpp"
 #include "vgd/net/service.hpp"
 
 namespace vgd::test {
@@ -188,6 +190,77 @@ TEST(ServerService, ATokenGuardsEveryRouteButHealth) {
   EXPECT_EQ(s.handle({"GET", "/v1/jobs", "", "Bearer 0123456789abcdef-secreT"}).status, 403);
   EXPECT_EQ(s.handle({"GET", "/v1/jobs", "", "Bearer 0123456789abcdef"}).status, 403);
   EXPECT_EQ(s.handle({"GET", "/v1/jobs", "", "Bearer 0123456789abcdef-secret"}).status, 200);
+}
+
+// Scene jobs: a self-contained scene run by the worker's `vgd simulate`;
+// the trajectory is its one result, checked against the same scene run here.
+json sphere_scene() { return json::parse(read_file(source_dir() / "data/scenes/cloth-on-sphere.json")); }
+
+TEST(ServerService, ASceneJobRunsAsVgdSimulateRunsIt) {
+  const auto dir = scratch_dir("net-scene");
+  net::Service s(options(dir));
+  const Response sub = s.handle({"POST", "/v1/jobs", json{{"name", "sphere.json"}, {"scene", sphere_scene()}}.dump()});
+  ASSERT_EQ(sub.status, 202) << sub.body;
+  const std::string id = body(sub)["id"];
+  const json j = wait_finished(s, id, 60);
+  ASSERT_EQ(j["state"], "passed") << j.dump(2) << read_file(dir / "jobs" / id / "worker.log");
+  EXPECT_EQ(j["kind"], "scene");
+  EXPECT_EQ(j["name"], "sphere.json");
+  ASSERT_EQ(j["files"].size(), 1u) << j.dump(2);
+  EXPECT_EQ(j["files"][0]["path"], "scene.trj");
+  const Response trj = s.handle({"GET", "/v1/jobs/" + id + "/files/scene.trj", ""});
+  ASSERT_EQ(trj.status, 200);
+  const std::string served = read_file(trj.file);
+  EXPECT_EQ(served.size(), j["files"][0]["bytes"].get<std::size_t>());
+  EXPECT_EQ(s.handle({"GET", "/v1/jobs/" + id + "/files/scene.json", ""}).status, 404) << "only its trajectory";
+  EXPECT_EQ(s.handle({"GET", "/v1/jobs/" + id + "/files/../input/scene.json", ""}).status, 404);
+  // The same scene by vgd simulate here: the same frames.
+  const fs::path here = dir / "here.trj";
+  const std::string cmd = std::string(VGD_EXE) + " simulate " + (source_dir() / "data/scenes/cloth-on-sphere.json").string() +
+                          " --trj " + here.string() + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const auto a = io::trj::TrjReader::from_bytes(served, "served");
+  const auto b = io::trj::TrjReader::from_bytes(read_file(here), "here");
+  ASSERT_EQ(a.frame_count(), b.frame_count());
+  EXPECT_EQ(a.frame_count(), 13) << "0.5 s at 25 fps";
+  EXPECT_EQ(a.positions(a.frame_count() - 1), b.positions(b.frame_count() - 1));
+}
+
+TEST(ServerService, SceneJobsThatNameFilesOrExceedTheLimitsAreRefused) {
+  auto o = options(scratch_dir("net-scene-bad"));
+  o.max_particles = 1000;
+  o.max_simulated_s = 10;
+  net::Service s(o);
+  struct Case {
+    json scene;
+    std::string words;
+  };
+  json xvc = sphere_scene();
+  xvc["materials"]["shirting"] = {{"xvc", "../../../etc/passwd"}, {"id", "x"}};
+  json body_file = sphere_scene();
+  body_file["avatar"] = {{"file", "/etc/hostname"}};
+  json out = sphere_scene();
+  out["output"] = json::array({{{"type", "obj"}, {"folder", "/tmp/x"}}});
+  json big = sphere_scene();
+  big["cloth"][0]["grid"]["particles"] = {40, 40};
+  json slow = sphere_scene();
+  slow["frames"]["duration"] = "30 s";
+  json broken = sphere_scene();
+  broken["integrator"]["method"] = "leapfrog";
+  for (const Case& k : {Case{xvc, "scene.materials.shirting.xvc: a scene job cannot name files"},
+                        Case{body_file, "scene.avatar.file: a scene job cannot name files"},
+                        Case{out, "scene.output: a scene job cannot name files"},
+                        Case{big, "1600 particles, more than the server's 1000"},
+                        Case{slow, "30.00 s, more than the server's 10 simulated seconds"},
+                        Case{broken, "leapfrog"}}) {
+    const Response r = s.handle({"POST", "/v1/jobs", json{{"scene", k.scene}}.dump()});
+    EXPECT_EQ(r.status, 400) << k.words;
+    EXPECT_NE(r.body.find(k.words), std::string::npos) << r.body;
+  }
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", json{{"scene", "not an object"}}.dump()}).status, 400);
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", json{{"scene", sphere_scene()}, {"name", "../x.json"}}.dump()}).status, 400);
+  EXPECT_EQ(s.handle({"POST", "/v1/jobs", json{{"scene", sphere_scene()}, {"settings", json::object()}}.dump()}).status, 400);
+  EXPECT_EQ(body(s.handle({"GET", "/v1/health", ""}))["jobs"]["queued"], 0) << "nothing refused was queued";
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 //   energy         the mean kinetic energy per particle at every frame, J.
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vgd/scene/build.hpp"
@@ -174,5 +175,10 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
 
 // The certificate as pretty-printed JSON.
 std::string to_json(const Certificate& c);
+// Reads what to_json wrote (a certificate.json from vgd dress, a catalogue
+// item or the server), so that to_json(certificate_from_json(t)) == t for any
+// t that to_json wrote. `source` names the text in errors. Throws vgd::Error
+// naming the source and the field for text that is not such a certificate.
+Certificate certificate_from_json(std::string_view text, const std::string& source);
 
 }  // namespace vgd::dress

@@ -15,6 +15,7 @@
 //   GET  /v1/jobs/{id}/files/{path} one of its result files (as listed by its manifest)
 //   GET  /                          the browser page (page.hpp); /web/three/*.js its three.js
 #include <atomic>
+#include <condition_variable>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -22,6 +23,8 @@
 #include <optional>
 #include <string>
 #include <thread>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "vgd/net/jobs.hpp"
 
@@ -34,6 +37,12 @@ struct ServiceOptions {
   std::size_t max_document = 16u << 20;     // bytes of a submitted document
   int max_queued = 1000;                    // queued jobs at most (then 429)
   int max_per_client = 100;                 // queued and running jobs of one client address at most (then 429)
+  // Scene jobs (`vgd simulate` on a submitted scene): cloth particles,
+  // simulated seconds, wall seconds and address space at most.
+  long max_particles = 250000;
+  double max_simulated_s = 60.0;
+  double scene_wall_limit = 600.0;
+  long scene_memory_mb = 4096;
   // When set, every request but /v1/health needs "Authorization: Bearer
   // <token>" (compared in constant time, never logged or echoed): 401
   // without it, 403 with another.
@@ -91,6 +100,7 @@ class Service {
  private:
   void run();
   Response submit(const std::string& body, const std::string& client);
+  Response submit_scene(const nlohmann::json& request, const std::string& client);
   Response job(const std::string& id);
   Response cancel(const std::string& id);
   Response file(const std::string& id, const std::string& path);
@@ -101,7 +111,9 @@ class Service {
   JobStore store_;
   int requeued_ = 0;
   std::atomic<bool> stop_{false};
-  std::mutex mutex_;                   // cancels_ and the counters below
+  std::mutex mutex_;                   // cancels_, woken_ and the counters below
+  std::condition_variable wake_;       // the runner: a job submitted or cancelled, or stopping
+  bool woken_ = false;
   std::map<std::string, bool> cancels_;  // running job ids asked to cancel
   std::map<int, long long> responses_;   // status → count
   long long submitted_ = 0;

@@ -10,9 +10,12 @@
 //              collision, mesh spacing, time limit, the body (the mannequin or
 //              a file, with unit / up / facing overrides and the importer's
 //              notes shown); "Drape" runs the drape on
-//              a worker thread with per-stage progress, "Stop" ends it
+//              a worker thread with per-stage progress, "Simulate on
+//              server" sends it to a vgd-server (its address in the
+//              panel) and follows its frames' stream; "Stop" ends either
 //   preview    the body and the garment in 3-D (the render stage's off-screen
-//              renderer, shown as a texture), updated live while draping;
+//              renderer, shown as a texture), updated live while draping,
+//              here or on the server;
 //              drag to turn it
 //
 // Immediate mode, as the XVC commands expect (commands.hpp): every panel is
@@ -117,6 +120,12 @@ class Studio {
   const std::string& status() const;       // the last message of the status bar
   bool status_is_error() const;
   // Drape settings (quality, size, ...), as the simulate panel shows them.
+  // The vgd-server "Simulate on server" sends drapes to ("http://host:port";
+  // "" = none) and its token (sent as Authorization: Bearer, never shown).
+  void set_server(const std::string& url, const std::string& token = "");
+  const std::string& server() const;
+  // The server's id of the job the panels follow ("" for a drape run here).
+  std::string server_job() const;
   dress::DrapeOptions& drape_options();
   // The body to drape on, as the simulate panel's body row sets it: a file
   // with the importer's unit, up axis and facing ("auto" or forced); an empty
