@@ -250,7 +250,9 @@ void Service::run() {
                                   : msg.find("diverg") != std::string::npos || msg.find("non-finite") != std::string::npos
                                       ? "diverged"
                                       : "bad input";
-          store_.set_state(r.id, JobState::failed, cls, msg.empty() ? what : msg);
+          // vgd's own message when it ended with one; how the worker ended otherwise.
+          const bool said = res.signal == 0 && !res.timed_out && !msg.empty();
+          store_.set_state(r.id, JobState::failed, cls, said ? msg : what + (msg.empty() ? "" : " (" + msg + ")"));
         }
       } else if (const auto item = job_item(dir)) {
         const auto s = batch::item_status(dir / "out", *item, /*checksums=*/false);

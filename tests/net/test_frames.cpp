@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <functional>
 #include <cstring>
 #include <fcntl.h>
 #include <thread>
@@ -40,14 +41,20 @@ struct Stream {
   long long dropped = 0;
 };
 
-// Reads a job's live frames to the end.
-Stream watch(int port, const std::string& id) {
+// Reads a job's live frames to the end. A slow viewer: a 4 kB receive
+// buffer, and nothing read until `before_reading` returns.
+Stream watch(int port, const std::string& id, const std::function<void()>& before_reading = {}) {
   Stream s;
   asio::io_context ioc;
   asio::ip::tcp::resolver resolver(ioc);
   websocket::stream<asio::ip::tcp::socket> ws(ioc);
-  asio::connect(ws.next_layer(), resolver.resolve("127.0.0.1", std::to_string(port)));
+  if (before_reading) {
+    ws.next_layer().open(asio::ip::tcp::v4());
+    ws.next_layer().set_option(asio::socket_base::receive_buffer_size(4096));
+  }
+  ws.next_layer().connect({asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)});
   ws.handshake("127.0.0.1", "/v1/jobs/" + id + "/frames");
+  if (before_reading) before_reading();
   for (;;) {
     beast::flat_buffer buf;
     boost::system::error_code ec;
@@ -217,6 +224,52 @@ TEST(ServerFrames, ASceneJobStreamsEveryFrame) {
   const auto& x = live.frames.back().positions;
   const std::size_t centre = 10 * 20 + 10;
   EXPECT_NEAR(x[3 * centre + 1], 0.15, 0.02);
+}
+
+// A viewer that reads far slower than the frames come (here: not at all
+// until the job has ended) is told how many frames it skipped, still gets
+// the last one, and slows nothing: the job ends while it is not reading, a
+// viewer beside it gets every frame, and the stored trajectory has them all.
+TEST(ServerFrames, ASlowViewerIsToldWhatItSkippedAndSlowsNothing) {
+  const auto dir = scratch_dir("net-frames-slow");
+  ServerProcess server(dir);
+  const int port = server.port;
+  ASSERT_GT(port, 0);
+  // 251 frames of 3 600 particles (43 kB each, 10.8 MB in all: more than
+  // loopback's socket buffers hold for a viewer that does not read).
+  json scene = json::parse(read_file(source_dir() / "data/scenes/cloth-on-sphere.json"));
+  scene["cloth"][0]["grid"]["particles"] = {60, 60};
+  scene["frames"] = {{"fps", 100}, {"duration", "2.5 s"}};
+  const std::string id = json::parse(http(port, "POST", "/v1/jobs", json{{"scene", scene}}.dump()))["id"];
+  auto finished = [&] {
+    const json j = json::parse(http(port, "GET", "/v1/jobs/" + id), nullptr, false);
+    const std::string st = j.is_object() ? j.value("state", "") : "";
+    return st == "passed" || st == "failed";
+  };
+  Stream slow, fast;
+  bool ended_while_not_reading = false;
+  std::thread t1([&] {
+    slow = watch(port, id, [&] {
+      for (int i = 0; i < 1200 && !finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      ended_while_not_reading = finished();
+    });
+  });
+  std::thread t2([&] { fast = watch(port, id); });
+  t1.join();
+  t2.join();
+  EXPECT_TRUE(ended_while_not_reading) << "the job ran to its end while a viewer did not read";
+  const std::string trj = http(port, "GET", "/v1/jobs/" + id + "/files/scene.trj");
+  const auto reader = io::trj::TrjReader::from_bytes(trj, "scene.trj");
+  ASSERT_EQ(reader.frame_count(), 251) << "0 to 2.5 s at 100 fps";
+  EXPECT_EQ(slow.end["frames"], 251);
+  EXPECT_GT(slow.dropped, 0) << "the slow viewer was told it skipped frames";
+  EXPECT_EQ(static_cast<long long>(slow.frames.size()) + slow.dropped, 251) << "each frame sent or counted as skipped";
+  ASSERT_FALSE(slow.frames.empty());
+  EXPECT_EQ(slow.frames.back().seq, 250u);
+  EXPECT_EQ(slow.frames.back().positions, reader.positions(250));
+  for (const auto& f : slow.frames) EXPECT_TRUE(f.checksum_ok);
+  EXPECT_EQ(fast.dropped, 0) << "the viewer beside it kept up";
+  EXPECT_EQ(fast.frames.size(), 251u);
 }
 
 TEST(ServerFrames, AFrameMessageRoundTripsAndACorruptOneIsSeen) {

@@ -155,5 +155,67 @@ TEST(Server, GarbageAndOversizedRequestsAreAnsweredAndTheServerStaysUp) {
   EXPECT_EQ(json::parse(h.body)["jobs"]["queued"], 0);
 }
 
+// The processes whose command line holds `needle` (this machine's /proc).
+std::vector<pid_t> processes_with(const std::string& needle, const std::string& also = "") {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "cmdline", std::ios::binary);
+    const std::string cmd((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (cmd.find(needle) != std::string::npos && (also.empty() || cmd.find(also) != std::string::npos))
+      out.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return out;
+}
+
+json wait_finished(int port, const std::string& id, double seconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (;;) {
+    const json j = json::parse(http(port, "GET", "/v1/jobs/" + id).body, nullptr, false);
+    const std::string st = j.is_object() ? j.value("state", "") : "";
+    if (st == "passed" || st == "failed" || st == "cancelled") return j;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > seconds) return j;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
+// A worker killed with SIGKILL (as the kernel's OOM killer or an operator
+// would) fails its job as a crash, saying so; the server stays up and runs
+// the next job.
+TEST(Server, AWorkerKilledWithSigkillFailsItsJobAndTheServerGoesOn) {
+  const auto dir = scratch_dir("server-worker-kill");
+  ServerProcess s(dir, {"--workers", "1"});
+  ASSERT_GT(s.port, 0) << read_file(s.log);
+  const json scene = json::parse(read_file(source_dir() / "data/scenes/cloth-on-sphere.json"));
+  json long_scene = scene;
+  long_scene["frames"]["duration"] = "30 s";
+  long_scene["cloth"][0]["grid"]["particles"] = {40, 40};
+  // A scene job: its worker is vgd simulate itself.
+  const std::string a = json::parse(http(s.port, "POST", "/v1/jobs", json{{"scene", long_scene}}.dump()).body)["id"];
+  // A drape: its worker is `vgd batch item`, which runs vgd dress.
+  const std::string b = json::parse(http(s.port, "POST", "/v1/jobs", skirt_job(30).dump()).body)["id"];
+  for (const std::string& id : {a, b}) {
+    std::vector<pid_t> worker;
+    for (int i = 0; i < 400 && worker.empty(); ++i) {
+      worker = id == a ? processes_with("jobs/" + id + "/input/scene.json") : processes_with("jobs/" + id + "/", "batch");
+      if (worker.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ASSERT_EQ(worker.size(), 1u) << "job " << id << "'s worker";
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // well into its run
+    ASSERT_EQ(::kill(worker[0], SIGKILL), 0);
+    const json j = wait_finished(s.port, id, 60);
+    EXPECT_EQ(j["state"], "failed") << j.dump(2);
+    ASSERT_TRUE(j["failure"].is_object()) << j.dump(2);
+    EXPECT_EQ(j["failure"]["class"], "crash") << j.dump(2);
+    EXPECT_NE(j["failure"]["message"].get<std::string>().find("signal 9"), std::string::npos) << j.dump(2);
+  }
+  EXPECT_TRUE(processes_with("jobs/" + b + "/", "dress").empty()) << "the drape's own process went with its worker";
+  // The server is up, and the next job runs.
+  EXPECT_EQ(http(s.port, "GET", "/v1/health").status, 200);
+  const std::string c = json::parse(http(s.port, "POST", "/v1/jobs", json{{"scene", scene}}.dump()).body)["id"];
+  EXPECT_EQ(wait_finished(s.port, c, 60)["state"], "passed");
+}
+
 }  // namespace
 }  // namespace vgd::test
