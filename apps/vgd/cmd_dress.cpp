@@ -67,8 +67,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--seams", o->seams, "Seam file (JSON, docs/xvc.md \"Seam files\": pieces by name as vgd dress "
                                        "names them, stretches by index) sewing the garment instead of vgd's suggestions")
       ->check(CLI::ExistingFile);
-  sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's, "
-                                             "else data/materials/shirting.xvc)")
+  sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's; "
+                                             "for legs with none, the shipped cotton-jersey when they are smaller round "
+                                             "the hip than the body, else data/materials/shirting.xvc)")
       ->check(CLI::ExistingFile);
   sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
   sub->add_option("--quality", o->quality, "Quality preset: preview, standard or precise (vgd drape --quality)")
@@ -106,6 +107,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     po.body_size = o->body_size;
     po.avatar = o->avatar;
     po.seams_file = o->seams;
+    po.fabric_given = !o->material.empty();
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
     if (!prep.missing.empty()) {

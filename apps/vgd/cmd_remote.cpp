@@ -60,7 +60,7 @@ json watch(const vgd::net::Client& c, const std::string& id, const vgd::cli::Com
       line += progress.value("stage", "") + "  t " + vgd::format_fixed(progress.value("simulated_s", 0.0), 2) +
               " s  seams " + std::to_string(progress.value("seams_closed", 0)) + "/" +
               std::to_string(progress.value("seam_pairs", 0)) + "  KE " +
-              vgd::format_double(progress.value("kinetic_energy_j", 0.0)) + " J/particle  wall " +
+              vgd::format_significant(progress.value("kinetic_energy_j", 0.0), 3) + " J/particle  wall " +
               vgd::format_fixed(progress.value("wall_s", 0.0), 1) + " s";
     } else {
       line += "waiting for the first frame";

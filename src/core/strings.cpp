@@ -95,6 +95,12 @@ std::string format_fixed(double v, int decimals) {
   return std::string(buf, ec == std::errc() ? p : buf);
 }
 
+std::string format_significant(double v, int digits) {
+  char buf[64];
+  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, digits);
+  return std::string(buf, ec == std::errc() ? p : buf);
+}
+
 std::uint32_t next_utf8(std::string_view s, std::size_t& i) {
   const auto b = static_cast<unsigned char>(s[i]);
   if (b < 0x80) {

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "vgd/body/sizes.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
@@ -15,6 +16,7 @@
 #include "vgd/pattern/shape_roles.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
@@ -490,20 +492,21 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   } catch (const Error&) {
     has_size = false;
   }
+  bool lower = false;
+  for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
+  std::vector<const xvc::Node*> trunk, halves;  // the fronts and backs draped; the legs (halves or whole)
+  for (const auto* p : mine) {
+    const std::string name(p->attribute("piece"));
+    const pattern::Role r = roles[name].role;
+    if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
+    if (r == pattern::Role::front || r == pattern::Role::back) trunk.push_back(p);
+    if (r == pattern::Role::leg) halves.push_back(p);
+  }
+  // Trousers: their hip is the legs' width 5-20 % of their length below the
+  // waist (the seat, above the crotch's extension): halves' front and back,
+  // a whole leg's both (leggings cut in one piece per leg).
+  const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, halves, 0.05, 0.20, true);
   if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
-    bool lower = false;
-    for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
-    std::vector<const xvc::Node*> trunk, halves;  // the fronts and backs draped; halves of trouser legs
-    for (const auto* p : mine) {
-      const std::string name(p->attribute("piece"));
-      const pattern::Role r = roles[name].role;
-      if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
-      if (r == pattern::Role::front || r == pattern::Role::back) trunk.push_back(p);
-      if (r == pattern::Role::leg && roles[name].half != pattern::Half::none) halves.push_back(p);
-    }
-    // Trousers: their hip is the halves' width 5-20 % of their length below the
-    // waist (the seat, above the crotch's extension).
-    const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, halves, 0.05, 0.20, true);
     // Trousers: their inseam (the longest seam named so that sews a half leg) is
     // matched to the body's crotch height too, less kInseamEase (the hem clear of
     // the floor): a pattern's girth alone fits a short body with a wide hip as
@@ -571,6 +574,47 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   out.decisions.push_back("body: the mannequin of size " + out.body_size + " from " +
                           (out.body_table.empty() ? std::string("the first size table that has it") : out.body_table) +
                           " (" + why + ")");
+
+  // The fabric, when the document has none and none is given: legs smaller
+  // round the hip than the body (negative ease: leggings, tights) are cut for
+  // a stretch fabric, and a woven (vgd's default, shirting) would have to
+  // stretch 20-40 % to close round them, pressing on the body with
+  // kilonewtons and never coming to rest. The shipped knit is written in the
+  // document. Not for tops: a file that writes a top's front and back as
+  // halves cut once (Valentina's shirt) gives half their girth.
+  const auto* materials = doc.container("MATERIALS");
+  if (!options.fabric_given && (!materials || materials->children.empty()) && lower && !halves.empty() && girth > 0) {
+    double body_girth = 0;
+    try {
+      const auto b = body::find_size(out.body_size, out.body_table);
+      body_girth = b.hip;
+    } catch (const Error&) {
+    }
+    if (body_girth > 0 && girth < body_girth) {
+      const std::filesystem::path knit = data_file("materials/cotton-jersey.xvc");
+      const xvc::Document kdoc = xvc::load_file(knit);
+      const auto* kmats = kdoc.container("MATERIALS");
+      if (kmats && !kmats->children.empty()) {
+        const xvc::Node material = xvc::copy_node(kdoc, kmats->children.front().id());
+        std::string parent;
+        if (materials) {
+          parent = std::string(materials->id());
+        } else {
+          xvc::Node container;
+          container.tag = "MATERIALS";
+          xvc::execute(doc, *std::make_unique<xvc::AddNode>(std::string(doc.root().id()), container));
+          parent = std::string(doc.container("MATERIALS")->id());
+        }
+        xvc::execute(doc, *std::make_unique<xvc::AddNode>(parent, material));
+        out.fabric = std::string(material.attribute("id"));
+        out.decisions.push_back(
+            "fabric: the shipped knit " + out.fabric + " (written in the document): the pattern's hip girth is " + format_fixed(100 * girth, 0) + " cm, " +
+            format_fixed(100 * (body_girth - girth), 0) + " cm less than the body's " +
+            format_fixed(100 * body_girth, 0) + " cm: it is cut for a stretch fabric, which a woven is not; "
+            "choose another with --material");
+      }
+    }
+  }
   return out;
 }
 

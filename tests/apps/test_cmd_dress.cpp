@@ -219,4 +219,29 @@ TEST(CliDress, ASeamFileSewsADxfInsteadOfTheSuggestions) {
   EXPECT_NE(refused.err.find("has seams of its own"), std::string::npos) << refused.err;
 }
 
+// Legs smaller round the hip than the body are cut for a stretch fabric: with
+// no MATERIAL in the document and none given, the shipped knit is written in
+// the document it saves and said with both girths; a fabric given with
+// --material is kept, and trousers with ease stay in the woven.
+TEST(CliDress, LegsWithNegativeEaseAreDrapedInTheShippedKnit) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-knit");
+  const auto knit = run_vgd({"dress", shared_dxf("GLX4802S19_AAMA.DXF").string(), "-o", (out / "k").string(),
+                             "--no-previews", "--time-limit", "0.05"});
+  EXPECT_NE(knit.err.find("fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth "
+                          "is 79 cm, 13 cm less than the body's 92 cm"),
+            std::string::npos)
+      << knit.err;
+  EXPECT_NE(vgd::read_file(out / "k" / "garment.xvc").find("<MATERIAL id=\"cotton-jersey\""), std::string::npos);
+  const auto given = run_vgd({"dress", shared_dxf("GLX4802S19_AAMA.DXF").string(), "-o", (out / "g").string(),
+                              "--no-previews", "--time-limit", "0.05", "--material",
+                              (source_dir() / "data/materials/denim.xvc").string()});
+  EXPECT_EQ(given.err.find("fabric:"), std::string::npos) << given.err;
+  EXPECT_EQ(vgd::read_file(out / "g" / "garment.xvc").find("<MATERIAL "), std::string::npos);
+  const auto trousers = run_vgd({"dress", shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "-o",
+                                 (out / "t").string(), "--no-previews", "--time-limit", "0.05"});
+  EXPECT_NE(trousers.err.find("6 cm of ease over the body's 108 cm"), std::string::npos) << trousers.err;
+  EXPECT_EQ(trousers.err.find("fabric:"), std::string::npos) << trousers.err;
+}
+
 }  // namespace vgd::test

@@ -29,6 +29,14 @@ TEST(FormatDouble, RoundTripsExactly) {
     EXPECT_EQ(*vgd::parse_double(vgd::format_double(v)), v);
 }
 
+TEST(FormatSignificant, KeepsTheDigitsAskedFor) {
+  EXPECT_EQ(vgd::format_significant(9.002204184187668e-06, 3), "9e-06");
+  EXPECT_EQ(vgd::format_significant(2.3358829201807223e-06, 3), "2.34e-06");
+  EXPECT_EQ(vgd::format_significant(0.125, 3), "0.125");
+  EXPECT_EQ(vgd::format_significant(1234.5, 3), "1.23e+03");
+  EXPECT_EQ(*vgd::parse_double(vgd::format_significant(1.2345e-8, 3)), 1.23e-8);
+}
+
 TEST(Strings, CaseInsensitiveHelpers) {
   EXPECT_TRUE(vgd::iequals("Piece Name", "PIECE NAME"));
   EXPECT_TRUE(vgd::istarts_with("SIZE: 38", "size"));

@@ -25,6 +25,9 @@ std::string format_double(double v);
 
 // Fixed-point text for messages ("3.14"), locale-independent.
 std::string format_fixed(double v, int decimals);
+// `digits` significant digits for messages ("9e-06", "2.34e-06", "0.125"), as
+// printf's %g, locale-independent.
+std::string format_significant(double v, int digits);
 
 // UTF-8. The code point starting at s[i], i moved past it; kInvalidUtf8 (i
 // moved one byte) for a byte that starts no valid sequence or a sequence cut

@@ -48,6 +48,9 @@ struct PrepareOptions {
   // every size instead of vgd's suggestions. Refused (vgd::Error) for a
   // document with SEAMs of its own.
   std::string seams_file;
+  // The caller drapes in a fabric of its own (vgd dress --material): no
+  // fabric is chosen for the document.
+  bool fabric_given = false;
 };
 
 struct Preparation {
@@ -61,6 +64,10 @@ struct Preparation {
   std::string body_table;              // "" = the default search order
   std::string body_size;               // the mannequin's size (the garment's unless no table has it)
   int seams_added = 0;
+  // The MATERIAL id written in the document when it had none and the pattern
+  // has less girth than the body (cut for a stretch fabric: the shipped
+  // knit); "" when none was written.
+  std::string fabric;
   std::vector<std::string> decisions;  // one sentence each, in the order taken
 };
 
