@@ -26,6 +26,7 @@
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/io/vrml/looks.hpp"
+#include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
@@ -226,6 +227,18 @@ void apply_looks(std::vector<render::Mesh*>& pieces, const vgd::xvc::Document& d
   }
 }
 
+// --map-range, else the map's default.
+render::FitScale fit_scale(const Options& o) {
+  render::FitScale scale = render::default_scale(*render::parse_fit_map(o.map));
+  if (o.map_range.empty()) return scale;
+  const auto parts = vgd::split(o.map_range, ',');
+  const auto lo = parts.size() == 2 ? vgd::parse_double(parts[0]) : std::nullopt;
+  const auto hi = parts.size() == 2 ? vgd::parse_double(parts[1]) : std::nullopt;
+  if (!lo || !hi || !(*hi > *lo))
+    throw CLI::ValidationError("--map-range", "'" + o.map_range + "' is not LO,HI with LO < HI (e.g. 0,40)");
+  return {*lo, *hi};
+}
+
 // The scene: the garment's pieces and the body, coloured (and textured).
 render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   render::Scene scene;
@@ -260,13 +273,29 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   }
   for (auto& m : scene.meshes) garment_meshes.push_back(&m);
   // Colours asked for on the command line win over the document's looks.
-  if (o.colour.empty() && !o.piece_colours) {
+  if (o.colour.empty() && !o.piece_colours && o.map.empty()) {
     vgd::Diagnostics diags;
     if (const auto doc = look_document(o, folder, diags)) {
       apply_looks(garment_meshes, *doc, !o.no_texture, diags);
       vgd::cli::say(common, "vgd: looks from " + doc->name());
     }
     vgd::cli::print_diagnostics(diags, common);
+  }
+  if (!o.map.empty()) {
+    // A fit map: each piece coloured by its strain; the figures said per piece.
+    const auto map = *render::parse_fit_map(o.map);
+    const render::FitScale scale = fit_scale(o);
+    for (auto* m : garment_meshes) {
+      const auto values = render::fit_values(*m, map);
+      render::colour_by(*m, values, scale);
+      std::vector<double> sorted = values;
+      std::sort(sorted.begin(), sorted.end());
+      if (sorted.empty()) continue;
+      const auto at = [&](double q) { return sorted[static_cast<std::size_t>(std::lround(q * (sorted.size() - 1)))]; };
+      vgd::cli::say(common, "vgd: " + render::title_of(map) + " of " + (m->name.empty() ? "the garment" : m->name) +
+                                ": p50 " + vgd::format_fixed(at(0.5), 1) + ", p95 " + vgd::format_fixed(at(0.95), 1) +
+                                ", max " + vgd::format_fixed(sorted.back(), 1) + " (per vertex)");
+    }
   }
   const render::Colour body = o.body_colour.empty() ? render::kBody : parse_colour_option("--body-colour", o.body_colour);
   if (!o.avatar.empty()) {
@@ -303,6 +332,11 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
   sub->add_option("--look", o->look, "Garment document (.xvc) whose piece colours and textures to draw; default: the "
                                      "one a drape folder's certificate.json names");
   sub->add_flag("--no-texture", o->no_texture, "Flat colours: draw no texture");
+  sub->add_option("--map", o->map, "A fit map instead of the looks: the garment coloured by warp, weft or largest "
+                                   "stretch strain (%) or shear (deg), with a legend (docs/render.md)")
+      ->check(CLI::IsMember({"warp", "weft", "shear", "stretch"}));
+  sub->add_option("--map-range", o->map_range, "LO,HI: the values the map's colours span (default 0,40 for strain "
+                                               "in %, 0,20 for shear in deg)");
   sub->add_option("--body-colour,--body-color", o->body_colour, "Body colour (default a neutral light grey)");
   sub->add_option("--fit", o->fit, "Frame the views on the body (default) or on the garment (closer)")
       ->check(CLI::IsMember({"body", "garment"}))
@@ -349,6 +383,8 @@ int write_previews(const RenderOptions& o, const Common& common) {
     size = parse_size(o.size);
     if (!o.colour.empty()) parse_colour_option("--colour", o.colour);
     if (!o.body_colour.empty()) parse_colour_option("--body-colour", o.body_colour);
+    if (!o.map.empty()) fit_scale(o);
+    else if (!o.map_range.empty()) throw CLI::ValidationError("--map-range", "applies to a fit map (--map) only");
   } catch (const CLI::ValidationError& e) {
     std::fprintf(stderr, "vgd render: %s\n", e.what());
     return vgd::cli::kUsage;
@@ -368,7 +404,8 @@ int write_previews(const RenderOptions& o, const Common& common) {
   // One PNG per view.
   const fs::path out = o.output;
   for (const auto& v : views) {
-    const render::Image image = renderer.render(v, size.first, size.second, opts);
+    render::Image image = renderer.render(v, size.first, size.second, opts);
+    if (!o.map.empty()) render::draw_legend(image, *render::parse_fit_map(o.map), fit_scale(o));
     const fs::path file = out / (v.name + ".png");
     render::write_png(image, file);
     if (o.list_files)

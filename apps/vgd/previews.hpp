@@ -13,6 +13,7 @@ struct RenderOptions {
   std::string unit = "auto", up = "auto", facing = "auto";  // --avatar's, as vgd drape takes them
   bool piece_colours = false, no_floor = false, no_shadow = false, no_texture = false;
   int supersample = 3, frame = -1;
+  std::string map, map_range;  // a fit map (render/fit_map.hpp): warp, weft, shear, stretch; "LO,HI" in its unit
   bool list_files = true;  // print a line per PNG written (on stdout)
 };
 

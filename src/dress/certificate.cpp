@@ -10,6 +10,7 @@
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/mesh/strain.hpp"
 #include "vgd/mesh/surface_checks.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
 #include "vgd/sim/sdf.hpp"
@@ -38,19 +39,12 @@ PieceStrain piece_strain(const sim::Model& m, const scene::PieceInfo& p, const s
   std::vector<double> warp, weft, shear;
   for (int t = p.first_triangle; t < p.first_triangle + p.triangles; ++t) {
     const auto& tri = m.triangles[t];
-    Eigen::Matrix2d D;
-    D.col(0) = m.uv[tri[1]] - m.uv[tri[0]];
-    D.col(1) = m.uv[tri[2]] - m.uv[tri[0]];
-    if (std::abs(D.determinant()) < 1e-14) continue;
-    Eigen::Matrix<double, 3, 2> X;
-    X.col(0) = sim::at(x, tri[1]) - sim::at(x, tri[0]);
-    X.col(1) = sim::at(x, tri[2]) - sim::at(x, tri[0]);
-    const Eigen::Matrix<double, 3, 2> F = X * D.inverse();
-    const double lu = F.col(0).norm(), lv = F.col(1).norm();
-    warp.push_back(lu - 1.0);
-    weft.push_back(lv - 1.0);
-    const double c = std::clamp(F.col(0).dot(F.col(1)) / std::max(lu * lv, 1e-300), -1.0, 1.0);
-    shear.push_back(90.0 - std::acos(c) * 180.0 / std::numbers::pi);
+    const auto e = mesh::triangle_strain(m.uv[tri[0]], m.uv[tri[1]], m.uv[tri[2]], sim::at(x, tri[0]),
+                                         sim::at(x, tri[1]), sim::at(x, tri[2]));
+    if (!e.valid) continue;
+    warp.push_back(e.warp);
+    weft.push_back(e.weft);
+    shear.push_back(e.shear_deg);
   }
   PieceStrain s;
   s.piece = p.name;

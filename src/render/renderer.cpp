@@ -39,6 +39,8 @@ using Vec3f = Eigen::Vector3f;
 constexpr const char* kMeshVertex = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 3) in vec3 a_colour;  // linear RGB per vertex (white when the mesh has none)
+out vec3 v_colour;
 #if TEXTURED
 layout(location = 2) in vec2 a_texcoord;
 out vec2 v_texcoord;
@@ -49,6 +51,7 @@ out vec3 v_normal;
 void main() {
   v_position = a_position;
   v_normal = a_normal;
+  v_colour = a_colour;
 #if TEXTURED
   v_texcoord = a_texcoord;
 #endif
@@ -59,6 +62,7 @@ void main() {
 constexpr const char* kMeshFragment = R"(
 in vec3 v_position;
 in vec3 v_normal;
+in vec3 v_colour;
 #if TEXTURED
 in vec2 v_texcoord;
 uniform sampler2D u_texture;  // sRGB texels, read as linear RGB
@@ -80,7 +84,7 @@ void main() {
   float fill = max(dot(n, u_fill), 0.0);
   float spec = key > 0.0 ? u_specular * pow(max(dot(n, normalize(u_key + v)), 0.0), u_shininess) : 0.0;
   float rim = 0.10 * pow(1.0 - max(dot(n, v), 0.0), 3.0);
-  vec3 albedo = u_colour;
+  vec3 albedo = u_colour * v_colour;
 #if TEXTURED
   albedo *= texture(u_texture, v_texcoord).rgb;
 #endif
@@ -398,8 +402,9 @@ void Renderer::set_scene(const Scene& input) {
   I.scene_box = bounds(scene);
   I.body_box = bounds(scene, MeshKind::body);
 
-  // One VAO per mesh: interleaved position, normal and (textured meshes)
-  // texture coordinate in repeats, 32-bit indices. Each texture is uploaded once.
+  // One VAO per mesh: interleaved position, normal, colour (linear RGB, white
+  // unless the mesh has its own per vertex) and (textured meshes) texture
+  // coordinate in repeats, 32-bit indices. Each texture is uploaded once.
   std::vector<std::pair<const Texture*, GLuint>> uploaded;
   for (const auto& m : scene.meshes) {
     if (m.triangles.empty()) continue;
@@ -414,12 +419,19 @@ void Renderer::set_scene(const Scene& input) {
     // Pattern metres to repeats, turned as the document says; t grows up the
     // image (row 0 on top at t = 0), hence -v.
     const double cr = std::cos(tex ? tex->rotation_rad : 0.0), sr = std::sin(tex ? tex->rotation_rad : 0.0);
-    const int stride = tex ? 8 : 6;
+    const int stride = tex ? 11 : 9;
+    const bool coloured = m.vertex_colours.size() == m.positions.size();
     std::vector<float> vertices;
     vertices.reserve(m.positions.size() * static_cast<std::size_t>(stride));
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
       vertices.insert(vertices.end(), m.positions[v].begin(), m.positions[v].end());
       vertices.insert(vertices.end(), m.normals[v].begin(), m.normals[v].end());
+      if (coloured) {
+        const Colour& c = m.vertex_colours[v];
+        vertices.insert(vertices.end(), {linear(c.r), linear(c.g), linear(c.b)});
+      } else {
+        vertices.insert(vertices.end(), {1.0f, 1.0f, 1.0f});
+      }
       if (tex) {
         const double u = m.uv[v][0], w = m.uv[v][1];
         vertices.push_back(static_cast<float>((cr * u - sr * w) / tex->repeat_m[0]));
@@ -445,8 +457,10 @@ void Renderer::set_scene(const Scene& input) {
     gl.EnableVertexAttribArray(0);
     gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(3 * sizeof(float)));
     gl.EnableVertexAttribArray(1);
+    gl.VertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(6 * sizeof(float)));
+    gl.EnableVertexAttribArray(3);
     if (tex) {
-      gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(6 * sizeof(float)));
+      gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, bytes, reinterpret_cast<void*>(9 * sizeof(float)));
       gl.EnableVertexAttribArray(2);
     }
     g.indices = static_cast<GLsizei>(indices.size());

@@ -20,6 +20,7 @@
 #include "vgd/dress/prepare.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
+#include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -127,6 +128,7 @@ struct Studio::Impl {
   bool preview_dirty = false;
   double last_preview = -1e9;
   double azimuth = 35, elevation = 8;
+  int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch)
   std::optional<mesh::SurfaceMesh> body;
   LiveCloth cloth;
   std::function<void()> restore;
@@ -876,6 +878,12 @@ struct Studio::Impl {
         for (std::size_t t = 0; t < cloth.triangles.size(); ++t)
           if (cloth.triangle_piece.empty() || cloth.triangle_piece[t] == static_cast<int>(p))
             m.triangles.push_back(cloth.triangles[t]);
+        if (fit_map > 0 && cloth.uv.size() == cloth.positions.size()) {
+          // A fit map: the piece coloured by its strain against its rest shape.
+          for (const auto& q : cloth.uv) m.uv.push_back({static_cast<float>(q[0]), static_cast<float>(q[1])});
+          const auto map = static_cast<render::FitMap>(fit_map - 1);
+          render::colour_by(m, render::fit_values(m, map), render::default_scale(map));
+        }
         if (!m.triangles.empty()) sc.meshes.push_back(std::move(m));
       }
     }
@@ -883,6 +891,22 @@ struct Studio::Impl {
   }
 
   void preview_panel() {
+    if (!cloth.positions.empty()) {
+      // The garment's colours, or a fit map (docs/studio.md).
+      static const char* const kMaps[] = {"looks", "warp strain", "weft strain", "shear", "largest stretch"};
+      ImGui::SetNextItemWidth(150);
+      if (ImGui::BeginCombo("map", kMaps[fit_map])) {
+        for (int k = 0; k < 5; ++k) {
+          if (ImGui::Selectable(kMaps[k], k == fit_map) && k != fit_map) fit_map = k, preview_dirty = true;
+          track(std::string("map:") + kMaps[k]);
+        }
+        ImGui::EndCombo();
+      }
+      track("map");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Colour the garment by its strain against the flat pattern (warp, weft, shear, largest "
+                          "stretch), with a legend; docs/render.md, Fit maps");
+    }
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));
     const bool running = job->running();
@@ -895,7 +919,11 @@ struct Studio::Impl {
         renderer->set_scene(preview_scene());
         render::OffscreenOptions o;
         o.supersample = running ? 1 : 2;
-        const render::Image img = renderer->render(render::ViewPreset{"studio", azimuth, elevation, 30}, w, h, o);
+        render::Image img = renderer->render(render::ViewPreset{"studio", azimuth, elevation, 30}, w, h, o);
+        if (fit_map > 0 && !cloth.positions.empty()) {
+          const auto map = static_cast<render::FitMap>(fit_map - 1);
+          render::draw_legend(img, map, render::default_scale(map));
+        }
         if (restore) restore();
         texture = gl::upload_texture(img, texture);
         tex_w = w, tex_h = h;

@@ -165,5 +165,27 @@ TEST(RealGarmentsBetweenParticles, WithoutTheRuleTheBodyShowsThroughTheTightsCro
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
 }
 
+// The leggings' weft-strain fit map (vgd render --map weft) against a golden
+// a person has looked at: the strain highest round the calves and at the
+// crotch, lowest over the seat; its legend 0-40 %.
+TEST(RealGarmentFitMap, TheLeggingsWeftStrain) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("real-leggings-fit-map");
+  const auto r = run_vgd({"dress", shared_dxf("ORILEGWB_AAMA.DXF").string(), "-o", out.string(), "--no-previews"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto map = run_vgd({"render", out.string(), "--map", "weft", "--views", "front", "--size", "256x256", "-o",
+                            (out / "map").string()});
+  ASSERT_EQ(map.code, 0) << map.err;
+  EXPECT_NE(map.err.find("weft strain, % of ORILEG_WB_LL_36: p50 1"), std::string::npos) << map.err;
+  const auto golden = source_dir() / "tests" / "golden" / "real-garments" / "leggings_36-weft-map.png";
+  if (std::getenv("VGD_UPDATE_GOLDENS")) {
+    std::filesystem::copy_file(out / "map" / "front.png", golden, std::filesystem::copy_options::overwrite_existing);
+    return;
+  }
+  const auto cmp = run_vgd({"compare", golden.string(), (out / "map" / "front.png").string(), "--threshold",
+                            kGoldenThreshold});
+  EXPECT_EQ(cmp.code, 0) << cmp.out << cmp.err;
+}
+
 }  // namespace
 }  // namespace vgd::test

@@ -347,6 +347,25 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   h.drag(r->cx(), r->cy(), r->cx() + 120, r->cy());
   h.frames(2);
   EXPECT_LT(vgd::qa::ssim(crop(img, *r), crop(h.screenshot(), *r)), 0.9);
+  // The map combo: the weft strain's fit map with its legend (the bar's red
+  // top, which the skirt itself, blue and little strained, does not have).
+  auto reds = [&](const vgd::render::Image& shot) {
+    const auto rr = h.studio().widget("preview");
+    int n = 0;
+    for (int y = static_cast<int>(rr->y0); y < static_cast<int>(rr->y1); ++y)
+      for (int x = static_cast<int>(rr->x0); x < static_cast<int>(rr->x1); ++x) {
+        const auto* p = shot.pixel(x, y);
+        n += p[0] > 180 && p[1] < 90 && p[2] < 80;
+      }
+    return n;
+  };
+  const int before = reds(h.screenshot());
+  h.click("map");
+  h.click("map:weft strain");
+  h.frames(4);
+  const auto mapped = h.screenshot();
+  EXPECT_GT(reds(mapped), before + 40) << "the legend's red end";
+  EXPECT_LT(vgd::qa::ssim(crop(h.screenshot(), *h.studio().widget("preview")), crop(img, *r)), 0.95);
 }
 
 // A document with no seams (a pattern file imported as it is) drapes as vgd

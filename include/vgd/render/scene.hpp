@@ -66,6 +66,10 @@ struct Mesh {
   // needs uv; pieces of one garment may share one texture.
   std::vector<std::array<float, 2>> uv;
   std::shared_ptr<const Texture> texture;
+  // Optional sRGB colour per vertex (a fit map, render/fit_map.hpp),
+  // multiplying `colour` (set it white to show them as they are); used when
+  // there is one per position.
+  std::vector<Colour> vertex_colours;
 };
 
 struct Scene {

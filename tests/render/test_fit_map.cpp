@@ -1,0 +1,132 @@
+// Fit maps (render/fit_map.hpp): per-vertex strain of a garment against its
+// rest shape, the colour ramp, and the legend drawn onto an image; and
+// `vgd render --map` end to end.
+#include <gtest/gtest.h>
+
+#include "support/run_vgd.hpp"
+#include "support/test_paths.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
+#include "vgd/render/fit_map.hpp"
+#include "vgd/render/image.hpp"
+
+using namespace vgd;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A 0.4 × 0.3 m rest grid of 5 × 4 vertices (uv, m), its positions stretched
+// by `su` along the warp and `sv` along the weft and laid in the x-y plane.
+render::Mesh stretched_sheet(double su, double sv) {
+  render::Mesh m;
+  m.name = "SHEET";
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 5; ++i) {
+      const float u = 0.1f * i, v = 0.1f * j;
+      m.uv.push_back({u, v});
+      m.positions.push_back({static_cast<float>(su * u), static_cast<float>(1.0 + sv * v), 0.0f});
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = 5 * j + i;
+      m.triangles.push_back({a, a + 1, a + 6});
+      m.triangles.push_back({a, a + 6, a + 5});
+    }
+  return m;
+}
+
+bool same(const render::Colour& a, const render::Colour& b) {
+  return std::abs(a.r - b.r) < 1e-6 && std::abs(a.g - b.g) < 1e-6 && std::abs(a.b - b.b) < 1e-6;
+}
+
+}  // namespace
+
+TEST(FitMap, AUniformStretchGivesItsStrainAtEveryVertex) {
+  const auto m = stretched_sheet(1.05, 1.20);
+  const auto warp = render::fit_values(m, render::FitMap::warp);
+  const auto weft = render::fit_values(m, render::FitMap::weft);
+  const auto shear = render::fit_values(m, render::FitMap::shear);
+  const auto stretch = render::fit_values(m, render::FitMap::stretch);
+  ASSERT_EQ(warp.size(), m.positions.size());
+  for (std::size_t i = 0; i < warp.size(); ++i) {
+    EXPECT_NEAR(warp[i], 5.0, 1e-4);
+    EXPECT_NEAR(weft[i], 20.0, 1e-4);
+    EXPECT_NEAR(shear[i], 0.0, 1e-3);
+    EXPECT_NEAR(stretch[i], 20.0, 1e-4);
+  }
+  render::Mesh none = m;
+  none.uv.clear();
+  EXPECT_THROW(render::fit_values(none, render::FitMap::weft), vgd::Error);
+}
+
+TEST(FitMap, TheRampSpansTheScaleAndClampsBeyondIt) {
+  auto m = stretched_sheet(1.0, 1.20);  // weft 20 %: the middle of 0–40 %
+  m.texture = std::make_shared<render::Texture>();
+  render::colour_by(m, render::fit_values(m, render::FitMap::weft), render::default_scale(render::FitMap::weft));
+  ASSERT_EQ(m.vertex_colours.size(), m.positions.size());
+  EXPECT_TRUE(same(m.vertex_colours[7], render::ramp(0.5)));
+  EXPECT_FALSE(m.texture) << "a map replaces the texture";
+  EXPECT_TRUE(same(m.colour, {1, 1, 1}));
+  render::colour_by(m, std::vector<double>(m.positions.size(), 90.0), {0, 40});
+  EXPECT_TRUE(same(m.vertex_colours[0], render::ramp(1.0)));
+  render::colour_by(m, std::vector<double>(m.positions.size(), -5.0), {0, 40});
+  EXPECT_TRUE(same(m.vertex_colours[0], render::ramp(0.0)));
+  // Blue at the low end, red at the high end.
+  EXPECT_GT(render::ramp(0).b, render::ramp(0).r + 0.4f);
+  EXPECT_GT(render::ramp(1).r, render::ramp(1).b + 0.4f);
+}
+
+TEST(FitMap, TheLegendIsARampWithItsLabels) {
+  render::Image img(400, 300, {240, 240, 240, 255});
+  render::draw_legend(img, render::FitMap::weft, {0, 40});
+  // The bar: red near its top, blue near its bottom, right of the middle.
+  int red = 0, blue = 0, ink = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = img.width / 2; x < img.width; ++x) {
+      const auto* p = img.pixel(x, y);
+      red += y < img.height / 2 && p[0] > 180 && p[2] < 80;
+      blue += y > img.height / 2 && p[2] > 150 && p[0] < 80;
+      ink += p[0] < 60 && p[1] < 60 && p[2] < 60;
+    }
+  EXPECT_GT(red, 30);
+  EXPECT_GT(blue, 30);
+  EXPECT_GT(ink, 150) << "the frame, ticks and labels";
+  // Nothing on the left half.
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width / 2; ++x) ASSERT_EQ(img.pixel(x, y)[0], 240) << x << "," << y;
+}
+
+TEST(CmdRender, AFitMapColoursTheGarmentByItsStrainWithALegend) {
+  const auto dir = test::scratch_dir("cmd_render_fit_map");
+  // garment.obj with material coordinates (vt), as vgd drape writes it: the
+  // sheet stretched 30 % along the weft.
+  const auto m = stretched_sheet(1.0, 1.30);
+  std::string obj = "g SHEET\n";
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    obj += "v " + std::to_string(m.positions[i][0]) + " " + std::to_string(m.positions[i][1]) + " 0\nvt " +
+           std::to_string(m.uv[i][0]) + " " + std::to_string(m.uv[i][1]) + "\n";
+  for (const auto& t : m.triangles)
+    obj += "f " + std::to_string(t[0] + 1) + "/" + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + "/" +
+           std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "/" + std::to_string(t[2] + 1) + "\n";
+  write_file_atomic(dir / "garment.obj", obj);
+  const auto r = test::run_vgd({"render", dir.string(), "--map", "weft", "--views", "front", "--size", "200x150",
+                                "--no-floor", "-o", (dir / "out").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("weft strain, % of SHEET: p50 30.0, p95 30.0, max 30.0"), std::string::npos) << r.err;
+  const auto img = render::read_png(dir / "out" / "front.png");
+  // The sheet, in the middle of the view, takes the ramp's colour at 30/40
+  // (orange-yellow: much red, some green, little blue), shaded by the light.
+  const auto* p = img.pixel(img.width / 3, img.height / 2);
+  EXPECT_GT(p[0], p[2] + 60) << int(p[0]) << " " << int(p[1]) << " " << int(p[2]);
+  EXPECT_GT(p[1], p[2] + 30) << int(p[0]) << " " << int(p[1]) << " " << int(p[2]);
+  // Bad ranges and a range without a map are usage errors.
+  const auto bad = test::run_vgd({"render", dir.string(), "--map", "weft", "--map-range", "40,0", "-o",
+                                  (dir / "bad").string()});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--map-range"), std::string::npos) << bad.err;
+  const auto alone = test::run_vgd({"render", dir.string(), "--map-range", "0,40", "-o", (dir / "bad").string()});
+  EXPECT_EQ(alone.code, 2);
+  EXPECT_NE(alone.err.find("applies to a fit map"), std::string::npos) << alone.err;
+  const auto unknown = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
+  EXPECT_NE(unknown.code, 0);
+}
