@@ -27,6 +27,7 @@ struct Options {
   std::string server, token_file;
   bool headless = false;
   int width = 1280, height = 800, threads = 1, quit_after = 0;
+  double autosave_s = 120;
 };
 
 // The server's token: --token-file, else $VGD_TOKEN (as vgd remote).
@@ -65,6 +66,7 @@ int run_window(const Options& o) {
       studio.set_restore_context([window] { glfwMakeContextCurrent(window); });
       if (!o.avatar.empty()) studio.set_body(o.avatar, o.unit, o.up, o.facing);
       studio.set_server(o.server, token(o));
+      studio.set_autosave_seconds(o.autosave_s);
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
       for (int frame = 1; !studio.quit_confirmed(); ++frame) {
         // The close button asks about unsaved changes first (Studio::request_close).
@@ -107,6 +109,7 @@ int run_headless(const Options& o) {
   vgd::studio::Harness h(o.width, o.height);
   if (!o.avatar.empty()) h.studio().set_body(o.avatar, o.unit, o.up, o.facing);
   h.studio().set_server(o.server, token(o));
+  h.studio().set_autosave_seconds(o.autosave_s);
   if (!o.file.empty() && !h.studio().open(o.file)) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
     return 1;
@@ -140,6 +143,11 @@ int main(int argc, char** argv) {
   app.add_option("--server", o.server, "A vgd-server for \"Simulate on server\" (http://HOST:PORT; also in the simulate panel)");
   app.add_option("--token-file", o.token_file, "File holding that server's token (default: $VGD_TOKEN)")
       ->check(CLI::ExistingFile);
+  app.add_option("--autosave-seconds", o.autosave_s,
+                 "Write unsaved changes to FILE.autosave this often (0: at every change; recovery is offered when "
+                 "the studio did not close)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--screenshot", o.screenshot, "Write the last frame to this PNG (a window: with --quit-after)");
   app.add_option("--quit-after", o.quit_after, "A window: close after this many frames (smoke tests)")
       ->check(CLI::PositiveNumber);

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <ctime>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -83,6 +85,17 @@ struct Studio::Impl {
   int modified_rev = -1;
   bool modified = false;
 
+  // Autosave: the document with unsaved changes written to FILE.autosave
+  // every `autosave_s` seconds of changes and at every drape's start; removed
+  // when the document is saved or the studio closes. One found when a
+  // document is opened means the studio did not close: recovery is offered.
+  double autosave_s = 120.0;
+  int autosaved_rev = -1;
+  double last_autosave = -1e300;
+  bool want_recovery = false;  // the dialog is to open
+  std::optional<xvc::Document> recovered;  // the autosave's document, while the dialog asks
+  std::string recovery_when;               // its time, for the dialog
+
   std::string status = "Open an XVC document (File > Open, Ctrl+O).";
   bool status_error = false;
   std::string error_text;
@@ -149,6 +162,7 @@ struct Studio::Impl {
   std::string path_text;
 
   ~Impl() {
+    drop_autosave();  // a normal close: the user answered for the changes (kept while recovery is unanswered)
     for (LiveJob* j : {static_cast<LiveJob*>(&here), static_cast<LiveJob*>(&on_server)}) {
       j->request_stop();
       j->wait();
@@ -210,6 +224,79 @@ struct Studio::Impl {
       modified_rev = revision;
     }
     return modified;
+  }
+
+  static fs::path autosave_path(const fs::path& f) { return f.string() + ".autosave"; }
+
+  // Writes the autosave when the document has changes not yet in it and
+  // `force` or the interval has passed since the last one.
+  void autosave(bool force) {
+    if (file.empty() || autosaved_rev == revision || !is_modified()) return;
+    const double now = ImGui::GetCurrentContext() ? ImGui::GetTime() : 0.0;
+    if (!force && now - last_autosave < autosave_s) return;
+    try {
+      xvc::save_file(doc, autosave_path(file));
+      autosaved_rev = revision;
+      last_autosave = now;
+    } catch (const std::exception& e) {
+      say("Cannot autosave to " + autosave_path(file).string() + ": " + e.what(), true);
+      last_autosave = now;  // not again at every frame
+    }
+  }
+
+  // Removes the autosave, unless it waits on the recovery dialog (`answered`:
+  // the dialog's Discard).
+  void drop_autosave(bool answered = false) {
+    if (file.empty() || (recovered && !answered)) return;
+    std::error_code ec;
+    fs::remove(autosave_path(file), ec);
+    autosaved_rev = -1;
+  }
+
+  // After opening `file`: an autosave beside it that differs from it is
+  // offered for recovery.
+  void look_for_autosave() {
+    std::error_code ec;
+    const fs::path a = autosave_path(file);
+    if (!fs::exists(a, ec)) return;
+    try {
+      xvc::Document d = xvc::load_file(a);
+      if (d == doc) {
+        fs::remove(a, ec);
+        return;
+      }
+      const auto t = fs::last_write_time(a, ec);
+      const auto sys = std::chrono::file_clock::to_sys(t);
+      const std::time_t tt = std::chrono::system_clock::to_time_t(sys);
+      char when[64] = "";
+      std::tm local{};
+      if (localtime_r(&tt, &local)) std::strftime(when, sizeof when, "%Y-%m-%d %H:%M", &local);
+      recovery_when = when;
+      recovered = std::move(d);
+      want_recovery = true;
+      say(file.filename().string() + " has unsaved changes from " + recovery_when +
+          " (the studio did not close normally): recover them or discard them.");
+    } catch (const std::exception& e) {
+      say("An autosave of " + file.filename().string() + " cannot be read (" + e.what() + "); it is left as " +
+              a.string(),
+          true);
+    }
+  }
+
+  void recover(bool yes) {
+    if (yes && recovered) {
+      undo.reset();
+      doc = std::move(*recovered);
+      undo = std::make_unique<xvc::UndoStack>(doc);
+      changed();
+      refresh_sizes();
+      say("Recovered the unsaved changes of " + file.filename().string() + " from " + recovery_when +
+          "; save to keep them.");
+    } else {
+      drop_autosave(/*answered=*/true);
+      say("Discarded the unsaved changes of " + file.filename().string() + " from " + recovery_when + ".");
+    }
+    recovered.reset();
   }
 
   // ---- pattern layout ------------------------------------------------------
@@ -758,6 +845,7 @@ struct Studio::Impl {
 
   void start_drape(bool remote = false) {
     if (job->running()) return;
+    autosave(true);  // a drape is where a crash is likeliest
     if (pieces.empty()) {
       say("Nothing to drape: the document has no pieces in this size.", true);
       return;
@@ -1016,6 +1104,20 @@ struct Studio::Impl {
       }
       ImGui::EndPopup();
     }
+    if (want_recovery) ImGui::OpenPopup("Recover unsaved changes"), want_recovery = false;
+    if (ImGui::BeginPopupModal("Recover unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::PushTextWrapPos(560);
+      ImGui::Text("%s has changes from %s that were never saved: the studio did not close normally.",
+                  file.filename().string().c_str(), recovery_when.c_str());
+      ImGui::TextDisabled("Recover opens them as unsaved changes; Discard deletes them.");
+      ImGui::PopTextWrapPos();
+      if (ImGui::Button("Recover")) recover(true), ImGui::CloseCurrentPopup();
+      track("recover:yes");
+      ImGui::SameLine();
+      if (ImGui::Button("Discard")) recover(false), ImGui::CloseCurrentPopup();
+      track("recover:no");
+      ImGui::EndPopup();
+    }
     if (error_pending) ImGui::OpenPopup("Error"), error_pending = false;
     if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::PushTextWrapPos(560);
@@ -1057,6 +1159,8 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
   }
   try {
     xvc::Document d = xvc::load_file(path);
+    I.drop_autosave();  // the document left: saved, or its changes discarded when asked (kept while unanswered)
+    I.recovered.reset();
     I.undo.reset();
     I.doc = std::move(d);
     I.undo = std::make_unique<xvc::UndoStack>(I.doc);
@@ -1072,6 +1176,8 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
     I.refresh_sizes();
     I.say("Opened " + path.string() + ": " + std::to_string(I.doc.patterns().size()) + " patterns, " +
           std::to_string(xvc::list_seams(I.doc).size()) + " seams.");
+    I.autosaved_rev = -1;
+    I.look_for_autosave();
     return true;
   } catch (const std::exception& e) {
     I.say("Cannot open " + path.string() + ": " + e.what(), true);
@@ -1097,7 +1203,9 @@ bool Studio::save(const fs::path& path) {
   }
   try {
     xvc::save_file(I.doc, target);
+    I.drop_autosave();  // of the file it came from
     I.file = fs::absolute(target);
+    I.drop_autosave();
     I.saved = I.doc;
     I.modified_rev = -1;
     I.say("Saved " + target.string() + ".");
@@ -1150,6 +1258,7 @@ void Studio::draw() {
   I.widgets.clear();
   I.poll_job();
   I.shortcuts(*this);
+  I.autosave(false);
 
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(vp->WorkPos);
@@ -1220,6 +1329,8 @@ void Studio::set_body(const std::filesystem::path& file, const std::string& unit
   a.file = file, a.unit = unit, a.up = up, a.facing = facing;
   impl_->drape.avatar = a;
 }
+void Studio::set_autosave_seconds(double seconds) { impl_->autosave_s = std::max(0.0, seconds); }
+bool Studio::recovery_offered() const { return impl_->recovered.has_value(); }
 void Studio::set_server(const std::string& url, const std::string& token) {
   impl_->server_url = url;
   impl_->server_token = token;

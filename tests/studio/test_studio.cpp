@@ -2,14 +2,21 @@
 // ImGui, frames drawn off-screen (OSMesa), the document and the pixels checked.
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <thread>
+#include <chrono>
+#include <fcntl.h>
 
 #include "vgd/body/mannequin.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
@@ -510,3 +517,88 @@ TEST(Studio, TheFirstFrameWithTheTShirtMatchesItsGolden) {
   EXPECT_GT(vgd::qa::colour_ssim(ref, img), 0.99);
   EXPECT_LT(vgd::qa::pixel_stats(ref, img).differing_percent, 1.0);
 }
+
+// Never lose work: the studio killed (SIGKILL) after an edit it never saved
+// leaves the edit in FILE.autosave; opening the file again offers it, and
+// Recover brings it back as unsaved changes; Discard deletes it.
+TEST(Studio, AnEditSurvivesTheStudioKilledAndIsOfferedForRecovery) {
+  const fs::path dir = temp_dir("recovery");
+  const fs::path doc = dir / "skirt.xvc";
+  fs::copy_file(kSkirt, doc);
+  const std::string seam = vgd::xvc::list_seams(vgd::xvc::load_file(doc)).front().id;
+  {
+    std::ofstream script(dir / "edit.txt");
+    script << "open skirt.xvc\nclick tree:" << seam << "\nclick attr:name\nkey ctrl+a\ntype kept after the crash\n"
+           << "key enter\nframes 1000000\n";
+  }
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(VGD_STUDIO_EXE, VGD_STUDIO_EXE, "--headless", "--autosave-seconds", "0", "--script",
+            (dir / "edit.txt").c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ASSERT_GT(pid, 0);
+  const fs::path autosave = dir / "skirt.xvc.autosave";
+  for (int i = 0; i < 600 && !fs::exists(autosave); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the studio was still running when killed";
+  ASSERT_TRUE(fs::exists(autosave)) << "no autosave written";
+  const std::string on_disk = vgd::read_file(doc);
+  EXPECT_EQ(on_disk.find("kept after the crash"), std::string::npos) << "the edit was never saved";
+  EXPECT_NE(vgd::read_file(autosave).find("kept after the crash"), std::string::npos);
+  {
+    Harness h;
+    ASSERT_TRUE(h.studio().open(doc));
+    EXPECT_TRUE(h.studio().recovery_offered());
+    EXPECT_NE(h.studio().status().find("unsaved changes from"), std::string::npos) << h.studio().status();
+    h.frames(2);
+    h.click("recover:yes");
+    EXPECT_FALSE(h.studio().recovery_offered());
+    EXPECT_EQ(h.studio().document().find(seam)->attribute("name"), "kept after the crash");
+    EXPECT_TRUE(h.studio().modified());
+    ASSERT_TRUE(h.studio().save());
+    EXPECT_FALSE(fs::exists(autosave)) << "saved: nothing left to recover";
+  }
+  EXPECT_NE(vgd::read_file(doc).find("kept after the crash"), std::string::npos);
+  // An autosave discarded: deleted, the document as saved.
+  auto d = vgd::xvc::load_file(doc);
+  vgd::xvc::execute(d, *std::make_unique<vgd::xvc::SetAttribute>(seam, "name", "never wanted"));
+  vgd::xvc::save_file(d, autosave);
+  {
+    Harness h;  // closed with the question unanswered: the autosave stays
+    ASSERT_TRUE(h.studio().open(doc));
+    EXPECT_TRUE(h.studio().recovery_offered());
+  }
+  ASSERT_TRUE(fs::exists(autosave));
+  {
+    Harness h;
+    ASSERT_TRUE(h.studio().open(doc));
+    h.frames(2);
+    h.click("recover:no");
+    EXPECT_FALSE(fs::exists(autosave));
+    EXPECT_EQ(h.studio().document().find(seam)->attribute("name"), "kept after the crash");
+    EXPECT_FALSE(h.studio().modified());
+  }
+  // A normal close leaves no autosave, even of changes it was told to discard.
+  {
+    Harness h;
+    h.studio().set_autosave_seconds(0);
+    ASSERT_TRUE(h.studio().open(doc));
+    h.frame();
+    h.click("tree:" + seam);
+    h.click("attr:name");
+    h.key("ctrl+a");
+    h.type("changed then discarded");
+    h.key("enter");
+    h.frames(2);
+    EXPECT_TRUE(fs::exists(autosave));
+  }
+  EXPECT_FALSE(fs::exists(autosave));
+}
+

@@ -106,6 +106,14 @@ class Studio {
   // into place. Shows and returns false on failure.
   bool save(const std::filesystem::path& file = {});
 
+  // Autosave (never lose work): a document with unsaved changes is written
+  // to FILE.autosave every `seconds` of changes (0: at every change) and at
+  // every drape's start; the file is removed when the document is saved or
+  // the studio closes. Opening a document that has one (the studio did not
+  // close: a crash, a kill) offers to recover it (a dialog: Recover, Discard).
+  void set_autosave_seconds(double seconds);
+  bool recovery_offered() const;  // the dialog is waiting for an answer
+
   // Writes the last drape (garment and body) as static VRML97, through a
   // temporary file renamed into place. Shows and returns false on failure.
   bool export_vrml(const std::filesystem::path& file);
