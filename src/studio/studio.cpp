@@ -20,6 +20,8 @@
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/prepare.hpp"
+#include "vgd/io/dxf/import.hpp"
+#include "vgd/core/units.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
 #include "vgd/render/fit_map.hpp"
@@ -148,6 +150,11 @@ struct Studio::Impl {
 
   // Dialogs.
   bool want_open = false, want_save_as = false, want_export = false;
+  // DXF import: the dialog's file and choices, then its report.
+  bool want_import = false, want_import_report = false;
+  fs::path import_path;
+  DxfImport import_options;
+  std::vector<std::string> import_report;
   // What waits on the unsaved-changes dialog: opening `pending_file`, or quitting.
   enum class Pending { none, open, quit } pending = Pending::none;
   fs::path pending_file;
@@ -1051,7 +1058,7 @@ struct Studio::Impl {
       const char* ok;
       bool* want;
     };
-    const Dialog all[] = {{"Open document", "XVC document to open:", "Open", &want_open},
+    const Dialog all[] = {{"Open document", "XVC document or DXF pattern file to open:", "Open", &want_open},
                           {"Save as", "Save the document as:", "Save", &want_save_as},
                           {"Export VRML", "Write the draped garment and the body as VRML97 (.wrl):", "Export", &want_export}};
     for (const Dialog& d : all) {
@@ -1078,6 +1085,51 @@ struct Studio::Impl {
         else if (d.want == &want_save_as) self.save(path_text);
         else self.export_vrml(path_text);
       }
+      ImGui::EndPopup();
+    }
+    if (want_import) ImGui::OpenPopup("Import DXF"), want_import = false;
+    if (ImGui::BeginPopupModal("Import DXF", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("%s: a pattern file (AAMA/ASTM DXF)", import_path.filename().string().c_str());
+      static const char* const kDxfUnits[] = {"auto", "mm", "cm", "in"};
+      ImGui::SetNextItemWidth(120);
+      if (ImGui::BeginCombo("units", import_options.units.c_str())) {
+        for (const char* u : kDxfUnits) {
+          if (ImGui::Selectable(u, import_options.units == u)) import_options.units = u;
+          track(std::string("import:units:") + u);
+        }
+        ImGui::EndCombo();
+      }
+      track("import:units");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("auto: as the file states them (mm when it states none, as Valentina writes)");
+      ImGui::Checkbox("unfold mirrored halves", &import_options.unfold_mirrored);
+      track("import:unfold");
+      ImGui::Checkbox("join pieces written per side", &import_options.join_per_side);
+      track("import:join");
+      ImGui::Checkbox("sew on sew lines (cut the allowance off)", &import_options.sew_on_sew_lines);
+      track("import:sew-lines");
+      if (ImGui::Button("Import")) {
+        ImGui::CloseCurrentPopup();
+        self.import_dxf(import_path, import_options);
+      }
+      track("import:ok");
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup(), say("Import of " + import_path.filename().string() + " cancelled.");
+      track("import:cancel");
+      ImGui::EndPopup();
+    }
+    if (want_import_report) ImGui::OpenPopup("Imported"), want_import_report = false;
+    if (ImGui::BeginPopupModal("Imported", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      // A long report scrolls: at most about 24 lines on screen.
+      const float line = ImGui::GetTextLineHeightWithSpacing();
+      const float height = std::min(24.0f, static_cast<float>(import_report.size()) * 1.6f + 1.0f) * line;
+      ImGui::BeginChild("import report", {720, height}, false);
+      ImGui::PushTextWrapPos(700);
+      for (const auto& l : import_report) ImGui::TextUnformatted(l.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndChild();
+      if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
+      track("imported:ok");
       ImGui::EndPopup();
     }
     if (want_unsaved) ImGui::OpenPopup("Unsaved changes"), want_unsaved = false;
@@ -1157,6 +1209,12 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
     I.ask_unsaved(Impl::Pending::open, path);
     return false;
   }
+  if (iequals(path.extension().string(), ".dxf")) {
+    I.import_path = path;
+    I.want_import = true;
+    I.say("Import " + path.filename().string() + ": choose its units and options.");
+    return true;
+  }
   try {
     xvc::Document d = xvc::load_file(path);
     I.drop_autosave();  // the document left: saved, or its changes discarded when asked (kept while unanswered)
@@ -1184,6 +1242,65 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
     return false;
   }
 }
+
+bool Studio::import_dxf(const fs::path& path, const DxfImport& options) {
+  Impl& I = *impl_;
+  if (I.job->running()) {
+    I.say("Stop the drape before importing another document.", true);
+    return false;
+  }
+  try {
+    dxf::ImportOptions io;
+    if (options.units != "auto") {
+      const auto u = parse_length_unit(options.units);
+      if (!u) throw Error(path.string(), "", "unknown units '" + options.units + "' (auto, mm, cm, in)");
+      io.units = *u;
+    }
+    io.unfold_mirrored = options.unfold_mirrored;
+    io.join_per_side = options.join_per_side;
+    io.sew_on_sew_lines = options.sew_on_sew_lines;
+    const dxf::ImportResult r = dxf::import_file(path, io);
+    xvc::Document d = xvc::from_style(r.style);
+    // Its name beside the DXF, never over a file that exists.
+    fs::path target = fs::absolute(path).replace_extension(".xvc");
+    for (int k = 2; fs::exists(target) || fs::exists(Impl::autosave_path(target)); ++k)
+      target = fs::absolute(path).parent_path() / (path.stem().string() + "-" + std::to_string(k) + ".xvc");
+    I.drop_autosave();
+    I.recovered.reset();
+    I.undo.reset();
+    I.doc = std::move(d);
+    I.undo = std::make_unique<xvc::UndoStack>(I.doc);
+    I.saved = xvc::Document{};  // never saved: the title shows it
+    I.file = target;
+    I.selected.clear();
+    I.picked.clear();
+    I.drape.size.clear();
+    I.cert.reset();
+    I.body.reset();
+    I.cloth = {};
+    I.autosaved_rev = -1;
+    I.changed();
+    I.refresh_sizes();
+    const auto& s = r.summary;
+    I.import_report.clear();
+    I.import_report.push_back(path.filename().string() + ": " + std::to_string(s.pieces) + " pieces in " +
+                              std::to_string(s.sizes.size()) + " sizes (sample " + s.sample_size + "), " +
+                              std::to_string(s.blocks) + " blocks; units " + s.units + "; " + s.producer);
+    for (const auto& note : dxf::import_notes(r)) I.import_report.push_back(note);
+    for (const auto& diag : r.diagnostics.items())  // about this file: its name left out
+      I.import_report.push_back(diag.entity.empty() ? diag.message : diag.entity + ": " + diag.message);
+    I.import_report.push_back("Save writes it as " + target.filename().string() + " beside the DXF.");
+    I.want_import_report = true;
+    I.say("Imported " + path.filename().string() + ": " + std::to_string(s.pieces) + " pieces, " +
+          std::to_string(r.diagnostics.items().size()) + " notes; unsaved (" + target.filename().string() + ").");
+    return true;
+  } catch (const std::exception& e) {
+    I.say("Cannot import " + path.string() + ": " + e.what(), true);
+    return false;
+  }
+}
+
+const std::vector<std::string>& Studio::import_report() const { return impl_->import_report; }
 
 bool Studio::request_close() {
   Impl& I = *impl_;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <thread>
 #include <chrono>
 #include <fcntl.h>
@@ -600,5 +601,60 @@ TEST(Studio, AnEditSurvivesTheStudioKilledAndIsOfferedForRecovery) {
     EXPECT_TRUE(fs::exists(autosave));
   }
   EXPECT_FALSE(fs::exists(autosave));
+}
+
+// A designer's DXF opened in the studio: the import dialog (units, unfold,
+// join per side, sew lines), then the report; the document is unsaved and
+// named beside the DXF without overwriting anything. CLO's T-shirt, written
+// as 9 blocks with its halves per side, comes in as 5 pieces.
+TEST(Studio, ADxfOpensThroughTheImportDialogWithItsReport) {
+  const fs::path shared = fs::path(VGD_SHARED_DIR) / "data" / "dxf" / "clo-pattern.dxf";
+  if (!fs::exists(shared)) GTEST_SKIP() << "shared data absent: " << shared;
+  const fs::path dir = temp_dir("import-dxf");
+  const fs::path dxf = dir / "clo-pattern.dxf";
+  fs::copy_file(shared, dxf);
+  std::ofstream(dir / "clo-pattern.xvc") << "<!-- the designer's own file, not to be overwritten -->\n";
+  Harness h;
+  ASSERT_TRUE(h.studio().open(dxf)) << h.studio().status();
+  h.frames(2);
+  h.click("import:ok");
+  h.frames(2);
+  ASSERT_FALSE(h.studio().import_report().empty()) << h.studio().status();
+  std::string report;
+  for (const auto& l : h.studio().import_report()) report += l + "\n";
+  EXPECT_NE(report.find("clo-pattern.dxf: "), std::string::npos) << report;
+  EXPECT_NE(report.find("joined"), std::string::npos) << report;
+  EXPECT_NE(report.find("clo-pattern-2.xvc"), std::string::npos) << report;
+  EXPECT_EQ(h.studio().file().filename(), "clo-pattern-2.xvc");
+  EXPECT_TRUE(h.studio().modified());
+  std::set<std::string> pieces;
+  for (const auto* p : h.studio().document().patterns()) pieces.insert(std::string(p->attribute("piece")));
+  EXPECT_EQ(pieces.size(), 5u) << report;
+  h.click("imported:ok");
+  ASSERT_TRUE(h.studio().save());
+  EXPECT_TRUE(fs::exists(dir / "clo-pattern-2.xvc"));
+  EXPECT_NE(vgd::read_file(dir / "clo-pattern.xvc").find("not to be overwritten"), std::string::npos);
+  EXPECT_EQ(vgd::xvc::load_file(dir / "clo-pattern-2.xvc").patterns().size(), h.studio().document().patterns().size());
+  // Without joining: the 9 blocks as written.
+  h.studio().open(dxf, /*discard_changes=*/true);
+  h.frames(2);
+  h.click("import:join");
+  h.click("import:ok");
+  h.frames(2);
+  pieces.clear();
+  for (const auto* p : h.studio().document().patterns()) pieces.insert(std::string(p->attribute("piece")));
+  EXPECT_EQ(pieces.size(), 9u);
+  // A file that is not a DXF: the error names it, the document stays.
+  std::ofstream(dir / "broken.dxf") << "this is not a DXF\n";
+  h.click("imported:ok");
+  h.studio().open(dir / "broken.dxf", true);
+  h.frames(2);
+  h.click("import:ok");
+  h.frames(2);
+  EXPECT_TRUE(h.studio().status_is_error());
+  EXPECT_NE(h.studio().status().find("broken.dxf"), std::string::npos) << h.studio().status();
+  std::set<std::string> kept;
+  for (const auto* p : h.studio().document().patterns()) kept.insert(std::string(p->attribute("piece")));
+  EXPECT_EQ(kept, pieces) << "the document that was open stays";
 }
 

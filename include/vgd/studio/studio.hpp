@@ -84,6 +84,14 @@ struct DrapeStatus {
   std::vector<std::string> body_notes;  // an imported body: the importer's decisions (unit, up, facing) and what it left out
 };
 
+// How a DXF pattern file is imported (the import dialog; vgd import's options).
+struct DxfImport {
+  std::string units = "auto";  // auto: as the file says (mm when it says nothing); mm, cm, in
+  bool unfold_mirrored = true;   // half pieces unfolded about their mirror line
+  bool join_per_side = true;     // pieces written once per side joined (CLO's halves)
+  bool sew_on_sew_lines = true;  // pieces with a sew line sewn on it, the allowance cut off
+};
+
 class Studio {
  public:
   Studio();
@@ -91,12 +99,24 @@ class Studio {
   Studio(const Studio&) = delete;
   Studio& operator=(const Studio&) = delete;
 
-  // Opens an XVC document; on failure keeps the current one, shows the error
+  // Opens an XVC document (a .dxf: the import dialog, import_dxf); on
+  // failure keeps the current one, shows the error
   // (naming the file and the problem) and returns false. When the open
   // document has unsaved changes it is not replaced: a dialog asks to save
   // them, discard them or cancel, and open() returns false (the dialog opens
   // the file once answered), unless `discard_changes`.
   bool open(const std::filesystem::path& file, bool discard_changes = false);
+  // A DXF pattern file (AAMA/ASTM) as a new document: imported with
+  // `options`, its half pieces unfolded and pieces written per side joined as
+  // asked; the document is unsaved, named FILE.xvc beside the DXF (FILE-2.xvc
+  // ... when that exists: nothing is overwritten). The import's report
+  // (pieces, sizes, units, repairs, warnings) is shown in a dialog and kept
+  // in import_report(). open() on a .dxf opens the import dialog instead
+  // (and returns true: the dialog imports it).
+  // False (and the error shown) when the file cannot be imported.
+  bool import_dxf(const std::filesystem::path& file, const DxfImport& options = {});
+  const std::vector<std::string>& import_report() const;
+
   // The host wants to close (a window's close button): true when it may,
   // false while unsaved changes wait on the same dialog. quit_confirmed()
   // turns true once the dialog said to save or discard them.
