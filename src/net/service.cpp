@@ -456,12 +456,7 @@ Response Service::submit(const std::string& body, const std::string& client) {
   if (name.empty() || name.size() > 100 || name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
       name[0] == '.' || !iequals(fs::path(name).extension().string(), ".xvc"))
     return error(400, "name: '" + printable(name) + "' is not a file name ending in .xvc (letters, digits, '.', '_', '-')");
-  if (store_.active_of(client) >= o_.max_per_client)
-    return error(429, "this client has " + std::to_string(store_.active_of(client)) +
-                          " jobs queued or running (the server's limit per client is " +
-                          std::to_string(o_.max_per_client) + "): wait for some to finish");
-  if (store_.count(JobState::queued) >= o_.max_queued)
-    return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
+  if (auto refused = refuse_when_full(client)) return *refused;
   try {
     xvc::load_string(doc_text, name);
   } catch (const Error& e) {
@@ -544,6 +539,22 @@ Response Service::submit(const std::string& body, const std::string& client) {
     if (field.rfind("avatars", 0) == 0) field = avatar_name.empty() ? "settings.body_size" : "avatar" + field.substr(10);
     return error(400, field + ": " + d.message);
   }
+  return queue(id, name, client);
+}
+
+// 429 when this client or the whole queue has as many jobs as allowed.
+std::optional<Response> Service::refuse_when_full(const std::string& client) {
+  if (store_.active_of(client) >= o_.max_per_client)
+    return error(429, "this client has " + std::to_string(store_.active_of(client)) +
+                          " jobs queued or running (the server's limit per client is " +
+                          std::to_string(o_.max_per_client) + "): wait for some to finish");
+  if (store_.count(JobState::queued) >= o_.max_queued)
+    return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
+  return std::nullopt;
+}
+
+// A job accepted: queued in the database, the runner woken.
+Response Service::queue(const std::string& id, const std::string& name, const std::string& client) {
   Job job;
   job.id = id;
   job.name = name;
@@ -578,12 +589,7 @@ Response Service::submit_scene(const json& j, const std::string& client) {
   if (const std::string k = file_key(j["scene"], "scene"); !k.empty())
     return error(400, k + ": a scene job cannot name files on the server (give materials inline, cloth as grids, "
                           "the body as a mannequin or a solid; submit an XVC document for garments)");
-  if (store_.active_of(client) >= o_.max_per_client)
-    return error(429, "this client has " + std::to_string(store_.active_of(client)) +
-                          " jobs queued or running (the server's limit per client is " +
-                          std::to_string(o_.max_per_client) + "): wait for some to finish");
-  if (store_.count(JobState::queued) >= o_.max_queued)
-    return error(429, "the queue is full (" + std::to_string(o_.max_queued) + " jobs): try again later");
+  if (auto refused = refuse_when_full(client)) return *refused;
   scene::SceneDef def;
   try {
     def = scene::parse_scene(text, name);
@@ -604,18 +610,7 @@ Response Service::submit_scene(const json& j, const std::string& client) {
   const std::string id = new_id();
   const fs::path dir = job_dir(o_, id);
   write_file_atomic(dir / "input" / "scene.json", text);
-  Job job;
-  job.id = id;
-  job.name = name;
-  job.client = client;
-  store_.insert(job);
-  {
-    std::lock_guard lock(mutex_);
-    ++submitted_;
-    woken_ = true;
-  }
-  wake_.notify_one();
-  return json_response(202, {{"id", id}, {"state", "queued"}});
+  return queue(id, name, client);
 }
 
 Response Service::job(const std::string& id) {

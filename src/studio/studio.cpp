@@ -798,11 +798,8 @@ struct Studio::Impl {
   // FBX, ...) with the importer's unit, up axis and facing, each "auto" or
   // forced, as vgd drape --avatar --unit --up --facing.
   void body_row() {
-    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("body").x - ImGui::GetStyle().ItemInnerSpacing.x);
-    ImGui::InputTextWithHint("body", "the mannequin of the size (or a body file)", &body_text);
-    track("body");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("A body file (OBJ, PLY, STL, glTF/GLB, FBX, Collada) to drape on; empty: the mannequin");
+    text_row("body", "the mannequin of the size (or a body file)", body_text,
+             "A body file (OBJ, PLY, STL, glTF/GLB, FBX, Collada) to drape on; empty: the mannequin");
     if (body_text.empty()) {
       drape.avatar.reset();
       body_notes.clear();
@@ -835,11 +832,16 @@ struct Studio::Impl {
 
   // The vgd-server that "Simulate on server" sends the drape to.
   void server_row() {
-    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("server").x - ImGui::GetStyle().ItemInnerSpacing.x);
-    ImGui::InputTextWithHint("server", "a vgd-server to simulate on (http://127.0.0.1:8765)", &server_url);
-    track("server");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("vgd-server's address; its token comes from vgd-studio --token-file or $VGD_TOKEN");
+    text_row("server", "a vgd-server to simulate on (http://127.0.0.1:8765)", server_url,
+             "vgd-server's address; its token comes from vgd-studio --token-file or $VGD_TOKEN");
+  }
+
+  // A text field across the panel, its label at the right, a hint when empty.
+  void text_row(const char* label, const char* hint, std::string& value, const char* tooltip) {
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize(label).x - ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::InputTextWithHint(label, hint, &value);
+    track(label);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
   }
 
   // A name the server takes (letters, digits, '.', '_', '-').

@@ -101,6 +101,8 @@ class Service {
   void run();
   Response submit(const std::string& body, const std::string& client);
   Response submit_scene(const nlohmann::json& request, const std::string& client);
+  std::optional<Response> refuse_when_full(const std::string& client);
+  Response queue(const std::string& id, const std::string& name, const std::string& client);
   Response job(const std::string& id);
   Response cancel(const std::string& id);
   Response file(const std::string& id, const std::string& path);
