@@ -81,11 +81,16 @@ int main(int argc, char** argv) {
       throw vgd::Error("--listen", "", host + " is not a loopback address: give --token-file (clients must send it)");
     vgd::net::Service service(so);
     vgd::net::HttpServer server(service, host, static_cast<unsigned short>(*port));
-    std::printf("vgd-server: listening on http://%s:%u (data %s, %d workers, vgd %s)%s\n", host.c_str(), server.port(),
-                data.c_str(), workers, so.exe.c_str(), so.token.empty() ? "" : ", token required");
+    // One write, the requeued jobs first: whoever waits for "listening on" in
+    // a line-buffered log finds both.
+    std::string hello;
     if (service.requeued_at_start() > 0)
-      std::printf("vgd-server: %d jobs that were running when the server stopped are queued again\n",
-                  service.requeued_at_start());
+      hello += "vgd-server: " + std::to_string(service.requeued_at_start()) +
+               " jobs that were running when the server stopped are queued again\n";
+    hello += "vgd-server: listening on http://" + host + ":" + std::to_string(server.port()) + " (data " +
+             data + ", " + std::to_string(workers) + " workers, vgd " + so.exe.string() + ")" +
+             (so.token.empty() ? "" : ", token required") + "\n";
+    std::fputs(hello.c_str(), stdout);
     std::fflush(stdout);
     std::thread waiter([&] {
       int sig = 0;

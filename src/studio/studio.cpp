@@ -16,6 +16,7 @@
 
 #include "drape_job.hpp"
 #include "gl.hpp"
+#include "vgd/core/data.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
@@ -144,6 +145,41 @@ struct Studio::Impl {
   double last_preview = -1e9;
   double azimuth = 35, elevation = 8;
   int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch)
+
+  // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
+  // file, MATERIAL id, short name, and its figures for a tooltip.
+  struct Fabric {
+    fs::path file;
+    std::string id, name, figures;
+  };
+  std::optional<std::vector<Fabric>> fabrics;
+  const std::vector<Fabric>& fabric_library() {
+    if (fabrics) return *fabrics;
+    fabrics.emplace();
+    try {
+      std::vector<fs::path> files;
+      for (const auto& e : fs::directory_iterator(data_file("materials/shirting.xvc").parent_path()))
+        if (e.path().extension() == ".xvc" && e.path().stem() != "seed-flag") files.push_back(e.path());
+      std::sort(files.begin(), files.end());
+      for (const auto& f : files) {
+        const xvc::Document d = xvc::load_file(f);
+        const auto* mats = d.container("MATERIALS");
+        if (!mats || mats->children.empty()) continue;
+        const xvc::Node& m = mats->children.front();
+        Fabric fab{f, std::string(m.id()), f.stem().string(), std::string(m.attribute("name"))};  // figures: its full name, then values
+        for (const auto& p : m.children) {
+          const std::string name(p.attribute("name"));
+          if (name == "density" || name == "spring.warp" || name == "spring.weft" || name == "E_warp" ||
+              name == "E_weft" || name == "G")
+            fab.figures += "\n" + name + " " + std::string(p.attribute("value")) + " " + std::string(p.attribute("unit"));
+        }
+        fabrics->push_back(std::move(fab));
+      }
+    } catch (const std::exception& e) {
+      say(std::string("The fabric library cannot be read: ") + e.what(), true);
+    }
+    return *fabrics;
+  }
   std::optional<mesh::SurfaceMesh> body;
   LiveCloth cloth;
   std::function<void()> restore;
@@ -746,6 +782,7 @@ struct Studio::Impl {
     if (ImGui::InputDouble("limit s", &drape.time_limit, 0, 0, "%.1f"))
       drape.time_limit = std::clamp(drape.time_limit, 0.04, 120.0);
     track("time limit");
+    fabric_combo();
     body_row();
     server_row();
     ImGui::EndDisabled();
@@ -830,6 +867,31 @@ struct Studio::Impl {
     for (const auto& n : body_notes) ImGui::TextDisabled("%s", n.c_str());
   }
 
+  // The fabric of the next drape: the garment's own (its document's MATERIAL,
+  // else as vgd dress chooses: the shipped knit for legs cut for stretch,
+  // shirting otherwise) or one of the shipped fabrics.
+  void fabric_combo() {
+    ImGui::SetNextItemWidth(160);
+    const auto& lib = fabric_library();
+    std::string current = "garment's";
+    for (const auto& f : lib)
+      if (!drape.material_xvc.empty() && f.file == drape.material_xvc) current = f.name;
+    if (ImGui::BeginCombo("fabric", current.c_str())) {
+      if (ImGui::Selectable("garment's", drape.material_xvc.empty())) drape.material_xvc.clear(), drape.material_id.clear();
+      track("fabric:garment's");
+      for (const auto& f : lib) {
+        if (ImGui::Selectable(f.name.c_str(), f.file == drape.material_xvc)) drape.material_xvc = f.file, drape.material_id = f.id;
+        track("fabric:" + f.name);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.figures.c_str());
+      }
+      ImGui::EndCombo();
+    }
+    track("fabric");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The fabric of the next drape: the garment's own MATERIAL (else shirting, or the shipped "
+                        "knit for legs cut for stretch) or a shipped fabric (docs/fabric-lab.md)");
+  }
+
   // The vgd-server that "Simulate on server" sends the drape to.
   void server_row() {
     text_row("server", "a vgd-server to simulate on (http://127.0.0.1:8765)", server_url,
@@ -873,6 +935,7 @@ struct Studio::Impl {
       dress::PrepareOptions po;
       po.size = drape.size;
       if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) po.avatar = drape.avatar->file.string();
+      po.fabric_given = !drape.material_xvc.empty();
       const dress::Preparation prep = dress::prepare_garment(prepared, po);
       xvc::save_file(prepared, copy);
       dress::DrapeOptions d = drape;
@@ -909,6 +972,7 @@ struct Studio::Impl {
         r.time_limit = drape.time_limit;
         r.spacing = drape.spacing;
         r.outputs = {"certificate", "trj"};
+        if (!drape.material_xvc.empty()) r.fabric = drape.material_xvc.stem().string();  // a shipped fabric, by name
         if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) {
           r.avatar_name = server_name(drape.avatar->file.filename().string(), "body" + drape.avatar->file.extension().string());
           r.avatar_bytes = read_file(drape.avatar->file);
@@ -1410,10 +1474,10 @@ void Studio::draw() {
 
   ImGui::SameLine();
   ImGui::BeginChild("right", {right_w, body_h});
-  // Rows: size and quality; self-collision, spacing, limit; body; its unit,
-  // up, facing; server; Drape, Simulate on server, Stop; progress; the
+  // Rows: size and quality; self-collision, spacing, limit; fabric; body; its
+  // unit, up, facing; server; Drape, Simulate on server, Stop; progress; the
   // certificate; the body's notes.
-  const float sim_rows = 7.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
+  const float sim_rows = 8.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
   ImGui::BeginChild("simulate", {0, sim_rows * ImGui::GetFrameHeightWithSpacing() + 8}, true);
   I.simulate_panel();
   ImGui::EndChild();

@@ -121,6 +121,22 @@ TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
     ASSERT_TRUE(def.integrator.preset);
     EXPECT_EQ(*def.integrator.preset, q) << name;
   }
+  // The fabric combo: a shipped fabric reaches the drape's scene; "garment's"
+  // gives the document's own back.
+  h.click("fabric");
+  h.click("fabric:denim");
+  EXPECT_EQ(o.material_xvc.filename(), "denim.xvc");
+  {
+    vgd::dress::DrapeOptions d = o;
+    d.garment = kSkirt;
+    const auto def = vgd::dress::drape_scene(d);
+    ASSERT_TRUE(def.materials.count("fabric"));
+    EXPECT_EQ(def.materials.at("fabric").xvc.filename(), "denim.xvc");
+    EXPECT_EQ(def.materials.at("fabric").id, "denim");
+  }
+  h.click("fabric");
+  h.click("fabric:garment's");
+  EXPECT_TRUE(o.material_xvc.empty());
   // Unticking self-collision by hand outlasts a preset change.
   h.click("self-collision");
   EXPECT_FALSE(o.self_collision);

@@ -31,6 +31,9 @@ struct ServerProcess {
     std::vector<std::string> args = {VGD_SERVER_EXE, "--listen", "127.0.0.1:0", "--data", data.string(), "--vgd",
                                      VGD_EXE};
     args.insert(args.end(), extra.begin(), extra.end());
+    // The log may hold earlier runs' lines (a restart): only what this run appends counts.
+    std::error_code size_ec;
+    const auto before = std::filesystem::exists(log, size_ec) ? std::filesystem::file_size(log, size_ec) : 0;
     pid = ::fork();
     if (pid == 0) {
       const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
@@ -42,11 +45,12 @@ struct ServerProcess {
       ::execv(argv[0], argv.data());
       ::_exit(127);
     }
-    // The port it printed ("listening on http://127.0.0.1:PORT"), the last one in a log shared by restarts.
+    // The port it printed ("listening on http://127.0.0.1:PORT") in what it appended to the log.
     for (int i = 0; i < 200 && port == 0; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       try {
-        const std::string t = read_file(log);
+        const std::string all = read_file(log);
+        const std::string t = all.size() > before ? all.substr(before) : std::string();
         const auto at = t.rfind("listening on http://127.0.0.1:");
         if (at != std::string::npos) port = std::stoi(t.substr(at + 30));
       } catch (const Error&) {
