@@ -30,6 +30,18 @@ struct Options {
   double autosave_s = 120;
 };
 
+// Where the window keeps its recent files: $XDG_STATE_HOME/vgd/recent-files,
+// else ~/.local/state/vgd/recent-files (none without a home).
+std::filesystem::path recent_store() {
+  std::filesystem::path base;
+  if (const char* x = std::getenv("XDG_STATE_HOME"); x && *x) base = x;
+  else if (const char* h = std::getenv("HOME"); h && *h) base = std::filesystem::path(h) / ".local" / "state";
+  if (base.empty()) return {};
+  std::error_code ec;
+  std::filesystem::create_directories(base / "vgd", ec);
+  return base / "vgd" / "recent-files";
+}
+
 // The server's token: --token-file, else $VGD_TOKEN (as vgd remote).
 std::string token(const Options& o) {
   if (!o.token_file.empty()) return std::string(vgd::trim(vgd::read_file(o.token_file)));
@@ -67,6 +79,7 @@ int run_window(const Options& o) {
       if (!o.avatar.empty()) studio.set_body(o.avatar, o.unit, o.up, o.facing);
       studio.set_server(o.server, token(o));
       studio.set_autosave_seconds(o.autosave_s);
+      studio.set_recent_store(recent_store());
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
       for (int frame = 1; !studio.quit_confirmed(); ++frame) {
         // The close button asks about unsaved changes first (Studio::request_close).

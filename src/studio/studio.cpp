@@ -186,6 +186,24 @@ struct Studio::Impl {
 
   // Dialogs.
   bool want_open = false, want_save_as = false, want_export = false;
+  // Recent files, newest first (File > Open Recent), kept in `recent_store`
+  // when the host gives one.
+  fs::path recent_store;
+  std::vector<fs::path> recent;
+  void remember(const fs::path& f) {
+    const fs::path a = fs::absolute(f);
+    recent.erase(std::remove(recent.begin(), recent.end(), a), recent.end());
+    recent.insert(recent.begin(), a);
+    if (recent.size() > 10) recent.resize(10);
+    if (recent_store.empty()) return;
+    std::string text;
+    for (const auto& r : recent) text += r.string() + "\n";
+    try {
+      write_file_atomic(recent_store, text);
+    } catch (const std::exception&) {
+      // A list of recent files is a convenience: not worth an error dialog.
+    }
+  }
   // DXF import: the dialog's file and choices, then its report.
   bool want_import = false, want_import_report = false;
   fs::path import_path;
@@ -463,6 +481,18 @@ struct Studio::Impl {
     if (file_open) {
       if (ImGui::MenuItem("Open...", "Ctrl+O")) want_open = true;
       track("Open...");
+      const bool recent_open = ImGui::BeginMenu("Open Recent", !recent.empty());
+      track("Open Recent");
+      if (recent_open) {
+        fs::path chosen;
+        for (std::size_t k = 0; k < recent.size(); ++k) {
+          if (ImGui::MenuItem(recent[k].filename().string().c_str())) chosen = recent[k];
+          track("recent:" + std::to_string(k + 1));
+          if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", recent[k].string().c_str());
+        }
+        ImGui::EndMenu();
+        if (!chosen.empty()) self.open(chosen);
+      }
       if (ImGui::MenuItem("Save", "Ctrl+S", false, !file.empty())) self.save();
       track("Save");
       if (ImGui::MenuItem("Save as...")) want_save_as = true;
@@ -1301,6 +1331,7 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
     I.say("Opened " + path.string() + ": " + std::to_string(I.doc.patterns().size()) + " patterns, " +
           std::to_string(xvc::list_seams(I.doc).size()) + " seams.");
     I.autosaved_rev = -1;
+    I.remember(I.file);
     I.look_for_autosave();
     return true;
   } catch (const std::exception& e) {
@@ -1357,6 +1388,7 @@ bool Studio::import_dxf(const fs::path& path, const DxfImport& options) {
       I.import_report.push_back(diag.entity.empty() ? diag.message : diag.entity + ": " + diag.message);
     I.import_report.push_back("Save writes it as " + target.filename().string() + " beside the DXF.");
     I.want_import_report = true;
+    I.remember(path);
     I.say("Imported " + path.filename().string() + ": " + std::to_string(s.pieces) + " pieces, " +
           std::to_string(r.diagnostics.items().size()) + " notes; unsaved (" + target.filename().string() + ").");
     return true;
@@ -1392,6 +1424,7 @@ bool Studio::save(const fs::path& path) {
     I.saved = I.doc;
     I.modified_rev = -1;
     I.say("Saved " + target.string() + ".");
+    I.remember(I.file);
     return true;
   } catch (const std::exception& e) {
     I.say("Cannot save " + target.string() + ": " + e.what(), true);
@@ -1512,6 +1545,17 @@ void Studio::set_body(const std::filesystem::path& file, const std::string& unit
   a.file = file, a.unit = unit, a.up = up, a.facing = facing;
   impl_->drape.avatar = a;
 }
+void Studio::set_recent_store(const fs::path& file) {
+  impl_->recent_store = file;
+  impl_->recent.clear();
+  try {
+    for (const auto& line : split(read_file(file), '\n'))
+      if (!trim(line).empty() && impl_->recent.size() < 10) impl_->recent.emplace_back(std::string(trim(line)));
+  } catch (const Error&) {
+    // None yet.
+  }
+}
+const std::vector<fs::path>& Studio::recent_files() const { return impl_->recent; }
 void Studio::set_autosave_seconds(double seconds) { impl_->autosave_s = std::max(0.0, seconds); }
 bool Studio::recovery_offered() const { return impl_->recovered.has_value(); }
 void Studio::set_server(const std::string& url, const std::string& token) {

@@ -674,3 +674,31 @@ TEST(Studio, ADxfOpensThroughTheImportDialogWithItsReport) {
   EXPECT_EQ(kept, pieces) << "the document that was open stays";
 }
 
+// File > Open Recent: the documents opened or saved, newest first, kept in
+// the store the host gives and read back by the next studio.
+TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
+  const fs::path dir = temp_dir("recent");
+  const fs::path store = dir / "recent-files";
+  {
+    Harness h;
+    h.studio().set_recent_store(store);
+    EXPECT_TRUE(h.studio().recent_files().empty());
+    ASSERT_TRUE(h.studio().open(kSkirt));
+    ASSERT_TRUE(h.studio().open(kTShirt));
+    ASSERT_TRUE(h.studio().open(kSkirt));
+    ASSERT_EQ(h.studio().recent_files().size(), 2u) << "each file once";
+    EXPECT_EQ(h.studio().recent_files()[0], fs::absolute(kSkirt));
+    EXPECT_EQ(h.studio().recent_files()[1], fs::absolute(kTShirt));
+  }
+  EXPECT_EQ(vgd::read_file(store), fs::absolute(kSkirt).string() + "\n" + fs::absolute(kTShirt).string() + "\n");
+  Harness h;
+  h.studio().set_recent_store(store);
+  ASSERT_EQ(h.studio().recent_files().size(), 2u);
+  h.frame();
+  h.click("File");
+  h.click("Open Recent");
+  h.click("recent:2");
+  EXPECT_EQ(h.studio().file(), fs::absolute(kTShirt)) << h.studio().status();
+  EXPECT_EQ(h.studio().recent_files()[0], fs::absolute(kTShirt));
+}
+

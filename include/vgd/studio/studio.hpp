@@ -126,6 +126,11 @@ class Studio {
   // into place. Shows and returns false on failure.
   bool save(const std::filesystem::path& file = {});
 
+  // Recent files (File > Open Recent, newest first, ten at most): read from
+  // and kept in `file` (one path a line); without one, for this run only.
+  void set_recent_store(const std::filesystem::path& file);
+  const std::vector<std::filesystem::path>& recent_files() const;
+
   // Autosave (never lose work): a document with unsaved changes is written
   // to FILE.autosave every `seconds` of changes (0: at every change) and at
   // every drape's start; the file is removed when the document is saved or
