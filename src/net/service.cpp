@@ -280,7 +280,8 @@ void Service::run() {
           po.log = dir / "worker.log";
           po.deadline_s = o_.scene_wall_limit;
           po.memory_mb = o_.scene_memory_mb;
-          fs::create_directories(dir / "out");
+          std::error_code mkdir_ec;  // a folder that cannot be made: vgd simulate says so, the job fails
+          fs::create_directories(dir / "out", mkdir_ec);
           running.push_back(std::make_unique<Running>(Running{
               next->id, batch::Process(o_.exe, {"simulate", (dir / "input" / "scene.json").string(), "--trj",
                                                 (dir / "out" / "scene.trj").string()},
