@@ -399,7 +399,10 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                                    std::pair{pattern::Role::leg, pattern::Half::back}}) {
     const std::string what = std::string(pattern::role_name(role)) +
                              (half == pattern::Half::none ? "" : "'s " + std::string(pattern::half_name(half)));
-    const auto in_group = [&](const std::string& n) { return roles[n].role == role && roles[n].half == half; };
+    // Copies: clang 14 cannot capture structured bindings in a lambda.
+    const pattern::Role group_role = role;
+    const pattern::Half group_half = half;
+    const auto in_group = [&](const std::string& n) { return roles[n].role == group_role && roles[n].half == group_half; };
     std::vector<std::string> alts;  // a left and a right one are a pair, not alternatives
     for (const auto& name : out.pieces)
       if (in_group(name) && roles[name].side == pattern::Side::none && !kept.count(name)) alts.push_back(name);
