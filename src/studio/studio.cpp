@@ -123,6 +123,9 @@ struct Studio::Impl {
   std::vector<std::pair<std::string, std::string>> picked;
   std::string seam_name = "seam";
   std::map<std::pair<std::string, std::string>, Rect> stretch_rects;
+  std::vector<xvc::SeamSuggestion> suggestions;  // the dialog's, while it is open
+  std::vector<char> accepted;                    // per suggestion: ticked
+  bool want_suggestions = false;
 
   // Drape.
   dress::DrapeOptions drape;
@@ -757,21 +760,68 @@ struct Studio::Impl {
     picked.clear();
   }
 
+  // Suggest seams: vgd's suggestions for the size shown, listed in a dialog
+  // to accept or reject one by one; the checked ones are added as one
+  // undoable command.
   void suggest() {
     xvc::SeamOptions o;
     o.size = drape.size;
-    std::vector<xvc::Node> nodes;
     try {
-      for (const auto& s : xvc::suggest_seams(doc, o)) nodes.push_back(xvc::seam_node(s));
+      suggestions = xvc::suggest_seams(doc, o);
     } catch (const std::exception& e) {
       say(std::string("Suggesting seams failed: ") + e.what(), true);
       return;
     }
-    if (nodes.empty()) {
+    if (suggestions.empty()) {
       say("No seams to suggest for size " + drape.size + ".");
       return;
     }
-    run(std::make_unique<xvc::AddSeams>(std::move(nodes)));
+    accepted.assign(suggestions.size(), 1);
+    want_suggestions = true;
+  }
+
+  void suggestions_dialog() {
+    if (want_suggestions) ImGui::OpenPopup("Suggested seams"), want_suggestions = false;
+    if (!ImGui::BeginPopupModal("Suggested seams", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    ImGui::Text("Size %s: tick the seams to add (hover one for why it was suggested).", drape.size.c_str());
+    const float line = ImGui::GetFrameHeightWithSpacing();
+    ImGui::BeginChild("suggestions", {760, std::min(16.0f, static_cast<float>(suggestions.size()) + 0.5f) * line}, false);
+    auto piece = [&](const std::string& id) {
+      const auto* n = doc.find(id);
+      return n ? std::string(n->attribute("piece")) : id;
+    };
+    for (std::size_t k = 0; k < suggestions.size(); ++k) {
+      const auto& sg = suggestions[k];
+      std::string label = sg.name + ": " + (sg.hems.empty() ? std::string() : piece(sg.hems[0].pattern)) + " to ";
+      for (std::size_t h = 1; h < sg.hems.size(); ++h) label += (h > 1 ? " + " : "") + piece(sg.hems[h].pattern);
+      const double ease_mm = std::abs(1000 * sg.ease) < 0.05 ? 0.0 : 1000 * sg.ease;  // no "-0.0"
+      label += ", ease " + format_fixed(ease_mm, 1) + " mm, score " + format_fixed(sg.score, 2) + "##" + std::to_string(k);
+      bool on = accepted[k] != 0;
+      if (ImGui::Checkbox(label.c_str(), &on)) accepted[k] = on ? 1 : 0;
+      track("suggestion:" + std::to_string(k + 1));
+      if (ImGui::IsItemHovered() && !sg.reason.empty()) ImGui::SetTooltip("%s", sg.reason.c_str());
+    }
+    ImGui::EndChild();
+    const auto n = static_cast<std::size_t>(std::count(accepted.begin(), accepted.end(), 1));
+    ImGui::BeginDisabled(n == 0);
+    if (ImGui::Button(("Add " + std::to_string(n) + " seams").c_str())) {
+      std::vector<xvc::Node> nodes;
+      for (std::size_t k = 0; k < suggestions.size(); ++k)
+        if (accepted[k]) nodes.push_back(xvc::seam_node(suggestions[k]));
+      ImGui::CloseCurrentPopup();
+      run(std::make_unique<xvc::AddSeams>(std::move(nodes)));
+      suggestions.clear();
+    }
+    track("suggestions:add");
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      ImGui::CloseCurrentPopup();
+      suggestions.clear();
+      say("No suggested seam added.");
+    }
+    track("suggestions:cancel");
+    ImGui::EndPopup();
   }
 
   void simulate_panel() {
@@ -1183,6 +1233,7 @@ struct Studio::Impl {
       }
       ImGui::EndPopup();
     }
+    suggestions_dialog();
     if (want_import) ImGui::OpenPopup("Import DXF"), want_import = false;
     if (ImGui::BeginPopupModal("Import DXF", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::Text("%s: a pattern file (AAMA/ASTM DXF)", import_path.filename().string().c_str());

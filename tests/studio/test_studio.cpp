@@ -299,6 +299,8 @@ TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   h.click("Suggest seams");
+  h.frames(2);
+  h.click("suggestions:add");
   // The skirt has its seams already: suggestions add them a second time, one undo step.
   const std::size_t seams = vgd::xvc::list_seams(h.studio().document()).size();
   ASSERT_TRUE(h.studio().modified()) << h.studio().status();
@@ -700,5 +702,38 @@ TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
   h.click("recent:2");
   EXPECT_EQ(h.studio().file(), fs::absolute(kTShirt)) << h.studio().status();
   EXPECT_EQ(h.studio().recent_files()[0], fs::absolute(kTShirt));
+}
+
+// Suggested seams are reviewed one by one: the dialog lists each with its
+// pieces, ease and score; the ticked ones are added as one undoable step,
+// Cancel adds none.
+TEST(Studio, SuggestedSeamsAreAcceptedOrRejectedOneByOne) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  const std::size_t before = vgd::xvc::list_seams(h.studio().document()).size();
+  vgd::xvc::SeamOptions o;
+  o.size = h.studio().drape_options().size;
+  const auto expected = vgd::xvc::suggest_seams(h.studio().document(), o);
+  ASSERT_GE(expected.size(), 3u);
+  h.click("Suggest seams");
+  h.frames(2);
+  ASSERT_TRUE(h.studio().widget("suggestion:" + std::to_string(expected.size())));
+  EXPECT_FALSE(h.studio().widget("suggestion:" + std::to_string(expected.size() + 1)));
+  // Untick the first and the last.
+  h.click("suggestion:1");
+  h.click("suggestion:" + std::to_string(expected.size()));
+  h.click("suggestions:add");
+  const auto after = vgd::xvc::list_seams(h.studio().document());
+  ASSERT_EQ(after.size(), before + expected.size() - 2);
+  EXPECT_EQ(after.back().name, expected[expected.size() - 2].name);
+  h.key("ctrl+z");
+  EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), before) << "one undo step";
+  // Cancel adds nothing.
+  h.click("Suggest seams");
+  h.frames(2);
+  h.click("suggestions:cancel");
+  EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), before);
+  EXPECT_FALSE(h.studio().modified());
 }
 
