@@ -629,6 +629,18 @@ struct Studio::Impl {
     }
     if (ImGui::Button("Delete")) delete_selected();
     track("Delete");
+    if (node->tag == "PATTERN") {
+      // A piece: a copy of it (its own block, piece name and gradation), or
+      // it mirrored about its grain line (a left piece from a right one).
+      ImGui::SameLine();
+      if (ImGui::Button("Duplicate")) run(std::make_unique<xvc::CopyPattern>(selected));
+      track("Duplicate");
+      ImGui::SameLine();
+      if (ImGui::Button("Flip")) run(std::make_unique<xvc::MirrorPattern>(selected));
+      track("Flip");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Mirror the piece about its grain line (vertical without one); its seams follow it");
+    }
   }
 
   void pattern_panel() {

@@ -737,3 +737,27 @@ TEST(Studio, SuggestedSeamsAreAcceptedOrRejectedOneByOne) {
   EXPECT_FALSE(h.studio().modified());
 }
 
+// A piece selected in the tree is duplicated (a piece of its own) or flipped
+// about its grain line, each one undo step.
+TEST(Studio, APieceIsDuplicatedAndFlippedFromTheInspector) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  ASSERT_FALSE(front.empty());
+  const std::size_t before = h.studio().document().patterns().size();
+  h.click("tree:" + front);
+  h.click("Duplicate");
+  ASSERT_EQ(h.studio().document().patterns().size(), before + 1) << h.studio().status();
+  EXPECT_EQ(h.studio().document().find(h.studio().selected())->attribute("piece"), "FRONT copy");
+  h.key("ctrl+z");
+  EXPECT_EQ(h.studio().document().patterns().size(), before);
+  const auto original = h.studio().document();
+  h.click("tree:" + front);
+  h.click("Flip");
+  EXPECT_FALSE(h.studio().document() == original) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("Mirror"), std::string::npos) << h.studio().status();
+  h.key("ctrl+z");
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+}
+
