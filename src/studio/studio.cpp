@@ -347,6 +347,27 @@ struct Studio::Impl {
     }
   }
 
+  // A new document in place of the open one (opened or imported): its file,
+  // what counts as saved, a fresh history, nothing of the last drape.
+  void replace_document(xvc::Document d, fs::path f, xvc::Document as_saved) {
+    drop_autosave();  // the document left: saved, or its changes discarded when asked (kept while unanswered)
+    recovered.reset();
+    undo.reset();
+    doc = std::move(d);
+    undo = std::make_unique<xvc::UndoStack>(doc);
+    saved = std::move(as_saved);
+    file = std::move(f);
+    selected.clear();
+    picked.clear();
+    drape.size.clear();
+    cert.reset();
+    body.reset();
+    cloth = {};
+    autosaved_rev = -1;
+    changed();
+    refresh_sizes();
+  }
+
   void recover(bool yes) {
     if (yes && recovered) {
       undo.reset();
@@ -1376,21 +1397,8 @@ bool Studio::open(const fs::path& path, bool discard_changes) {
   }
   try {
     xvc::Document d = xvc::load_file(path);
-    I.drop_autosave();  // the document left: saved, or its changes discarded when asked (kept while unanswered)
-    I.recovered.reset();
-    I.undo.reset();
-    I.doc = std::move(d);
-    I.undo = std::make_unique<xvc::UndoStack>(I.doc);
-    I.saved = I.doc;
-    I.file = fs::absolute(path);
-    I.selected.clear();
-    I.picked.clear();
-    I.drape.size.clear();
-    I.cert.reset();
-    I.body.reset();
-    I.cloth = {};
-    I.changed();
-    I.refresh_sizes();
+    xvc::Document as_saved = d;
+    I.replace_document(std::move(d), fs::absolute(path), std::move(as_saved));
     I.say("Opened " + path.string() + ": " + std::to_string(I.doc.patterns().size()) + " patterns, " +
           std::to_string(xvc::list_seams(I.doc).size()) + " seams.");
     I.autosaved_rev = -1;
@@ -1425,22 +1433,7 @@ bool Studio::import_dxf(const fs::path& path, const DxfImport& options) {
     fs::path target = fs::absolute(path).replace_extension(".xvc");
     for (int k = 2; fs::exists(target) || fs::exists(Impl::autosave_path(target)); ++k)
       target = fs::absolute(path).parent_path() / (path.stem().string() + "-" + std::to_string(k) + ".xvc");
-    I.drop_autosave();
-    I.recovered.reset();
-    I.undo.reset();
-    I.doc = std::move(d);
-    I.undo = std::make_unique<xvc::UndoStack>(I.doc);
-    I.saved = xvc::Document{};  // never saved: the title shows it
-    I.file = target;
-    I.selected.clear();
-    I.picked.clear();
-    I.drape.size.clear();
-    I.cert.reset();
-    I.body.reset();
-    I.cloth = {};
-    I.autosaved_rev = -1;
-    I.changed();
-    I.refresh_sizes();
+    I.replace_document(std::move(d), target, xvc::Document{});  // never saved: the title shows it
     const auto& s = r.summary;
     I.import_report.clear();
     I.import_report.push_back(path.filename().string() + ": " + std::to_string(s.pieces) + " pieces in " +
