@@ -737,6 +737,7 @@ struct Studio::Impl {
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
       }
+      draw_seam_pairing(dl);
       dl->PopClipRect();
       if (hovered && ImGui::IsItemClicked()) {
         const auto it = std::find(picked.begin(), picked.end(), *hovered);
@@ -777,6 +778,41 @@ struct Studio::Impl {
     ImGui::SameLine();
     if (ImGui::Button("Suggest seams")) suggest();
     track("Suggest seams");
+  }
+
+  // The SEAM selected in the tree: lines from hem A's start to hem B's start
+  // and from end to end (B: its hems one after another, each as sewn), a dot
+  // at the starts, so the pairing and its direction show (a twisted seam's
+  // lines cross).
+  void draw_seam_pairing(ImDrawList* dl) {
+    const xvc::Node* node = selected.empty() ? nullptr : doc.find(selected);
+    if (!node || node->tag != "SEAM") return;
+    std::vector<xvc::HemRef> hems;
+    for (const auto& si : xvc::list_seams(doc))
+      if (si.id == selected) hems = si.hems;
+    if (hems.size() < 2) return;
+    auto stretch = [&](const std::string& pattern, const std::string& id) -> const StretchView* {
+      for (const auto& pv : pieces)
+        if (pv.pattern_id == pattern)
+          for (const auto& sv : pv.stretches)
+            if (sv.id == id && !sv.points.empty()) return &sv;
+      return nullptr;
+    };
+    // A hem's ends as sewn (screen), or nothing when a piece is not shown.
+    auto ends = [&](const xvc::HemRef& h) -> std::optional<std::pair<ImVec2, ImVec2>> {
+      const StretchView* a = stretch(h.pattern, h.from);
+      const StretchView* b = stretch(h.pattern, h.to);
+      if (!a || !b) return std::nullopt;
+      const ImVec2 first = to_screen(a->points.front()), last = to_screen(b->points.back());
+      return h.reverse ? std::make_pair(last, first) : std::make_pair(first, last);
+    };
+    const auto a = ends(hems.front()), b0 = ends(hems[1]), b1 = ends(hems.back());
+    if (!a || !b0 || !b1) return;
+    const ImU32 col = rgb(150, 60, 200);
+    dl->AddLine(a->first, b0->first, col, 1.5f);
+    dl->AddLine(a->second, b1->second, col, 1.5f);
+    dl->AddCircleFilled(a->first, 4.0f, col);
+    dl->AddCircleFilled(b0->first, 4.0f, col);
   }
 
   void add_seam() {

@@ -761,3 +761,29 @@ TEST(Studio, APieceIsDuplicatedAndFlippedFromTheInspector) {
   EXPECT_TRUE(h.studio().document() == original) << "one undo step";
 }
 
+// A seam selected in the tree shows its pairing in the pattern view: lines
+// from hem A's ends to hem B's ends and dots at their starts (purple), none
+// when a piece is selected instead.
+TEST(Studio, ASelectedSeamShowsItsPairingInThePatternView) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  auto purple = [&] {
+    const auto shot = h.screenshot();
+    int n = 0;
+    for (int y = 0; y < shot.height; ++y)
+      for (int x = 0; x < shot.width; ++x) {
+        const auto* p = shot.pixel(x, y);
+        n += std::abs(p[0] - 150) < 12 && std::abs(p[1] - 60) < 12 && std::abs(p[2] - 200) < 12;
+      }
+    return n;
+  };
+  const std::string seam = vgd::xvc::list_seams(h.studio().document()).front().id;
+  h.click("tree:" + seam);
+  h.frames(2);
+  EXPECT_GT(purple(), 40) << "the pairing's lines and dots";
+  h.click("tree:" + pattern_id(h.studio().document(), "FRONT", "34"));
+  h.frames(2);
+  EXPECT_EQ(purple(), 0);
+}
+
