@@ -51,17 +51,25 @@ json answer(const vgd::net::Reply& r, const std::string& what) {
 json watch(const vgd::net::Client& c, const std::string& id, const vgd::cli::Common& common) {
   const bool tty = isatty(2) == 1;
   long long frames = 0;
+  double frame_t = 0;  // s: the last frame's simulated time
   json end, progress;
   std::string stage;
   auto draw = [&](bool final) {
     if (common.quiet) return;
     std::string line = "job " + id + ": ";
     if (progress.is_object()) {
-      line += progress.value("stage", "") + "  t " + vgd::format_fixed(progress.value("simulated_s", 0.0), 2) +
-              " s  seams " + std::to_string(progress.value("seams_closed", 0)) + "/" +
-              std::to_string(progress.value("seam_pairs", 0)) + "  KE " +
-              vgd::format_significant(progress.value("kinetic_energy_j", 0.0), 3) + " J/particle  wall " +
-              vgd::format_fixed(progress.value("wall_s", 0.0), 1) + " s";
+      // What the job reports: a drape all of it, a scene its stage only (its
+      // frames carry the simulated time).
+      line += progress.value("stage", "") + "  t " +
+              vgd::format_fixed(progress.value("simulated_s", frame_t), 2) + " s";
+      if (progress.contains("seam_pairs"))
+        line += "  seams " + std::to_string(progress.value("seams_closed", 0)) + "/" +
+                std::to_string(progress.value("seam_pairs", 0));
+      if (progress.contains("kinetic_energy_j"))
+        line += "  KE " + vgd::format_significant(progress.value("kinetic_energy_j", 0.0), 3) + " J/particle";
+      if (progress.contains("wall_s")) line += "  wall " + vgd::format_fixed(progress.value("wall_s", 0.0), 1) + " s";
+    } else if (frames > 0) {
+      line += "t " + vgd::format_fixed(frame_t, 2) + " s";
     } else {
       line += "waiting for the first frame";
     }
@@ -88,6 +96,7 @@ json watch(const vgd::net::Client& c, const std::string& id, const vgd::cli::Com
       [&](const vgd::net::FrameMessage& f) {
         if (!f.checksum_ok) throw vgd::Error("job " + id, "frame " + std::to_string(f.seq), "checksum mismatch");
         ++frames;
+        frame_t = f.t;
         draw(false);
       });
   draw(true);

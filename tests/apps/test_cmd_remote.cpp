@@ -26,6 +26,31 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// A scene file is a scene job: run by the server's vgd simulate, followed to
+// its end with the simulated time of its frames, its trajectory downloaded;
+// one that names files on the server is refused with the field.
+TEST(CliRemote, ASceneFileIsASceneJob) {
+  const auto dir = scratch_dir("cli-remote-scene");
+  ServerProcess server(dir);
+  ASSERT_GT(server.port, 0);
+  const auto sub = run_vgd({"remote", "--server", server.url(), "submit",
+                            (source_dir() / "data/scenes/cloth-on-sphere.json").string(), "--watch"});
+  EXPECT_EQ(sub.code, 0) << sub.err;
+  const std::string id(trim(sub.out));
+  ASSERT_EQ(id.size(), 16u) << sub.out;
+  EXPECT_NE(sub.err.find("t 0.48 s"), std::string::npos) << "the last frame's time: " << sub.err;
+  EXPECT_EQ(sub.err.find("seams"), std::string::npos) << "a scene has no seams: " << sub.err;
+  EXPECT_NE(sub.err.find("job " + id + ": passed"), std::string::npos) << sub.err;
+  const auto get = run_vgd({"remote", "--server", server.url(), "get", id, "-o", (dir / "got").string()});
+  EXPECT_EQ(get.code, 0) << get.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "got" / "scene.trj"));
+  const auto refused = run_vgd({"remote", "--server", server.url(), "submit",
+                                (source_dir() / "data/scenes/drape-sphere.json").string()});
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_NE(refused.err.find("scene.materials.shirting.xvc: a scene job cannot name files"), std::string::npos)
+      << refused.err;
+}
+
 TEST(CliRemote, ADrapeSubmittedWatchedListedAndDownloaded) {
   const auto dir = scratch_dir("cli-remote");
   ServerProcess server(dir);
