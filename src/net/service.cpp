@@ -4,7 +4,9 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <chrono>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -83,6 +85,17 @@ std::optional<batch::Item> job_item(const fs::path& dir) {
   }
 }
 
+// A name a client may give a file it sends: letters, digits, '.', '_', '-',
+// not starting with '.', at most 100 bytes, ending in one of `extensions`
+// (any case): nothing that could leave the job's folder.
+bool safe_file_name(const std::string& name, std::initializer_list<const char*> extensions) {
+  if (name.empty() || name.size() > 100 || name[0] == '.' ||
+      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos)
+    return false;
+  const std::string ext = fs::path(name).extension().string();
+  return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return iequals(ext, e); });
+}
+
 // A scene job (docs/server.md, "Scene jobs"): its scene in input/scene.json,
 // run by `vgd simulate`, its trajectory in out/scene.trj.
 bool is_scene_job(const fs::path& dir) {
@@ -90,16 +103,21 @@ bool is_scene_job(const fs::path& dir) {
   return fs::exists(dir / "input" / "scene.json", ec);
 }
 
-// The files a finished scene job offers: its trajectory.
+// The files a finished scene job offers (its trajectory, with its size and
+// SHA-256), listed once when it passes in out/files.json, read on each look.
+void list_scene_files(const fs::path& dir) {
+  const std::string bytes = read_file(dir / "out" / "scene.trj");
+  const json files = json::array(
+      {{{"path", "scene.trj"}, {"bytes", bytes.size()}, {"sha256", batch::sha256_hex(bytes)}}});
+  write_file_atomic(dir / "out" / "files.json", files.dump(2));
+}
 json scene_files(const fs::path& dir) {
-  json files = json::array();
-  std::error_code ec;
-  const fs::path trj = dir / "out" / "scene.trj";
-  if (fs::exists(trj, ec)) {
-    const std::string bytes = read_file(trj);
-    files.push_back({{"path", "scene.trj"}, {"bytes", bytes.size()}, {"sha256", batch::sha256_hex(bytes)}});
+  try {
+    const json j = json::parse(read_file(dir / "out" / "files.json"), nullptr, false);
+    return j.is_array() ? j : json::array();
+  } catch (const Error&) {
+    return json::array();
   }
-  return files;
 }
 
 // Keys a scene job may not use: each names a file (materials' XVC documents,
@@ -240,9 +258,18 @@ void Service::run() {
       } else if (is_scene_job(dir)) {
         std::error_code ec;
         const auto res = r.process.result();
+        bool listed = false;
         if (res.ok() && fs::exists(dir / "out" / "scene.trj", ec)) {
+          try {
+            list_scene_files(dir);
+            listed = true;
+          } catch (const Error& e) {
+            store_.set_state(r.id, JobState::failed, "output", e.what());
+          }
+        }
+        if (listed) {
           store_.set_state(r.id, JobState::passed);
-        } else {
+        } else if (!res.ok() || !fs::exists(dir / "out" / "scene.trj", ec)) {
           std::string msg = last_message(dir / "worker.log");
           const std::string what = "the worker " + res.describe();
           const std::string cls = res.timed_out ? "time-out"
@@ -454,8 +481,7 @@ Response Service::submit(const std::string& body, const std::string& client) {
                           std::to_string(o_.max_document));
   std::string name = j.value("name", "garment.xvc");
   if (!j.value("name", json("garment.xvc")).is_string()) return error(400, "name: expected a string");
-  if (name.empty() || name.size() > 100 || name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
-      name[0] == '.' || !iequals(fs::path(name).extension().string(), ".xvc"))
+  if (!safe_file_name(name, {".xvc"}))
     return error(400, "name: '" + printable(name) + "' is not a file name ending in .xvc (letters, digits, '.', '_', '-')");
   if (auto refused = refuse_when_full(client)) return *refused;
   try {
@@ -504,10 +530,7 @@ Response Service::submit(const std::string& body, const std::string& client) {
       if (k != "name" && k != "data" && k != "unit" && k != "up" && k != "facing")
         return error(400, "avatar." + printable(k) + ": unknown (known: name, data, unit, up, facing)");
     avatar_name = a["name"];
-    const std::string ext = to_lower(fs::path(avatar_name).extension().string());
-    if (avatar_name.empty() || avatar_name.size() > 100 || avatar_name[0] == '.' ||
-        avatar_name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
-        (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".glb" && ext != ".gltf" && ext != ".fbx" && ext != ".dae"))
+    if (!safe_file_name(avatar_name, {".obj", ".ply", ".stl", ".glb", ".gltf", ".fbx", ".dae"}))
       return error(400, "avatar.name: '" + printable(avatar_name) +
                             "' is not a body file name (letters, digits, '.', '_', '-'; .obj .ply .stl .glb .gltf .fbx .dae)");
     if (s.contains("body_size")) return error(400, "avatar: give an uploaded body or settings.body_size, not both");
@@ -579,9 +602,7 @@ Response Service::submit_scene(const json& j, const std::string& client) {
   if (!j["scene"].is_object()) return error(400, "scene: expected the scene's JSON object (docs/scene.md)");
   if (!j.value("name", json("scene.json")).is_string()) return error(400, "name: expected a string");
   const std::string name = j.value("name", "scene.json");
-  if (name.empty() || name.size() > 100 || name[0] == '.' ||
-      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
-      !iequals(fs::path(name).extension().string(), ".json"))
+  if (!safe_file_name(name, {".json"}))
     return error(400, "name: '" + printable(name) + "' is not a file name ending in .json (letters, digits, '.', '_', '-')");
   const std::string text = j["scene"].dump(2, ' ', false, json::error_handler_t::replace);
   if (text.size() > o_.max_document)
