@@ -497,28 +497,28 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   }
   bool lower = false;
   for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
-  std::vector<const xvc::Node*> trunk, halves;  // the fronts and backs draped; the legs (halves or whole)
+  std::vector<const xvc::Node*> trunk, legs;  // the fronts and backs draped; the legs (halves or whole)
   for (const auto* p : mine) {
     const std::string name(p->attribute("piece"));
     const pattern::Role r = roles[name].role;
     if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
     if (r == pattern::Role::front || r == pattern::Role::back) trunk.push_back(p);
-    if (r == pattern::Role::leg) halves.push_back(p);
+    if (r == pattern::Role::leg) legs.push_back(p);
   }
   // Trousers: their hip is the legs' width 5-20 % of their length below the
   // waist (the seat, above the crotch's extension): halves' front and back,
   // a whole leg's both (leggings cut in one piece per leg).
-  const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, halves, 0.05, 0.20, true);
+  const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, legs, 0.05, 0.20, true);
   if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
-    // Trousers: their inseam (the longest seam named so that sews a half leg) is
+    // Trousers: their inseam (the longest seam named so that sews a leg) is
     // matched to the body's crotch height too, less kInseamEase (the hem clear of
     // the floor): a pattern's girth alone fits a short body with a wide hip as
     // well as a tall one, and trousers too long lie on the feet.
     double inseam = 0;
-    if (!halves.empty())
+    if (!legs.empty())
       for (const auto& s : xvc::list_seams(doc)) {
         if (s.name.find("inseam") == std::string::npos || s.hems.empty()) continue;
-        if (std::none_of(halves.begin(), halves.end(), [&](const xvc::Node* h) { return h->id() == s.hems[0].pattern; }))
+        if (std::none_of(legs.begin(), legs.end(), [&](const xvc::Node* h) { return h->id() == s.hems[0].pattern; }))
           continue;
         inseam = std::max(inseam, s.hems[0].length);
       }
@@ -586,7 +586,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // document. Not for tops: a file that writes a top's front and back as
   // halves cut once (Valentina's shirt) gives half their girth.
   const auto* materials = doc.container("MATERIALS");
-  if (!options.fabric_given && (!materials || materials->children.empty()) && lower && !halves.empty() && girth > 0) {
+  if (!options.fabric_given && (!materials || materials->children.empty()) && lower && !legs.empty() && girth > 0) {
     double body_girth = 0;
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
