@@ -150,7 +150,7 @@ struct Studio::Impl {
   int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
-  // file, MATERIAL id, short name, and its figures for a tooltip.
+  // file, MATERIAL id, short name, and for a tooltip its full name and figures.
   struct Fabric {
     fs::path file;
     std::string id, name, figures;
@@ -169,7 +169,7 @@ struct Studio::Impl {
         const auto* mats = d.container("MATERIALS");
         if (!mats || mats->children.empty()) continue;
         const xvc::Node& m = mats->children.front();
-        Fabric fab{f, std::string(m.id()), f.stem().string(), std::string(m.attribute("name"))};  // figures: its full name, then values
+        Fabric fab{f, std::string(m.id()), f.stem().string(), std::string(m.attribute("name"))};
         for (const auto& p : m.children) {
           const std::string name(p.attribute("name"));
           if (name == "density" || name == "spring.warp" || name == "spring.weft" || name == "E_warp" ||
