@@ -70,6 +70,17 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
                       cm(l.neck).c_str(), cm(l.shoulder).c_str(), cm(l.bust).c_str(), cm(l.waist).c_str(),
                       cm(l.hip).c_str(), cm(l.crotch).c_str(), cm(l.knee).c_str(), cm(l.ankle).c_str(),
                       l.left_arm && l.right_arm ? "both" : l.left_arm ? "left only" : l.right_arm ? "right only" : "none");
+          for (const auto& [side, arm] : {std::pair{"left", &l.left_arm}, {"right", &l.right_arm}})
+            if (*arm) {
+              const auto& a = **arm;
+              const double along = (a.wrist - a.shoulder).norm();
+              std::printf("%s elbow: %s from the shoulder joint, %.0f %% of the way to the wrist (%s)\n", side,
+                          cm((a.elbow - a.shoulder).norm()).c_str(),
+                          along > 0 ? 100 * (a.elbow - a.shoulder).norm() / along : 0.0,
+                          a.elbow_from_skeleton ? "the file's skeleton"
+                          : a.elbow_on_surface  ? "where the arm's girth bends"
+                                                : "not shown by the surface: put at 56 %");
+            }
         }
         if (r.nearest)
           std::printf("nearest size: %s %s (%s; height %.1f, bust %.1f, waist %.1f, hip %.1f cm; %.1f cm RMS off)\n",

@@ -621,6 +621,7 @@ std::string to_json(const AvatarReport& r) {
       if (*arm)
         lj[name] = {{"shoulder_m", v3((*arm)->shoulder)}, {"elbow_m", v3((*arm)->elbow)},
                     {"elbow_from_skeleton", (*arm)->elbow_from_skeleton},
+                    {"elbow_on_surface", (*arm)->elbow_on_surface},
                     {"wrist_m", v3((*arm)->wrist)}, {"wrist_girth_m", (*arm)->wrist_girth}};
     j["landmarks"] = lj;
     j["measurements"] = {{"height_m", m.height},   {"bust_m", m.bust},         {"under_bust_m", m.under_bust},

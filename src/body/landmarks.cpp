@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -139,6 +140,111 @@ std::pair<double, double> leg_thinnest(const mesh::SurfaceMesh& m, double cx, do
   return {best_y, best};
 }
 
+// Where a limb's girth profile bends most: the sample farthest from the
+// chord between the profile's two ends (an arm whose forearm tapers to the
+// wrist faster than the upper arm does). Samples are (position along the
+// limb, girth), m, in order; refined between samples by a parabola through
+// the farthest and its two neighbours. Returns the position, or nullopt when
+// no sample is more than `least` off the chord (a limb of one taper: the
+// surface does not show the joint).
+std::optional<double> profile_bend(const std::vector<Vec2d>& s, double least) {
+  if (s.size() < 5) return std::nullopt;
+  const Vec2d a = s.front(), b = s.back();
+  if (!(b.x() > a.x())) return std::nullopt;
+  auto off = [&](std::size_t i) {
+    return std::abs(a.y() + (b.y() - a.y()) * (s[i].x() - a.x()) / (b.x() - a.x()) - s[i].y());
+  };
+  std::size_t best = 0;
+  double most = least;
+  for (std::size_t i = 1; i + 1 < s.size(); ++i)
+    if (const double d = off(i); d > most) most = d, best = i;
+  if (best == 0) return std::nullopt;
+  const double d0 = off(best - 1), d1 = most, d2 = off(best + 1), h0 = s[best].x() - s[best - 1].x(),
+               h1 = s[best + 1].x() - s[best].x();
+  const double curve = d0 - 2 * d1 + d2;
+  if (std::abs(h0 - h1) > 1e-9 * (h0 + h1) || !(curve < 0)) return s[best].x();
+  return s[best].x() + std::clamp(0.5 * (d0 - d2) / curve, -0.5, 0.5) * h0;
+}
+
+// The knee of each leg, from horizontal slices (the largest loop on the
+// leg's side of the centre line) between the calf's fullest girth and 3 % of
+// the height below the crotch. Going up from the calf the girth narrows under
+// the knee (the profile's first minimum); the knee is the bump above it (the
+// joint, a local maximum the girth drops at least 2 mm from before the thigh
+// takes over). A leg whose girth rises on into the thigh without one: the
+// hollow at the back of the knee, where the back of the leg comes furthest
+// forward. Heights, m, of the legs where one was found.
+std::vector<double> knees_on_surface(const mesh::SurfaceMesh& m, double cx, double ankle, double crotch, double H) {
+  const double top = crotch - 0.03 * H, step = 0.005 * H, span = crotch - ankle;
+  std::vector<Vec2d> side[2], back[2];  // (y, girth) and (y, z of the back of the leg)
+  for (double y = ankle; y <= top + 1e-12; y += step) {
+    double area[2] = {0, 0}, girth[2] = {0, 0}, z[2] = {0, 0};
+    for (const auto& l : mesh::slice_horizontal(m, y)) {
+      if (l.size() < 3) continue;
+      const int k = loop_centroid(l).x() > cx ? 0 : 1;
+      if (const double ar = loop_area(l); ar > area[k]) {
+        area[k] = ar, girth[k] = mesh::convex_hull_perimeter(l), z[k] = l.front().y();
+        for (const auto& q : l) z[k] = std::min(z[k], q.y());
+      }
+    }
+    for (int k = 0; k < 2; ++k)
+      if (area[k] > 0) side[k].push_back({y, girth[k]}), back[k].push_back({y, z[k]});
+  }
+  std::vector<double> out;
+  for (int leg = 0; leg < 2; ++leg) {
+    const auto& p = side[leg];
+    // The calf: the fullest girth 12–48 % of the way from ankle to crotch.
+    std::size_t calf = p.size();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p[i].x() >= ankle + 0.12 * span && p[i].x() <= ankle + 0.48 * span && (calf == p.size() || p[i].y() > p[calf].y()))
+        calf = i;
+    if (calf == p.size()) continue;
+    const std::size_t n = p.size();
+    // Under the knee: the first local minimum above the calf.
+    std::size_t under = n;
+    for (std::size_t i = calf + 1; i + 1 < n; ++i)
+      if (p[i].y() <= p[i - 1].y() && p[i].y() < p[i + 1].y()) {
+        under = i;
+        break;
+      }
+    std::optional<double> knee;
+    if (under < n) {
+      // The bump above it, within 8 % of the height.
+      for (std::size_t i = under + 1; i + 1 < n && p[i].x() < p[under].x() + 0.08 * H; ++i) {
+        if (!(p[i].y() >= p[i - 1].y() && p[i].y() > p[i + 1].y())) continue;
+        double dip = p[i].y();
+        for (std::size_t k = i + 1; k < n && p[k].x() < p[i].x() + 0.05 * H; ++k) dip = std::min(dip, p[k].y());
+        if (p[i].y() - dip < 0.002) continue;  // a ripple of the plateau under the knee
+        const double g0 = p[i - 1].y(), g1 = p[i].y(), g2 = p[i + 1].y(), curve = g0 - 2 * g1 + g2;
+        knee = p[i].x() + (curve < 0 ? std::clamp(0.5 * (g0 - g2) / curve, -0.5, 0.5) * step : 0.0);
+        break;
+      }
+    }
+    if (!knee && under < n) {
+      // No bump: the hollow at the back of the knee, where the back of the
+      // leg comes furthest forward (the calf below and the thigh above
+      // bulge back at least 3 mm more), from 3 % of the height under the
+      // narrowing to 12 % above it. The body faces +Z.
+      const auto& b = back[leg];
+      std::size_t best = n;
+      for (std::size_t i = 1; i + 1 < n; ++i) {
+        if (b[i].x() < p[under].x() - 0.03 * H || b[i].x() > p[under].x() + 0.12 * H) continue;
+        if (best == n || b[i].y() > b[best].y()) best = i;
+      }
+      if (best != n) {
+        double below = b[best].y(), above = b[best].y();
+        for (std::size_t k = 0; k < n; ++k) {
+          if (b[k].x() < b[best].x() && b[k].x() > b[best].x() - 0.1 * H) below = std::min(below, b[k].y());
+          if (b[k].x() > b[best].x() && b[k].x() < b[best].x() + 0.1 * H) above = std::min(above, b[k].y());
+        }
+        if (b[best].y() - below >= 0.003 && b[best].y() - above >= 0.003) knee = b[best].x();
+      }
+    }
+    if (knee) out.push_back(*knee);
+  }
+  return out;
+}
+
 // One station of an arm: the slice across it by the plane x = c.
 struct ArmStation {
   Vec3 centre;       // m, the loop's centroid
@@ -203,22 +309,57 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
   const Eigen::Matrix3d r = to_up(axis);
   mesh::SurfaceMesh along = m;
   mesh::transform(along, r);
-  double thinnest = std::numeric_limits<double>::infinity(), at = 0;
-  for (double t = 0.45 * L; t <= 0.92 * L; t += 0.005) {
+  // The girth profile from 15 % of the way down (below the armpit) to 92 %:
+  // at each station the loop nearest the last station's (an arm bent at the
+  // elbow leaves the straight shoulder–fingertip line by several cm), the
+  // first within 6 cm of that line.
+  std::vector<Vec2d> profile;
+  std::optional<Vec2d> last;
+  for (double t = 0.15 * L; t <= 0.92 * L; t += 0.005) {
     const Vec3 c = r * (a.shoulder + t * axis);
-    const Vec2d cxz(c.x(), c.z());
+    const Vec2d from = last ? *last : Vec2d(c.x(), c.z());
     double best_d = 0.06, perimeter = 0;
+    Vec2d centre;
     for (const auto& l : mesh::slice_horizontal(along, c.y())) {
       if (l.size() < 3) continue;
-      const double d = (loop_centroid(l) - cxz).norm();
-      if (d < best_d) best_d = d, perimeter = mesh::convex_hull_perimeter(l);
+      const Vec2d q = loop_centroid(l);
+      if (const double d = (q - from).norm(); d < best_d) best_d = d, perimeter = mesh::convex_hull_perimeter(l), centre = q;
     }
-    if (perimeter > 0 && perimeter < thinnest) thinnest = perimeter, at = t;
+    if (perimeter > 0) profile.push_back({t, perimeter}), last = centre;
   }
+  double thinnest = std::numeric_limits<double>::infinity(), at = 0;
+  for (const auto& p : profile)
+    if (p.x() >= 0.45 * L - 1e-9 && p.y() < thinnest) thinnest = p.y(), at = p.x();
   if (!std::isfinite(thinnest)) return std::nullopt;
   a.wrist = a.shoulder + at * axis;
   a.wrist_girth = thinnest;
-  a.elbow = a.shoulder + 0.56 * (a.wrist - a.shoulder);
+  // The elbow. Going up from the wrist the girth grows to the forearm's
+  // fullest (a local maximum) and narrows above it where the upper arm's
+  // muscles end (at least 2 mm less within 8 cm); the joint lies between the
+  // two, and the elbow is put half-way. An arm without that narrowing: where
+  // its profile bends over the lower 70 % (profile_bend, at least 5 mm of
+  // girth off the chord; the armpit's flare above is left out).
+  std::optional<double> bend;
+  std::size_t w = 0;
+  while (w + 1 < profile.size() && profile[w + 1].x() <= at + 1e-9) ++w;
+  for (std::size_t i = w; i >= 1 && i + 1 < profile.size() && !bend; --i) {
+    const double t = profile[i].x();
+    if (t > 0.8 * at) continue;
+    if (t < 0.3 * at) break;
+    if (!(profile[i].y() >= profile[i + 1].y() && profile[i].y() > profile[i - 1].y())) continue;
+    std::size_t narrow = i;
+    for (std::size_t k = i; k-- > 0 && profile[k].x() > t - 0.08;)
+      if (profile[k].y() < profile[narrow].y()) narrow = k;
+    if (profile[i].y() - profile[narrow].y() >= 0.002) bend = 0.5 * (t + profile[narrow].x());
+  }
+  if (!bend) {
+    std::vector<Vec2d> lower;
+    for (const auto& p : profile)
+      if (p.x() >= 0.3 * at - 1e-9 && p.x() <= at + 1e-9) lower.push_back(p);
+    bend = profile_bend(lower, 0.005);
+  }
+  a.elbow_on_surface = bend && *bend > 0.25 * at && *bend < 0.8 * at;
+  a.elbow = a.shoulder + (a.elbow_on_surface ? *bend / at : 0.56) * (a.wrist - a.shoulder);
   return a;
 }
 
@@ -332,6 +473,15 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
   }
   lm.ankle = leg_thinnest(m, s.centre.x(), at(0.03), at(0.10), dy).first;
   if (lm.ankle > 0) lm.ankle -= y0;
+  if (lm.ankle > 0 && lm.crotch > 0) {
+    const auto knees = knees_on_surface(m, s.centre.x(), y0 + lm.ankle, y0 + lm.crotch, H);
+    double sum = 0;
+    for (const double k : knees) sum += k;
+    if (!knees.empty()) lm.knee = sum / static_cast<double>(knees.size()) - y0;
+    if (knees.size() < 2)
+      out.notes.push_back(knees.empty() ? "no knee found: neither leg shows one between calf and thigh (no bump over the narrowing under it, no hollow behind it)"
+                                        : "knee found on one leg only");
+  }
 
   // Arms: slices across x beside the trunk (its width at the chest).
   const Loop* chest = s.central(lm.bust > 0 ? y0 + lm.bust : at(0.70));
@@ -443,6 +593,7 @@ int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& jo
       }
       arm->elbow = j.position;
       arm->elbow_from_skeleton = true;
+      arm->elbow_on_surface = false;
       ++taken;
     } else if (kind == "knee") {
       const double y = j.position.y();

@@ -60,10 +60,13 @@ SegmentRing ring_at(const BodySegment& segment, double s);
 // are above the floor.
 struct ArmLandmarks {
   Vec3 shoulder = Vec3::Zero();  // m: the shoulder joint, on the arm's axis 3 cm inside the chest's half-width
-  Vec3 elbow = Vec3::Zero();     // m: 56 % of the way from the shoulder to the wrist
+  // m: on the shoulder–wrist line where the arm's girth profile bends (the
+  // forearm tapering faster than the upper arm), else 56 % of the way
+  Vec3 elbow = Vec3::Zero();
   Vec3 wrist = Vec3::Zero();     // m: the arm's thinnest slice before the hand
   double wrist_girth = 0.0;      // m
-  bool elbow_from_skeleton = false;  // the elbow is the file's elbow joint, not 56 % of the arm
+  bool elbow_on_surface = false;     // the elbow was found on the surface, not put at 56 %
+  bool elbow_from_skeleton = false;  // the elbow is the file's elbow joint
 };
 
 struct BodyLandmarks {
@@ -77,8 +80,8 @@ struct BodyLandmarks {
   double hip = 0.0;         // fullest slice between crotch and waist
   double crotch = 0.0;      // lowest slice whose loop encloses the trunk's centre line
   double ankle = 0.0;       // thinnest slice of a leg at 3–10 % of the height (the foot's top on a mannequin)
-  double knee = 0.0;        // the knee joints of the file's skeleton, mean height; 0 without one (a leg's
-                            // girth has no minimum at the knee: the surface does not show it)
+  double knee = 0.0;        // mean of the legs' knees: where the girth profile bends between the calf's
+                            // fullest slice and the thigh, or the file's skeleton's knee joints; 0 if neither
   std::optional<ArmLandmarks> left_arm, right_arm;  // the body's left is +X
 };
 
