@@ -96,11 +96,6 @@ std::size_t point_count(const Node& seq) {
       std::count_if(seq.children.begin(), seq.children.end(), [](const Node& c) { return c.tag == "C2D"; }));
 }
 
-namespace {
-
-// Moves the notch vertices of the pattern at `pattern` when boundary points [first,
-// first + removed) disappear and `added` points appear at `first`. Vertices of removed
-// points lose their vertex attribute (the notch no longer sits on a known vertex).
 void renumber_vertices(Editor& edit, const NodePath& pattern, std::size_t first, std::size_t removed,
                        std::size_t added) {
   const Node& p = edit.document().at(pattern);
@@ -118,6 +113,8 @@ void renumber_vertices(Editor& edit, const NodePath& pattern, std::size_t first,
       edit.set_attribute(at, "vertex", std::to_string(u - removed + added));
   }
 }
+
+namespace {
 
 // Index of the first boundary point held by child `index` of a pattern.
 std::size_t first_vertex(const Node& pattern, std::size_t index) {

@@ -44,6 +44,12 @@ bool is_boundary_sequence(const Node& n);
 // Number of C2D in a node's children.
 std::size_t point_count(const Node& seq);
 
+// Moves the notch vertices of the pattern at `pattern` when boundary points [first,
+// first + removed) disappear and `added` points appear at `first`. Vertices of removed
+// points lose their vertex attribute (the notch no longer sits on a known vertex).
+void renumber_vertices(Editor& edit, const NodePath& pattern, std::size_t first, std::size_t removed,
+                       std::size_t added);
+
 // Removes the element at `path` and everything that would dangle without it.
 void remove_with_dependents(Editor& edit, const NodePath& path);
 

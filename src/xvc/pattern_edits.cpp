@@ -228,6 +228,189 @@ std::string MirrorPattern::apply(Editor& edit) {
   return id_;
 }
 
+// ---- outline points ------------------------------------------------------------------
+
+namespace {
+// Where an outline point is: the pattern's path, the C2DSEQ's child index, the C2D's
+// child index in it, and the point's index along the whole boundary.
+struct PointAt {
+  NodePath pattern;
+  std::size_t sequence = 0, child = 0, vertex = 0;
+};
+
+PointAt locate(const Document& doc, const OutlinePoint& pt) {
+  PointAt at;
+  at.pattern = require(doc, pt.pattern_id, "PATTERN");
+  const Node& p = doc.at(at.pattern);
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < p.children.size(); ++i) {
+    const Node& c = p.children[i];
+    if (!detail::is_boundary_sequence(c)) continue;
+    if (c.id() != pt.sequence_id) {
+      first += detail::point_count(c);
+      continue;
+    }
+    std::size_t k = 0;
+    for (std::size_t j = 0; j < c.children.size(); ++j) {
+      if (c.children[j].tag != "C2D") continue;
+      if (k == pt.index) {
+        at.sequence = i, at.child = j, at.vertex = first + k;
+        return at;
+      }
+      ++k;
+    }
+    throw Error(doc.name(), pt.sequence_id,
+                pt.sequence_id + " has " + std::to_string(k) + " points, no point " + std::to_string(pt.index), c.line);
+  }
+  throw Error(doc.name(), pt.pattern_id, pt.pattern_id + " has no outline stretch " + pt.sequence_id, p.line);
+}
+
+std::string point_name(const OutlinePoint& pt) {
+  return "point " + std::to_string(pt.index) + " of " + pt.pattern_id + "/" + pt.sequence_id;
+}
+
+NodePath child_path(NodePath path, std::size_t a) {
+  path.push_back(a);
+  return path;
+}
+
+void check_kind(const std::string& kind, const Document& doc, const OutlinePoint& pt) {
+  if (kind != "plain" && kind != "turn" && kind != "curve")
+    throw Error(doc.name(), pt.pattern_id, "a point's kind is plain, turn or curve, not '" + kind + "'");
+}
+}  // namespace
+
+MovePoint::MovePoint(OutlinePoint point, double x, double y) : at_(std::move(point)), x_(x), y_(y) {}
+
+std::string MovePoint::label() const { return "Move " + point_name(at_); }
+
+std::string MovePoint::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  if (!std::isfinite(x_) || !std::isfinite(y_)) throw Error(doc.name(), at_.pattern_id, "a point's x and y must be finite");
+  const PointAt at = locate(doc, at_);
+  const NodePath c2d = child_path(child_path(at.pattern, at.sequence), at.child);
+  const Vec2 was = point_of(doc.at(c2d));
+  edit.set_attribute(c2d, "x", format_double(x_));
+  edit.set_attribute(c2d, "y", format_double(y_));
+  // A notch on the vertex moves with it.
+  const Node& p = doc.at(at.pattern);
+  for (std::size_t i = 0; i < p.children.size(); ++i) {
+    const Node& c = p.children[i];
+    if (c.tag != "POSITION" || parse_int(c.attribute("vertex")) != std::optional<int>(static_cast<int>(at.vertex)))
+      continue;
+    const Vec2 q = point_of(c) + (Vec2(x_, y_) - was);
+    edit.set_attribute(child_path(at.pattern, i), "x", format_double(q.x()));
+    edit.set_attribute(child_path(at.pattern, i), "y", format_double(q.y()));
+  }
+  return at_.pattern_id;
+}
+
+InsertPoint::InsertPoint(OutlinePoint after, std::string kind, std::optional<std::array<double, 2>> xy)
+    : after_(std::move(after)), kind_(std::move(kind)), xy_(xy) {}
+
+std::string InsertPoint::label() const { return "Insert a point after " + point_name(after_); }
+
+std::string InsertPoint::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  check_kind(kind_, doc, after_);
+  const PointAt at = locate(doc, after_);
+  const Node& p = doc.at(at.pattern);
+  Vec2 q;
+  if (xy_) {
+    q = {(*xy_)[0], (*xy_)[1]};
+    if (!q.allFinite()) throw Error(doc.name(), after_.pattern_id, "a point's x and y must be finite");
+  } else {
+    // The middle of the edge to the next outline point (the next stretch's first
+    // point after a stretch's last; the outline's first after its last).
+    std::vector<Vec2> outline;
+    for (const auto& c : p.children)
+      if (detail::is_boundary_sequence(c))
+        for (const auto& pt : c.children)
+          if (pt.tag == "C2D") outline.push_back(point_of(pt));
+    q = 0.5 * (outline[at.vertex] + outline[(at.vertex + 1) % outline.size()]);
+  }
+  Node n{"C2D", {{"x", format_double(q.x())}, {"y", format_double(q.y())}}, {}};
+  if (kind_ != "plain") n.set_attribute("kind", kind_);
+  detail::renumber_vertices(edit, at.pattern, at.vertex + 1, 0, 1);
+  edit.insert(child_path(at.pattern, at.sequence), at.child + 1, std::move(n));
+  return after_.pattern_id;
+}
+
+DeletePoint::DeletePoint(OutlinePoint point) : at_(std::move(point)) {}
+
+std::string DeletePoint::label() const { return "Delete " + point_name(at_); }
+
+std::string DeletePoint::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const PointAt at = locate(doc, at_);
+  if (at_.index == 0)
+    throw Error(doc.name(), at_.pattern_id,
+                point_name(at_) + " is where the stretch " + at_.sequence_id +
+                    " begins (seams are sewn from it): move it, or delete the stretch");
+  std::size_t total = 0;
+  for (const auto& c : doc.at(at.pattern).children)
+    if (detail::is_boundary_sequence(c)) total += detail::point_count(c);
+  if (total <= 3) throw Error(doc.name(), at_.pattern_id, "an outline keeps at least three points");
+  detail::renumber_vertices(edit, at.pattern, at.vertex, 1, 0);
+  edit.remove(child_path(child_path(at.pattern, at.sequence), at.child));
+  return at_.pattern_id;
+}
+
+SetPointKind::SetPointKind(OutlinePoint point, std::string kind) : at_(std::move(point)), kind_(std::move(kind)) {}
+
+std::string SetPointKind::label() const { return "Make " + point_name(at_) + " a " + kind_ + " point"; }
+
+std::string SetPointKind::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  check_kind(kind_, doc, at_);
+  const PointAt at = locate(doc, at_);
+  const NodePath c2d = child_path(child_path(at.pattern, at.sequence), at.child);
+  edit.set_attribute(c2d, "kind", kind_ == "plain" ? std::nullopt : std::optional<std::string>(kind_));
+  return at_.pattern_id;
+}
+
+// ---- RotatePattern -------------------------------------------------------------------
+
+RotatePattern::RotatePattern(std::string pattern_id, double degrees) : id_(std::move(pattern_id)), degrees_(degrees) {}
+
+std::string RotatePattern::label() const { return "Rotate pattern " + id_ + " by " + format_double(degrees_) + "°"; }
+
+std::string RotatePattern::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  if (!std::isfinite(degrees_)) throw Error(doc.name(), id_, "the angle must be a finite number");
+  const NodePath path = require(doc, id_, "PATTERN");
+  Node p = doc.at(path);
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& c : p.children)
+    if (detail::is_boundary_sequence(c))
+      for (const auto& q : c.children)
+        if (q.tag == "C2D") lo = lo.cwiseMin(point_of(q)), hi = hi.cwiseMax(point_of(q));
+  if (!(lo.x() <= hi.x())) throw Error(doc.name(), id_, id_ + " has no outline to rotate", p.line);
+  const Vec2 centre = 0.5 * (lo + hi);
+  const double a = degrees_ * std::numbers::pi / 180.0;
+  // Quarter turns exactly (no 6e-17 where a coordinate was 0).
+  double cs = std::cos(a), sn = std::sin(a);
+  if (std::fmod(std::abs(degrees_), 90.0) == 0.0) cs = std::round(cs), sn = std::round(sn);
+  auto turn = [&](const Vec2& q) {
+    const Vec2 r = q - centre;
+    return Vec2(centre.x() + cs * r.x() - sn * r.y(), centre.y() + sn * r.x() + cs * r.y());
+  };
+  for (auto& c : p.children) {
+    if (c.tag == "C2DSEQ" && c.attribute("role") != "grain") {
+      for (auto& q : c.children)
+        if (q.tag == "C2D") set_point(q, turn(point_of(q)));
+    } else if (c.tag == "POSITION") {
+      // Its point turns with the piece (an arrangement's reference point too); a
+      // notch's direction with it (an arrangement's angle is round the body: kept).
+      set_point(c, turn(point_of(c)));
+      if (const auto ang = parse_double(c.attribute("angle")); ang && c.attribute("type") == "notch")
+        c.set_attribute("angle", format_double(normalise_deg(*ang + degrees_)));
+    }
+  }
+  edit.replace(path, std::move(p));
+  return id_;
+}
+
 // ---- SetParameter --------------------------------------------------------------------
 
 SetParameter::SetParameter(std::string name, double value, std::string unit)

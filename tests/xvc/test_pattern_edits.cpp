@@ -248,3 +248,167 @@ TEST(PatternEdits, EveryEditedDocumentIsValidAgainstTheSchema) {
   EXPECT_FALSE(d.has_errors()) << dump(d);
   EXPECT_EQ(d.count(vgd::Severity::warning), 1u) << "the pasted pattern repeats its block name: " << dump(d);
 }
+
+namespace {
+// The outline point at boundary vertex v of a pattern: its stretch and index in it.
+OutlinePoint point_at(const Document& doc, const std::string& pattern_id, std::size_t v) {
+  for (const auto& st : boundary_stretches(*doc.find(pattern_id)))
+    if (v >= st.first && v < st.first + st.count) return {pattern_id, st.id, v - st.first};
+  ADD_FAILURE() << "no vertex " << v;
+  return {};
+}
+
+const Node* notch_of(const Document& doc, const std::string& pattern_id) {
+  for (const auto& c : doc.find(pattern_id)->children)
+    if (c.tag == "POSITION" && c.attribute("type") == "notch" && c.has_attribute("vertex")) return &c;
+  return nullptr;
+}
+
+Vec2 xy(const Node& n) { return {std::stod(std::string(n.attribute("x"))), std::stod(std::string(n.attribute("y")))}; }
+}  // namespace
+
+// A point dragged in the pattern view: the outline point moves, the notch on it
+// with it, nothing else; one undo gives the document back as it was.
+TEST(MovePoint, MovesThePointAndTheNotchOnIt) {
+  Document doc = full_document();
+  const Document before = doc;
+  const Piece a = to_piece(doc, "pattern1");
+  const Node* notch = notch_of(doc, "pattern1");
+  ASSERT_NE(notch, nullptr);
+  const std::size_t v = std::stoul(std::string(notch->attribute("vertex")));
+  ASSERT_LT((xy(*notch) - a.boundary[v].p).norm(), 1e-12) << "the fixture's notch sits on its vertex";
+  UndoStack stack(doc);
+  stack.execute(std::make_unique<MovePoint>(point_at(doc, "pattern1", v), 0.33, 0.16));
+  const Piece b = to_piece(doc, "pattern1");
+  ASSERT_EQ(b.boundary.size(), a.boundary.size());
+  for (std::size_t i = 0; i < a.boundary.size(); ++i)
+    if (i == v) EXPECT_EQ(b.boundary[i].p, Vec2(0.33, 0.16));
+    else EXPECT_EQ(b.boundary[i].p, a.boundary[i].p) << i;
+  EXPECT_LT((xy(*notch_of(doc, "pattern1")) - Vec2(0.33, 0.16)).norm(), 1e-12);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+}
+
+// A point added after vertex 1: the edge to vertex 2 split at its middle, the
+// notch on vertex 2 renumbered to 3 and still on its point; deleting it again
+// gives the outline back.
+TEST(InsertPoint, SplitsTheEdgeAndRenumbersTheNotches) {
+  Document doc = full_document();
+  const Piece a = to_piece(doc, "pattern1");
+  const std::size_t v = std::stoul(std::string(notch_of(doc, "pattern1")->attribute("vertex")));
+  ASSERT_GE(v, 2u);
+  InsertPoint ins(point_at(doc, "pattern1", v - 1), "curve");
+  execute(doc, ins);
+  const Piece b = to_piece(doc, "pattern1");
+  ASSERT_EQ(b.boundary.size(), a.boundary.size() + 1);
+  EXPECT_LT((b.boundary[v].p - 0.5 * (a.boundary[v - 1].p + a.boundary[v].p)).norm(), 1e-12);
+  EXPECT_EQ(b.boundary[v].kind, vgd::pattern::PointKind::curve);
+  const Node* notch = notch_of(doc, "pattern1");
+  ASSERT_NE(notch, nullptr);
+  EXPECT_EQ(notch->attribute("vertex"), std::to_string(v + 1));
+  EXPECT_LT((xy(*notch) - b.boundary[v + 1].p).norm(), 1e-12);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  DeletePoint del(point_at(doc, "pattern1", v));
+  execute(doc, del);
+  const Piece c = to_piece(doc, "pattern1");
+  ASSERT_EQ(c.boundary.size(), a.boundary.size());
+  for (std::size_t i = 0; i < a.boundary.size(); ++i) EXPECT_EQ(c.boundary[i].p, a.boundary[i].p) << i;
+  EXPECT_EQ(notch_of(doc, "pattern1")->attribute("vertex"), std::to_string(v));
+}
+
+// What a deletion may not do: take the point a stretch (and its seams) begins
+// at, or leave an outline of fewer than three points; an unknown stretch or
+// point is named.
+TEST(DeletePoint, RefusesAStretchesFirstPointAndTooSmallAnOutline) {
+  Document doc = full_document();
+  const auto st = boundary_stretches(*doc.find("pattern1"));
+  DeletePoint first({"pattern1", st[1].id, 0});
+  try {
+    execute(doc, first);
+    ADD_FAILURE() << "deleted where a stretch begins";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is where the stretch " + st[1].id + " begins"), std::string::npos) << e.what();
+  }
+  DeletePoint nowhere({"pattern1", st[0].id, 99});
+  try {
+    execute(doc, nowhere);
+    ADD_FAILURE();
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no point 99"), std::string::npos) << e.what();
+  }
+  // Down to three points, then refused.
+  // A square with one turn point: one stretch of four points.
+  auto style = full_style();
+  style.pieces[0].boundary = {{Vec2(0, 0), vgd::pattern::PointKind::turn},
+                              {Vec2(0.2, 0), vgd::pattern::PointKind::plain},
+                              {Vec2(0.2, 0.2), vgd::pattern::PointKind::plain},
+                              {Vec2(0, 0.2), vgd::pattern::PointKind::plain}};
+  style.pieces[0].notches.clear();
+  Document tri = from_style(style);
+  ASSERT_EQ(boundary_stretches(*tri.find("pattern1")).size(), 1u);
+  bool refused = false;
+  for (;;) {
+    const auto s = boundary_stretches(*tri.find("pattern1"));
+    const auto it = std::find_if(s.begin(), s.end(), [](const Stretch& x) { return x.count > 1; });
+    ASSERT_NE(it, s.end()) << "a stretch with a point to delete";
+    DeletePoint d({"pattern1", it->id, it->count - 1});
+    if (to_piece(tri, "pattern1").boundary.size() == 3) {
+      try {
+        execute(tri, d);
+      } catch (const vgd::Error& e) {
+        refused = std::string(e.what()).find("at least three points") != std::string::npos;
+      }
+      break;
+    }
+    execute(tri, d);
+  }
+  EXPECT_TRUE(refused);
+  EXPECT_EQ(to_piece(tri, "pattern1").boundary.size(), 3u);
+  EXPECT_FALSE(check(tri).has_errors()) << dump(check(tri));
+}
+
+TEST(SetPointKind, MakesATurnPointACurvePointAndBack) {
+  Document doc = full_document();
+  const OutlinePoint p = point_at(doc, "pattern1", 2);
+  ASSERT_EQ(to_piece(doc, "pattern1").boundary[2].kind, vgd::pattern::PointKind::plain);
+  SetPointKind turn(p, "turn");
+  execute(doc, turn);
+  EXPECT_EQ(to_piece(doc, "pattern1").boundary[2].kind, vgd::pattern::PointKind::turn);
+  SetPointKind plain(p, "plain");
+  execute(doc, plain);
+  EXPECT_EQ(to_piece(doc, "pattern1").boundary[2].kind, vgd::pattern::PointKind::plain);
+  SetPointKind bad(p, "corner");
+  EXPECT_THROW(execute(doc, bad), vgd::Error);
+}
+
+// A quarter turn about the outline's box middle: every outline point turned,
+// the notch's direction with it, the grain line kept (the piece now cut across
+// the warp); counter-clockwise still; turned back, the document is as before.
+TEST(RotatePattern, TurnsTheOutlineAndNotchesButNotTheGrain) {
+  Document doc = full_document();
+  const Document before = doc;
+  const Piece a = to_piece(doc, "pattern1");
+  Vec2 lo = a.boundary[0].p, hi = lo;
+  for (const auto& c : a.boundary) lo = lo.cwiseMin(c.p), hi = hi.cwiseMax(c.p);
+  const Vec2 m = 0.5 * (lo + hi);
+  const double notch_angle = std::stod(std::string(notch_of(doc, "pattern1")->attribute("angle")));
+  RotatePattern turn("pattern1", 90);
+  execute(doc, turn);
+  const Piece b = to_piece(doc, "pattern1");
+  ASSERT_EQ(b.boundary.size(), a.boundary.size());
+  for (std::size_t i = 0; i < a.boundary.size(); ++i) {
+    const Vec2 r = a.boundary[i].p - m;
+    EXPECT_LT((b.boundary[i].p - (m + Vec2(-r.y(), r.x()))).norm(), 1e-12) << i;
+  }
+  ASSERT_TRUE(b.grain_line.has_value());
+  EXPECT_EQ(b.grain_line->a, a.grain_line->a);
+  EXPECT_EQ(b.grain_line->b, a.grain_line->b);
+  EXPECT_NEAR(std::stod(std::string(notch_of(doc, "pattern1")->attribute("angle"))), notch_angle + 90 > 180 ? notch_angle - 270 : notch_angle + 90, 1e-9);
+  EXPECT_NEAR(vgd::pattern::signed_area(b.boundary), vgd::pattern::signed_area(a.boundary), 1e-12);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  RotatePattern back("pattern1", -90);
+  execute(doc, back);
+  const Piece c = to_piece(doc, "pattern1");
+  for (std::size_t i = 0; i < a.boundary.size(); ++i) EXPECT_LT((c.boundary[i].p - a.boundary[i].p).norm(), 1e-15) << i;
+}

@@ -17,6 +17,7 @@
 // POSITIONs that name a deleted id, then SEAMs left with fewer than two HEMs and
 // GRADATIONs left with no SIZE. Removing or adding a boundary C2DSEQ renumbers the
 // notch vertices (POSITION vertex) of its pattern.
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -230,6 +231,84 @@ class MirrorPattern : public Command {
  private:
   std::string id_;
   MirrorAxis axis_;
+};
+
+// One point of a PATTERN's outline: the boundary C2DSEQ (one stretch of the
+// outline) and the point's place among its C2D children.
+struct OutlinePoint {
+  std::string pattern_id, sequence_id;
+  std::size_t index = 0;
+};
+
+// Moves an outline point to (x, y), m in the pattern's frame. A notch on that vertex
+// moves with it; the stretches, their seams and every other point stay.
+class MovePoint : public Command {
+ public:
+  MovePoint(OutlinePoint point, double x, double y);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  OutlinePoint at_;
+  double x_, y_;
+};
+
+// Adds a point to a stretch after `point` (at the middle of the edge to the next
+// outline point when no position is given), of the kind given ("plain", "curve" or
+// "turn"). Notch vertices after it follow. Returns the pattern's id.
+class InsertPoint : public Command {
+ public:
+  InsertPoint(OutlinePoint after, std::string kind = "plain", std::optional<std::array<double, 2>> xy = {});
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  OutlinePoint after_;
+  std::string kind_;
+  std::optional<std::array<double, 2>> xy_;
+};
+
+// Deletes an outline point. Refused for the first point of a stretch (where the
+// stretch, and the seams that sew it, begin) and when the outline would keep fewer
+// than three points. Notch vertices after it follow; a notch on it keeps its place but
+// no vertex.
+class DeletePoint : public Command {
+ public:
+  explicit DeletePoint(OutlinePoint point);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  OutlinePoint at_;
+};
+
+// Sets an outline point's kind: "plain", "turn" (an AAMA turn point, a corner) or
+// "curve" (a point of a curve).
+class SetPointKind : public Command {
+ public:
+  SetPointKind(OutlinePoint point, std::string kind);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  OutlinePoint at_;
+  std::string kind_;
+};
+
+// Turns a PATTERN by `degrees` (counter-clockwise) about the middle of its outline's
+// bounding box: outline, internal lines, notches (their angles too), drill holes and
+// the arrangement's reference point.
+// The grain line stays as it is, so the piece is cut at another angle to the fabric's
+// warp (a bias cut at 45°).
+class RotatePattern : public Command {
+ public:
+  RotatePattern(std::string pattern_id, double degrees);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  double degrees_;
 };
 
 // Sets (or adds) a GARMENT-level PARAMETER. An empty unit means the known parameter's
