@@ -205,6 +205,20 @@ void Harness::run_script(const fs::path& script) {
         auto r = studio().stretch_on_screen(pat, seq);
         if (!r) fail("stretch " + seq + " of " + pat + " is not on screen");
         click_at(r->cx(), r->cy());
+      } else if (cmd == "click-piece") {
+        auto r = studio().piece_on_screen(arg);
+        if (!r) fail("piece " + arg + " is not on screen");
+        click_at(r->cx(), r->cy());
+      } else if (cmd == "drag-point") {
+        // drag-point PATTERN SEQ INDEX DX DY: the outline point dragged by (DX, DY) px.
+        std::istringstream as(arg);
+        xvc::OutlinePoint pt;
+        float dx = 0, dy = 0;
+        if (!(as >> pt.pattern_id >> pt.sequence_id >> pt.index >> dx >> dy))
+          fail("give the pattern, the stretch, the point's index and the drag in px: drag-point pattern1 seq2 3 20 -10");
+        auto r = studio().point_on_screen(pt);
+        if (!r) fail("point " + std::to_string(pt.index) + " of " + pt.pattern_id + "/" + pt.sequence_id + " is not on screen");
+        drag(r->cx(), r->cy(), r->cx() + dx, r->cy() + dy);
       } else if (cmd == "key") {
         key(arg);
       } else if (cmd == "type") {
@@ -221,8 +235,8 @@ void Harness::run_script(const fs::path& script) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, export-vrml, click, click-stretch, key, type, frames, wait-drape, screenshot, "
-             "expect-status)");
+        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drag-point, key, type, frames, "
+             "wait-drape, screenshot, expect-status)");
       }
     } catch (const Error& e) {
       if (e.diagnostic().line == n) throw;

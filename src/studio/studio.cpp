@@ -25,6 +25,7 @@
 #include "vgd/core/units.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
+#include "vgd/mesh/surface.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/quality.hpp"
@@ -40,12 +41,15 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr float kPickRadius = 8.0f;  // px: how near the mouse a stretch must be to pick it
+constexpr float kPointRadius = 6.0f;  // px: how near an outline point must be to grab it
 constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview renders
 
 // One stretch of a piece's outline as the pattern view draws it.
 struct StretchView {
   std::string id;
-  std::vector<pattern::Vec2> points;  // m, laid out
+  std::vector<pattern::Vec2> points;  // m, laid out: its points and the next stretch's first
+  std::vector<pattern::PointKind> kinds;  // of its own points
+  std::size_t first = 0;              // its first point's index along the outline
   std::vector<std::string> seams;     // ids of the SEAMs that sew it
 };
 
@@ -53,6 +57,8 @@ struct PieceView {
   std::string pattern_id, name;
   std::vector<StretchView> stretches;
   pattern::Vec2 centre = pattern::Vec2::Zero();
+  pattern::Vec2 shift = pattern::Vec2::Zero();  // m: layout position minus the piece's own
+  std::vector<pattern::Vec2> outline;           // m, laid out: every boundary point, for hit tests
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
@@ -123,6 +129,13 @@ struct Studio::Impl {
   std::vector<std::pair<std::string, std::string>> picked;
   std::string seam_name = "seam";
   std::map<std::pair<std::string, std::string>, Rect> stretch_rects;
+  // Outline editing (a PATTERN selected): the point selected, the one being
+  // dragged and where the drag is now (m, in the piece's own frame).
+  std::optional<xvc::OutlinePoint> point_sel;
+  std::optional<xvc::OutlinePoint> dragging;
+  pattern::Vec2 drag_to = pattern::Vec2::Zero();
+  ImVec2 drag_from{0, 0};
+  double rotate_deg = 90;
   std::vector<xvc::SeamSuggestion> suggestions;  // the dialog's, while it is open
   std::vector<char> accepted;                    // per suggestion: ticked
   bool want_suggestions = false;
@@ -447,7 +460,9 @@ struct Studio::Impl {
       for (const auto& st : stretches) {
         StretchView sv;
         sv.id = st.id;
+        sv.first = st.first;
         for (std::size_t k = 0; k <= st.count; ++k) sv.points.push_back(piece.boundary[(st.first + k) % n].p);
+        for (std::size_t k = 0; k < st.count; ++k) sv.kinds.push_back(piece.boundary[(st.first + k) % n].kind);
         if (auto it = sewn.find({r.view.pattern_id, st.id}); it != sewn.end()) sv.seams = it->second;
         r.view.stretches.push_back(std::move(sv));
       }
@@ -480,9 +495,12 @@ struct Studio::Impl {
       for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) h = std::max(h, raw[i].hi.y() - raw[i].lo.y());
       for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) {
         const pattern::Vec2 shift(x - raw[i].lo.x(), y - h - raw[i].lo.y());
-        for (auto& sv : raw[i].view.stretches)
+        for (auto& sv : raw[i].view.stretches) {
           for (auto& q : sv.points) q += shift;
+          raw[i].view.outline.insert(raw[i].view.outline.end(), sv.points.begin(), sv.points.end() - 1);
+        }
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
+        raw[i].view.shift = shift;
         hi.x() = std::max(hi.x(), x + raw[i].hi.x() - raw[i].lo.x());
         x += raw[i].hi.x() - raw[i].lo.x() + gap;
         pieces.push_back(std::move(raw[i].view));
@@ -494,6 +512,36 @@ struct Studio::Impl {
 
   ImVec2 to_screen(const pattern::Vec2& p) const {
     return {origin.x + static_cast<float>((p.x() - lo.x()) * scale), origin.y + static_cast<float>((hi.y() - p.y()) * scale)};
+  }
+  pattern::Vec2 from_screen(const ImVec2& q) const {
+    return {lo.x() + (q.x - origin.x) / scale, hi.y() - (q.y - origin.y) / scale};
+  }
+  const PieceView* piece_view(std::string_view pattern_id) const {
+    for (const auto& pv : pieces)
+      if (pv.pattern_id == pattern_id) return &pv;
+    return nullptr;
+  }
+  // An outline point laid out (m), or nullopt when it is not in the view.
+  std::optional<pattern::Vec2> laid_out(const xvc::OutlinePoint& pt) const {
+    if (const PieceView* pv = piece_view(pt.pattern_id))
+      for (const auto& sv : pv->stretches)
+        if (sv.id == pt.sequence_id && pt.index + 1 < sv.points.size()) return sv.points[pt.index];
+    return std::nullopt;
+  }
+
+  // Where a drag of an outline point ends: the point moved (one undo step),
+  // unless the mouse came back to where it started.
+  void end_point_drag() {
+    const xvc::OutlinePoint pt = *dragging;
+    dragging.reset();
+    const auto at = laid_out(pt);
+    const PieceView* pv = piece_view(pt.pattern_id);
+    if (!at || !pv) return;
+    const pattern::Vec2 was = *at - pv->shift;
+    if ((drag_to - was).norm() * scale < 0.5) return;
+    run(std::make_unique<xvc::MovePoint>(pt, drag_to.x(), drag_to.y()));
+    point_sel = pt;
+    selected = pt.pattern_id;
   }
 
   // ---- panels ---------------------------------------------------------------
@@ -589,6 +637,7 @@ struct Studio::Impl {
   // brings its size into the pattern view.
   void select(const std::string& id) {
     selected = id;
+    if (point_sel && point_sel->pattern_id != id) point_sel.reset();
     const xvc::Node* n = doc.find(id);
     if (!n) return;
     const xvc::Node* pattern = n->tag == "PATTERN" ? n : nullptr;
@@ -603,6 +652,12 @@ struct Studio::Impl {
       const std::string size(pattern->attribute("size"));
       if (std::find(sizes.begin(), sizes.end(), size) != sizes.end()) drape.size = size;
     }
+  }
+
+  void delete_point() {
+    const xvc::OutlinePoint pt = *point_sel;
+    point_sel.reset();
+    run(std::make_unique<xvc::DeletePoint>(pt));
   }
 
   void delete_selected() {
@@ -661,7 +716,53 @@ struct Studio::Impl {
       track("Flip");
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Mirror the piece about its grain line (vertical without one); its seams follow it");
+      // Turned against the grain line, which stays: the piece is cut at
+      // another angle to the warp (45 for a bias cut).
+      ImGui::SetNextItemWidth(70);
+      ImGui::InputDouble("deg##rotate", &rotate_deg, 0, 0, "%.1f");
+      track("rotate angle");
+      ImGui::SameLine();
+      if (ImGui::Button("Rotate")) run(std::make_unique<xvc::RotatePattern>(selected, rotate_deg));
+      track("Rotate");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Turn the piece counter-clockwise by this angle; the grain line stays, so the fabric's warp "
+                          "runs across it at another angle");
+      point_inspector();
     }
+  }
+
+  // The selected outline point: where it is, its kind, a point added after
+  // it, deleted. Drag it in the pattern view to move it.
+  void point_inspector() {
+    if (!point_sel || point_sel->pattern_id != selected) {
+      ImGui::TextDisabled("Click a point of the outline to edit it; drag it to move it.");
+      return;
+    }
+    const auto at = laid_out(*point_sel);
+    const PieceView* pv = piece_view(selected);
+    if (!at || !pv) return;
+    const pattern::Vec2 q = *at - pv->shift;
+    pattern::PointKind kind = pattern::PointKind::plain;
+    for (const auto& sv : pv->stretches)
+      if (sv.id == point_sel->sequence_id && point_sel->index < sv.kinds.size()) kind = sv.kinds[point_sel->index];
+    ImGui::Separator();
+    ImGui::Text("Point %zu of %s: x %.1f mm, y %.1f mm", point_sel->index, point_sel->sequence_id.c_str(),
+                1000 * q.x(), 1000 * q.y());
+    int k = kind == pattern::PointKind::turn ? 1 : kind == pattern::PointKind::curve ? 2 : 0;
+    const char* kinds[] = {"plain", "turn", "curve"};
+    ImGui::SetNextItemWidth(90);
+    if (ImGui::Combo("kind##point", &k, kinds, 3)) run(std::make_unique<xvc::SetPointKind>(*point_sel, kinds[k]));
+    track("point kind");
+    ImGui::SameLine();
+    if (ImGui::Button("Insert after")) {
+      const int before = revision;
+      run(std::make_unique<xvc::InsertPoint>(*point_sel));
+      if (revision != before) point_sel->index += 1;  // the new point is the one selected
+    }
+    track("Insert point");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point half-way along the edge to the next one");
+    if (ImGui::Button("Delete point")) delete_point();
+    track("Delete point");
   }
 
   void pattern_panel() {
@@ -716,6 +817,31 @@ struct Studio::Impl {
             if (d < best) best = d, hovered = std::make_pair(pv.pattern_id, sv.id);
           }
         }
+      // The selected piece's outline points: hovered (before its stretches), dragged.
+      const PieceView* sel_piece = piece_view(selected);
+      std::optional<xvc::OutlinePoint> point_hover;
+      if (sel_piece && canvas_hovered && !dragging) {
+        float near = kPointRadius;
+        for (const auto& sv : sel_piece->stretches)
+          for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
+            const ImVec2 q = to_screen(sv.points[k]);
+            if (const float d = std::hypot(mouse.x - q.x, mouse.y - q.y); d < near)
+              near = d, point_hover = xvc::OutlinePoint{sel_piece->pattern_id, sv.id, k};
+          }
+        if (point_hover) hovered.reset();
+      }
+      if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        dragging = point_hover, point_sel = point_hover, drag_from = mouse;
+        drag_to = *laid_out(*point_hover) - sel_piece->shift;
+      }
+      if (dragging) {
+        if (const auto at = laid_out(*dragging); at && sel_piece && sel_piece->pattern_id == dragging->pattern_id) {
+          drag_to = *at - sel_piece->shift + pattern::Vec2(mouse.x - drag_from.x, drag_from.y - mouse.y) / scale;
+          if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) end_point_drag();
+        } else {
+          dragging.reset();
+        }
+      }
       for (const auto& pv : pieces) {
         for (const auto& sv : pv.stretches) {
           std::vector<ImVec2> pts;
@@ -738,11 +864,21 @@ struct Studio::Impl {
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
       }
       draw_seam_pairing(dl);
+      if (sel_piece) draw_points(dl, *sel_piece, point_hover);
       dl->PopClipRect();
       if (hovered && ImGui::IsItemClicked()) {
         const auto it = std::find(picked.begin(), picked.end(), *hovered);
         if (it != picked.end()) picked.erase(it);
         else picked.push_back(*hovered);
+      } else if (!point_hover && ImGui::IsItemClicked()) {
+        // A click inside a piece selects it (its points to edit); outside every
+        // piece, nothing.
+        const pattern::Vec2 m = from_screen(mouse);
+        std::string inside;
+        for (const auto& pv : pieces)
+          if (pv.outline.size() >= 3 && mesh::point_in_polygon(pv.outline, m)) inside = pv.pattern_id;
+        if (!inside.empty() && inside != selected) select(inside);
+        if (inside.empty()) point_sel.reset();
       }
       if (hovered) {
         std::string tip;
@@ -778,6 +914,39 @@ struct Studio::Impl {
     ImGui::SameLine();
     if (ImGui::Button("Suggest seams")) suggest();
     track("Suggest seams");
+  }
+
+  // The selected piece's outline points: squares at turn points, dots
+  // elsewhere; the selected point filled orange, the hovered one yellow. A
+  // point being dragged is drawn where the mouse has it, with its two edges.
+  void draw_points(ImDrawList* dl, const PieceView& pv, const std::optional<xvc::OutlinePoint>& hover) {
+    const std::size_t n = pv.outline.size();
+    if (dragging && dragging->pattern_id == pv.pattern_id)
+      for (const auto& sv : pv.stretches)
+        if (sv.id == dragging->sequence_id) {
+          const std::size_t v = sv.first + dragging->index;
+          const ImVec2 q = to_screen(drag_to + pv.shift);
+          dl->AddLine(to_screen(pv.outline[(v + n - 1) % n]), q, rgb(230, 110, 20), 2.0f);
+          dl->AddLine(q, to_screen(pv.outline[(v + 1) % n]), rgb(230, 110, 20), 2.0f);
+        }
+    auto same = [](const std::optional<xvc::OutlinePoint>& a, const std::string& seq, std::size_t k) {
+      return a && a->sequence_id == seq && a->index == k;
+    };
+    for (const auto& sv : pv.stretches)
+      for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
+        const bool sel = point_sel && point_sel->pattern_id == pv.pattern_id && same(point_sel, sv.id, k);
+        const bool dragged = dragging && dragging->pattern_id == pv.pattern_id && same(dragging, sv.id, k);
+        const ImVec2 q = to_screen(dragged ? drag_to + pv.shift : sv.points[k]);
+        const ImU32 fill = sel ? rgb(230, 110, 20) : same(hover, sv.id, k) ? rgb(240, 170, 0) : rgb(255, 255, 255);
+        const float r = sel ? 4.5f : 3.5f;
+        if (sv.kinds[k] == pattern::PointKind::turn) {
+          dl->AddRectFilled({q.x - r, q.y - r}, {q.x + r, q.y + r}, fill);
+          dl->AddRect({q.x - r, q.y - r}, {q.x + r, q.y + r}, rgb(40, 40, 40));
+        } else {
+          dl->AddCircleFilled(q, r, fill);
+          dl->AddCircle(q, r, rgb(40, 40, 40));
+        }
+      }
   }
 
   // The SEAM selected in the tree: lines from hem A's start to hem B's start
@@ -1407,7 +1576,10 @@ struct Studio::Impl {
     // their ASCII codes and F5 at kF5Key (GLFW's own key codes).
     if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) file.empty() ? void(want_save_as = true) : void(self.save());
     if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) want_open = true;
-    if (pressed(ImGuiKey_Delete)) delete_selected();
+    if (pressed(ImGuiKey_Delete)) {
+      if (point_sel && point_sel->pattern_id == selected) delete_point();
+      else delete_selected();
+    }
     if (ImGui::IsKeyPressed(kF5Key, false)) start_drape();
   }
 };
@@ -1668,6 +1840,25 @@ std::optional<Rect> Studio::widget(std::string_view name) const {
   const auto it = impl_->widgets.find(name);
   if (it == impl_->widgets.end()) return std::nullopt;
   return it->second;
+}
+
+std::optional<Rect> Studio::point_on_screen(const xvc::OutlinePoint& point) const {
+  if (point.pattern_id != impl_->selected) return std::nullopt;  // points show on the selected piece
+  const auto at = impl_->laid_out(point);
+  if (!at) return std::nullopt;
+  const ImVec2 q = impl_->to_screen(*at);
+  return Rect{q.x, q.y, q.x, q.y};
+}
+std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
+  const PieceView* pv = impl_->piece_view(pattern_id);
+  if (!pv) return std::nullopt;
+  const ImVec2 q = impl_->to_screen(pv->centre);
+  return Rect{q.x, q.y, q.x, q.y};
+}
+float Studio::pattern_scale() const { return impl_->scale; }
+std::optional<xvc::OutlinePoint> Studio::selected_point() const {
+  if (impl_->point_sel && impl_->point_sel->pattern_id == impl_->selected) return impl_->point_sel;
+  return std::nullopt;
 }
 
 std::optional<Rect> Studio::stretch_on_screen(std::string_view pattern_id, std::string_view stretch_id) const {

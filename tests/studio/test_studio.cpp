@@ -27,6 +27,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
+#include "vgd/xvc/validate.hpp"
 
 namespace fs = std::filesystem;
 using vgd::studio::Harness;
@@ -787,3 +788,91 @@ TEST(Studio, ASelectedSeamShowsItsPairingInThePatternView) {
   EXPECT_EQ(purple(), 0);
 }
 
+
+namespace {
+// The outline point's coordinates in the document (m).
+vgd::pattern::Vec2 outline_point(const vgd::xvc::Document& doc, const vgd::xvc::OutlinePoint& p) {
+  const auto piece = vgd::xvc::to_piece(doc, p.pattern_id);
+  for (const auto& st : vgd::xvc::boundary_stretches(*doc.find(p.pattern_id)))
+    if (st.id == p.sequence_id) return piece.boundary.at(st.first + p.index).p;
+  ADD_FAILURE() << "no stretch " << p.sequence_id;
+  return {};
+}
+}  // namespace
+
+// Outline editing in the pattern view: a click inside a piece selects it and
+// shows its points; a point dragged by (30, -12) px moves by that much in the
+// piece's frame (y up), as one undo step; a point clicked, a point inserted
+// after it and deleted again; the piece rotated 90° about its middle, its
+// grain line kept; the saved document validates and holds the edits.
+TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  ASSERT_FALSE(front.empty());
+  const auto stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(front));
+  ASSERT_GE(stretches.size(), 2u);
+  const vgd::xvc::OutlinePoint p{front, stretches[1].id, 3};
+  EXPECT_FALSE(h.studio().point_on_screen(p).has_value()) << "points show on the selected piece only";
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx(), centre->cy());
+  EXPECT_EQ(h.studio().selected(), front) << "a click inside the piece selects it";
+  h.frame();
+  const auto at = h.studio().point_on_screen(p);
+  ASSERT_TRUE(at.has_value());
+  const auto original = h.studio().document();
+  const vgd::pattern::Vec2 before = outline_point(original, p);
+  const float scale = h.studio().pattern_scale();
+  h.drag(at->cx(), at->cy(), at->cx() + 30, at->cy() - 12);
+  const vgd::pattern::Vec2 after = outline_point(h.studio().document(), p);
+  EXPECT_NEAR(after.x() - before.x(), 30 / scale, 1e-6) << h.studio().status();
+  EXPECT_NEAR(after.y() - before.y(), 12 / scale, 1e-6);
+  ASSERT_TRUE(h.studio().selected_point().has_value());
+  EXPECT_EQ(h.studio().selected_point()->index, 3u);
+  // Every other point where it was.
+  const auto pa = vgd::xvc::to_piece(original, front), pb = vgd::xvc::to_piece(h.studio().document(), front);
+  ASSERT_EQ(pa.boundary.size(), pb.boundary.size());
+  int moved = 0;
+  for (std::size_t i = 0; i < pa.boundary.size(); ++i) moved += pa.boundary[i].p != pb.boundary[i].p;
+  EXPECT_EQ(moved, 1);
+  h.key("ctrl+z");
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+
+  // Insert after the selected point, then delete it (the Delete key).
+  h.frame();
+  h.click("Insert point");
+  EXPECT_EQ(vgd::xvc::to_piece(h.studio().document(), front).boundary.size(), pa.boundary.size() + 1) << h.studio().status();
+  EXPECT_EQ(h.studio().selected_point()->index, 4u) << "the new point is selected";
+  h.key("delete");
+  EXPECT_TRUE(h.studio().document() == original) << h.studio().status();
+  EXPECT_EQ(h.studio().selected(), front) << "the piece stays selected";
+
+  // A stretch's first point is not deleted: the status says why.
+  const auto first = h.studio().point_on_screen({front, stretches[1].id, 0});
+  ASSERT_TRUE(first.has_value());
+  h.click_at(first->cx(), first->cy());
+  h.click("Delete point");
+  EXPECT_NE(h.studio().status().find("begins"), std::string::npos) << h.studio().status();
+  EXPECT_TRUE(h.studio().document() == original);
+  h.frame();
+  h.click("error:ok");  // the error's dialog
+
+  // Rotated by 90° counter-clockwise; the grain line kept.
+  h.click("Rotate");
+  ASSERT_NE(h.studio().status().find("Rotate pattern " + front + " by 90"), std::string::npos) << h.studio().status();
+  const auto rotated = vgd::xvc::to_piece(h.studio().document(), front);
+  ASSERT_TRUE(rotated.grain_line && pa.grain_line);
+  EXPECT_EQ(rotated.grain_line->a, pa.grain_line->a);
+  vgd::pattern::Vec2 lo = pa.boundary[0].p, hi = lo;
+  for (const auto& c : pa.boundary) lo = lo.cwiseMin(c.p), hi = hi.cwiseMax(c.p);
+  const vgd::pattern::Vec2 m = 0.5 * (lo + hi), r = pa.boundary[0].p - m;
+  EXPECT_LT((rotated.boundary[0].p - (m + vgd::pattern::Vec2(-r.y(), r.x()))).norm(), 1e-12);
+  const fs::path out = fs::temp_directory_path() / ("vgd-studio-edit-" + std::to_string(::getpid()) + ".xvc");
+  ASSERT_TRUE(h.studio().save(out)) << h.studio().status();
+  const auto v = vgd::xvc::validate_file(out, vgd::xvc::default_schema_path());
+  for (const auto& d : v.items()) ADD_FAILURE() << d.format();
+  EXPECT_TRUE(vgd::xvc::load_file(out) == h.studio().document());
+  fs::remove(out);
+}

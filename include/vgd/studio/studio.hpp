@@ -39,6 +39,7 @@
 
 #include "vgd/render/image.hpp"
 #include "vgd/dress/certificate.hpp"
+#include "vgd/xvc/commands.hpp"
 #include "vgd/dress/drape.hpp"
 #include "vgd/xvc/document.hpp"
 
@@ -185,6 +186,14 @@ class Studio {
   // The screen point of the middle of a stretch in the pattern view (to
   // click it), if it is shown.
   std::optional<Rect> stretch_on_screen(std::string_view pattern_id, std::string_view stretch_id) const;
+  // The screen point of an outline point (the C2D at `index` of the stretch)
+  // and of a piece's middle in the pattern view, if shown; the view's scale
+  // (px per m: a drag of d px moves a point d / scale m).
+  std::optional<Rect> point_on_screen(const xvc::OutlinePoint& point) const;
+  std::optional<Rect> piece_on_screen(std::string_view pattern_id) const;
+  float pattern_scale() const;
+  // The outline point selected for editing (a click on it, the piece selected).
+  std::optional<xvc::OutlinePoint> selected_point() const;
 
   // Called after the 3-D preview drew off-screen, to make the UI's GL context
   // current again (both may be OSMesa contexts in one thread).
