@@ -15,6 +15,7 @@
 #include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/sim/threads.hpp"
 #include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace vgd::dress {
 namespace {
@@ -68,9 +69,9 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
     if (!o.material_xvc.empty()) {
       fabric.xvc = fs::absolute(o.material_xvc);
       fabric.id = o.material_id;
-    } else if (const auto* mats = gdoc.container("MATERIALS"); mats && !mats->children.empty()) {
+    } else if (const std::string own = xvc::garment_material(gdoc); !own.empty()) {
       fabric.xvc = garments[k];
-      fabric.id = std::string(mats->children.front().id());
+      fabric.id = own;
     } else {
       fabric.xvc = data_file("materials/shirting.xvc");
       fabric.id = "shirting";

@@ -10,6 +10,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/placement.hpp"
 #include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace vgd::dress {
 
@@ -178,7 +179,8 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
         for (auto& t : mp.triangles) std::swap(t[1], t[2]);
       mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
-      out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment});
+      out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment,
+                            xvc::piece_material(doc, *doc.find(gp.pattern_id))});
       first[k] = count;
       count += n;
     }

@@ -42,6 +42,11 @@ std::string material_path(const std::string& key) {
 
 fs::path resolve(const SceneDef& def, const fs::path& p) { return resolve_path(def, p); }
 
+// Why a material cannot drive a cloth model ("" when it can).
+std::string model_problem(const MaterialDef& m, ClothModel model) {
+  return model == ClothModel::mass_spring ? mass_spring_problem(m) : orthotropic_problem(m);
+}
+
 // Everything read from other files, read once.
 class Inputs {
  public:
@@ -71,16 +76,25 @@ class Inputs {
     }
     // What the model needs, named where the material came from.
     const MaterialSource& src = def_.materials.at(key);
-    std::string problem;
-    if (model == ClothModel::mass_spring) problem = mass_spring_problem(it->second);
-    else problem = orthotropic_problem(it->second);
-    if (!problem.empty()) {
+    if (const std::string problem = model_problem(it->second, model); !problem.empty()) {
       if (!src.xvc.empty())
         throw Error(resolve(def_, src.xvc).string(), "MATERIAL " + src.id,
                     std::string("cannot be used with the ") + to_string(model) + " model: " + problem);
       throw Error(def_.source.string(), material_path(key),
                   std::string("cannot be used with the ") + to_string(model) + " model: " + problem);
     }
+    return it->second;
+  }
+
+  // A MATERIAL of an XVC document (a piece's own fabric in its garment).
+  const MaterialDef& xvc_material(const fs::path& given, const std::string& id, ClothModel model,
+                                  const std::string& path) {
+    const fs::path file = resolve(def_, given);
+    const std::string key = file.string() + "#" + id;
+    auto it = materials_.find(key);
+    if (it == materials_.end()) it = materials_.emplace(key, material_from_xvc(document(given, path), id, file.string())).first;
+    if (const std::string problem = model_problem(it->second, model); !problem.empty())
+      throw Error(file.string(), "MATERIAL " + id, std::string("cannot be used with the ") + to_string(model) + " model: " + problem);
     return it->second;
   }
 
@@ -281,6 +295,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     const MaterialDef& m = in.material(c.material, c.model);
     std::vector<std::pair<std::string, sim::Model>> parts;
     std::vector<std::string> segments;  // per part, made cloth only
+    std::vector<const MaterialDef*> own;  // per part, made cloth only: a piece's own fabric, else nullptr
     const MadeCloth* mine = nullptr;
     if (c.grid) {
       parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
@@ -294,10 +309,14 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       mine = &it->second;
       diag.append(mine->diagnostics);
       for (const auto& piece : mine->pieces) {
+        const MaterialDef* pm = piece.material.empty()
+                                    ? nullptr
+                                    : &in.xvc_material(c.garment->file, piece.material, c.model, cloth_path(ci) + ".garment.file");
         sim::Model mp = piece.model;
-        set_masses(mp, m, c.model);
+        set_masses(mp, pm ? *pm : m, c.model);
         parts.emplace_back(piece.name, std::move(mp));
         segments.push_back(piece.segment);
+        own.push_back(pm);
       }
     }
     const int first_piece = static_cast<int>(pieces.size());
@@ -313,7 +332,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       info.triangles = static_cast<int>(part.triangles.size());
       if (c.grid) info.nu = c.grid->nu, info.nv = c.grid->nv;
       info.model = c.model;
-      info.material = m;
+      info.material = k < own.size() && own[k] ? *own[k] : m;
       append(model, part, static_cast<int>(pieces.size()));
       model.pieces.push_back(name);
       pieces.push_back(std::move(info));

@@ -674,6 +674,8 @@ struct Studio::Impl {
       return;
     }
     ImGui::Text("%s  %s", node->tag.c_str(), selected.c_str());
+    // A piece's selected outline point first: what was just clicked.
+    if (node->tag == "PATTERN") point_inspector();
     if (ImGui::BeginTable("attributes", 2, ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg)) {
       ImGui::TableSetupColumn("attribute", ImGuiTableColumnFlags_WidthFixed, 90);
       ImGui::TableSetupColumn("value");
@@ -727,7 +729,7 @@ struct Studio::Impl {
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Turn the piece counter-clockwise by this angle; the grain line stays, so the fabric's warp "
                           "runs across it at another angle");
-      point_inspector();
+      piece_fabric_combo(*node);
     }
   }
 
@@ -735,7 +737,7 @@ struct Studio::Impl {
   // it, deleted. Drag it in the pattern view to move it.
   void point_inspector() {
     if (!point_sel || point_sel->pattern_id != selected) {
-      ImGui::TextDisabled("Click a point of the outline to edit it; drag it to move it.");
+      ImGui::TextDisabled("Click a point of its outline to edit it; drag one to move it.");
       return;
     }
     const auto at = laid_out(*point_sel);
@@ -745,14 +747,14 @@ struct Studio::Impl {
     pattern::PointKind kind = pattern::PointKind::plain;
     for (const auto& sv : pv->stretches)
       if (sv.id == point_sel->sequence_id && point_sel->index < sv.kinds.size()) kind = sv.kinds[point_sel->index];
-    ImGui::Separator();
     ImGui::Text("Point %zu of %s: x %.1f mm, y %.1f mm", point_sel->index, point_sel->sequence_id.c_str(),
                 1000 * q.x(), 1000 * q.y());
     int k = kind == pattern::PointKind::turn ? 1 : kind == pattern::PointKind::curve ? 2 : 0;
     const char* kinds[] = {"plain", "turn", "curve"};
-    ImGui::SetNextItemWidth(90);
-    if (ImGui::Combo("kind##point", &k, kinds, 3)) run(std::make_unique<xvc::SetPointKind>(*point_sel, kinds[k]));
+    ImGui::SetNextItemWidth(70);
+    if (ImGui::Combo("##point kind", &k, kinds, 3)) run(std::make_unique<xvc::SetPointKind>(*point_sel, kinds[k]));
     track("point kind");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The point's kind: plain, turn (a corner, where stretches begin) or curve");
     ImGui::SameLine();
     if (ImGui::Button("Insert after")) {
       const int before = revision;
@@ -761,8 +763,10 @@ struct Studio::Impl {
     }
     track("Insert point");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point half-way along the edge to the next one");
+    ImGui::SameLine();
     if (ImGui::Button("Delete point")) delete_point();
     track("Delete point");
+    ImGui::Separator();
   }
 
   void pattern_panel() {
@@ -1208,6 +1212,45 @@ struct Studio::Impl {
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("The fabric of the next drape: the garment's own MATERIAL (else shirting, or the shipped "
                         "knit for legs cut for stretch) or a shipped fabric (docs/fabric-lab.md)");
+  }
+
+  // The selected piece's own fabric: the garment's, or a shipped fabric
+  // copied into the document (xvc::SetPieceMaterial; the next drape cuts the
+  // piece from it: its density, stiffness and look).
+  void piece_fabric_combo(const xvc::Node& pattern) {
+    const std::string own = xvc::piece_material(doc, pattern);
+    std::string current = "garment's";
+    if (!own.empty())
+      if (const xvc::Node* m = doc.find(own)) current = m->attribute("name").empty() ? own : std::string(m->attribute("name"));
+    ImGui::SetNextItemWidth(160);
+    const auto& lib = fabric_library();
+    std::optional<std::optional<xvc::Node>> chosen;
+    if (ImGui::BeginCombo("piece fabric", current.c_str())) {
+      if (ImGui::Selectable("garment's", own.empty())) chosen.emplace(std::nullopt);
+      track("piece fabric:garment's");
+      for (const auto& f : lib) {
+        if (ImGui::Selectable(f.name.c_str(), false)) {
+          try {
+            const xvc::Document d = xvc::load_file(f.file);
+            if (const xvc::Node* m = d.find(f.id)) chosen.emplace(*m);
+          } catch (const std::exception& e) {
+            say("Cannot read the fabric " + f.file.string() + ": " + e.what(), true);
+          }
+        }
+        track("piece fabric:" + f.name);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.figures.c_str());
+      }
+      ImGui::EndCombo();
+    }
+    track("piece fabric");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The fabric this piece is cut from: the garment's, or a shipped fabric of its own (a collar in "
+                        "denim, cuffs in jersey); the next drape uses it");
+    if (chosen) {
+      const std::string piece(pattern.id());  // `pattern` may move with the edit
+      run(std::make_unique<xvc::SetPieceMaterial>(piece, *chosen));
+      selected = piece;  // the piece stays selected, not its new MATERIAL
+    }
   }
 
   // The vgd-server that "Simulate on server" sends the drape to.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <set>
 
@@ -409,6 +410,84 @@ std::string RotatePattern::apply(Editor& edit) {
   }
   edit.replace(path, std::move(p));
   return id_;
+}
+
+// ---- SetPieceMaterial ----------------------------------------------------------------
+
+namespace {
+// Content equality without ids (a pasted copy has fresh ones).
+bool same_content(const Node& a, const Node& b) {
+  if (a.tag != b.tag || a.children.size() != b.children.size()) return false;
+  auto attrs = [](const Node& n) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& at : n.attributes)
+      if (at.name != "id") out.emplace_back(at.name, at.value);
+    return out;
+  };
+  if (attrs(a) != attrs(b)) return false;
+  for (std::size_t i = 0; i < a.children.size(); ++i)
+    if (!same_content(a.children[i], b.children[i])) return false;
+  return true;
+}
+}  // namespace
+
+SetPieceMaterial::SetPieceMaterial(std::string pattern_id, std::optional<Node> material)
+    : id_(std::move(pattern_id)), material_(std::move(material)) {}
+
+std::string SetPieceMaterial::label() const {
+  return material_ ? "Cut " + id_ + " from " + std::string(material_->attribute("id")) : "Cut " + id_ + " from the garment's fabric";
+}
+
+std::string SetPieceMaterial::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  if (material_ && material_->tag != "MATERIAL")
+    throw Error(doc.name(), id_, "a piece is cut from a MATERIAL, not a " + material_->tag);
+  const Node* mats = doc.container("MATERIALS");
+  if (!mats) throw Error(doc.name(), id_, "the document has no MATERIALS to hold the piece's fabric");
+  // How many pieces name each MATERIAL.
+  std::map<std::string, int> named;
+  for (const Node* p : doc.patterns())
+    for (const auto& a : p->children)
+      if (a.tag == "ASSOCIATION" && a.attribute("role") == "material") ++named[std::string(a.attribute("ref"))];
+  // The fabric: a piece's own MATERIAL with the same content, else a fresh copy.
+  std::string target;
+  Node fabric;
+  if (material_) {
+    fabric = *material_;
+    fabric.set_attribute("scope", "piece");
+    for (const auto& m : mats->children)
+      if (m.tag == "MATERIAL" && m.attribute("scope") == "piece" && same_content(m, fabric)) target = std::string(m.id());
+  }
+  // The pattern's present association(s) go; a MATERIAL left unnamed goes too.
+  std::vector<std::string> dropped;
+  const Node& p = doc.at(path);
+  for (std::size_t i = p.children.size(); i-- > 0;) {
+    const Node& a = p.children[i];
+    if (a.tag != "ASSOCIATION" || a.attribute("role") != "material") continue;
+    const std::string ref(a.attribute("ref"));
+    if (ref == target) return target;  // already cut from it
+    NodePath at = path;
+    at.push_back(i);
+    edit.remove(at);
+    if (--named[ref] == 0) dropped.push_back(ref);
+  }
+  for (const auto& ref : dropped)
+    if (const Node* m = doc.find(ref); m && m->attribute("scope") == "piece" && ref != target) edit.remove(*doc.path_of(ref));
+  if (!material_) return "";
+  if (target.empty()) {
+    Node copy = std::move(fabric);
+    detail::IdMaker ids(doc);
+    detail::assign_ids(copy, ids, true);
+    target = std::string(copy.id());
+    const NodePath mpath = *doc.path_of(mats->id());
+    edit.insert(mpath, doc.at(mpath).children.size(), std::move(copy));
+  }
+  detail::IdMaker ids(doc);
+  Node assoc{"ASSOCIATION", {{"id", ids.make("assoc")}, {"ref", target}, {"role", "material"}}, {}};
+  const Node& pat = doc.at(path);
+  edit.insert(path, detail::canonical_index(pat, "ASSOCIATION"), std::move(assoc));
+  return target;
 }
 
 // ---- SetParameter --------------------------------------------------------------------

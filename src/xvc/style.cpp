@@ -2,6 +2,8 @@
 // each field goes; attributes holding a default value are left out.
 #include "vgd/xvc/style.hpp"
 
+#include <set>
+
 #include <algorithm>
 #include <map>
 
@@ -255,6 +257,20 @@ std::vector<Stretch> boundary_stretches(const Node& pattern) {
 std::optional<bool> drape_attribute(const Node& pattern) {
   if (!pattern.has_attribute("drape")) return std::nullopt;
   return detail::parse_bool(pattern.attribute("drape"));
+}
+
+std::string piece_material(const Document& doc, const Node& pattern) {
+  for (const auto& a : pattern.children)
+    if (a.tag == "ASSOCIATION" && a.attribute("role") == "material")
+      if (const Node* m = doc.find(a.attribute("ref")); m && m->tag == "MATERIAL") return std::string(m->id());
+  return "";
+}
+
+std::string garment_material(const Document& doc) {
+  if (const Node* mats = doc.container("MATERIALS"))
+    for (const auto& m : mats->children)
+      if (m.tag == "MATERIAL" && m.attribute("scope") != "piece") return std::string(m.id());
+  return "";
 }
 
 pattern::RoleGuess piece_role(const Document& doc, const Node& pattern) {

@@ -6,6 +6,14 @@
 #include "vgd/dress/drape.hpp"
 #include "vgd/dress/dress.hpp"
 #include "vgd/scene/build.hpp"
+#include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <map>
 
 namespace vgd::dress {
 namespace {
@@ -28,6 +36,59 @@ TEST(DressBuild, LayeredGarmentsOnAMovingBodyAreRefused) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("body_velocity"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("at rest"), std::string::npos) << e.what();
+  }
+}
+
+// The skirt's pieces' masses (kg) by block name, built at a coarse mesh.
+std::map<std::string, double> piece_masses(const std::filesystem::path& garment) {
+  DrapeOptions d;
+  d.garment = garment;
+  d.spacing = 0.03;
+  const scene::Scene s = dress::build(drape_scene(d));
+  std::map<std::string, double> out;
+  for (const auto& p : s.pieces) {
+    double m = 0;
+    for (int i = p.first; i < p.first + p.count; ++i) m += s.system->model().mass[i];
+    out[p.name + " " + p.material.name] = m;
+  }
+  return out;
+}
+
+// A piece cut from a fabric of its own (an ASSOCIATION role="material" to a
+// MATERIAL of its document): the shipped denim for the skirt's waistband. Its
+// particles weigh what denim's 0.42 kg/m² says, 2.1 times the shirting's
+// 0.2; the other pieces keep the garment's fabric, shirting, which stays the
+// garment's although the document now holds a MATERIAL (of scope "piece").
+TEST(DressBuild, APieceCutFromItsOwnFabricWeighsWhatItsDensitySays) {
+  const auto skirt = vgd::test::source_dir() / "data/garments/a-line-skirt.xvc";
+  const auto before = piece_masses(skirt);
+  xvc::Document doc = xvc::load_file(skirt);
+  const xvc::Document denim = xvc::load_file(vgd::test::source_dir() / "data/materials/denim.xvc");
+  std::string band;
+  for (const auto* p : doc.patterns())
+    if (p->attribute("piece") == "WAISTBAND" && p->attribute("size") == "38") band = std::string(p->id());
+  ASSERT_FALSE(band.empty());
+  xvc::SetPieceMaterial cut(band, denim.container("MATERIALS")->children.front());
+  const std::string mat = xvc::execute(doc, cut);
+  EXPECT_EQ(xvc::piece_material(doc, *doc.find(band)), mat);
+  EXPECT_EQ(xvc::garment_material(doc), "");
+  const auto file = std::filesystem::temp_directory_path() / ("vgd-piece-fabric-" + std::to_string(::getpid()) + ".xvc");
+  xvc::save_file(doc, file);
+  const auto after = piece_masses(file);
+  std::filesystem::remove(file);
+  ASSERT_EQ(before.size(), 3u);
+  ASSERT_EQ(after.size(), 3u);
+  const std::string denim_name(denim.container("MATERIALS")->children.front().attribute("name"));
+  for (const auto& [key, m] : before) {
+    SCOPED_TRACE(key);
+    const std::string block = key.substr(0, key.find(' '));
+    if (block == "WAISTBAND_38") {
+      ASSERT_TRUE(after.count(block + " " + denim_name)) << "cut from denim";
+      EXPECT_NEAR(after.at(block + " " + denim_name) / m, 0.42 / 0.2, 1e-9);
+    } else {
+      ASSERT_TRUE(after.count(key)) << "still the garment's fabric";
+      EXPECT_NEAR(after.at(key), m, 1e-15);
+    }
   }
 }
 

@@ -853,6 +853,8 @@ TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
   const auto first = h.studio().point_on_screen({front, stretches[1].id, 0});
   ASSERT_TRUE(first.has_value());
   h.click_at(first->cx(), first->cy());
+  ASSERT_TRUE(h.studio().selected_point().has_value());
+  EXPECT_EQ(h.studio().selected_point()->index, 0u) << "a click selects the point";
   h.click("Delete point");
   EXPECT_NE(h.studio().status().find("begins"), std::string::npos) << h.studio().status();
   EXPECT_TRUE(h.studio().document() == original);
@@ -875,4 +877,34 @@ TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
   for (const auto& d : v.items()) ADD_FAILURE() << d.format();
   EXPECT_TRUE(vgd::xvc::load_file(out) == h.studio().document());
   fs::remove(out);
+}
+
+// A piece's own fabric chosen in the inspector: the skirt's waistband cut from
+// the shipped denim (its MATERIAL copied into the document, named by the
+// pattern's ASSOCIATION), the piece still selected; one undo takes it back;
+// "garment's" again removes the copy.
+TEST(Studio, APieceIsCutFromAFabricOfItsOwn) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  const std::string band = pattern_id(h.studio().document(), "WAISTBAND", "38");
+  ASSERT_FALSE(band.empty());
+  const auto original = h.studio().document();
+  h.click("tree:" + band);
+  h.click("piece fabric");
+  h.click("piece fabric:denim");
+  const auto& doc = h.studio().document();
+  const std::string own = vgd::xvc::piece_material(doc, *doc.find(band));
+  ASSERT_FALSE(own.empty()) << h.studio().status();
+  EXPECT_NE(std::string(doc.find(own)->attribute("name")).find("denim"), std::string::npos);
+  EXPECT_EQ(h.studio().selected(), band);
+  EXPECT_EQ(vgd::xvc::garment_material(doc), "") << "the skirt's own fabric stays the default";
+  h.key("ctrl+z");
+  EXPECT_TRUE(h.studio().document() == original);
+  h.key("ctrl+y");
+  h.frame();
+  h.click("piece fabric");
+  h.click("piece fabric:garment's");
+  EXPECT_TRUE(h.studio().document().container("MATERIALS")->children.empty()) << h.studio().status();
+  EXPECT_EQ(vgd::xvc::piece_material(h.studio().document(), *h.studio().document().find(band)), "");
 }

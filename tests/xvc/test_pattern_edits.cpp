@@ -412,3 +412,48 @@ TEST(RotatePattern, TurnsTheOutlineAndNotchesButNotTheGrain) {
   const Piece c = to_piece(doc, "pattern1");
   for (std::size_t i = 0; i < a.boundary.size(); ++i) EXPECT_LT((c.boundary[i].p - a.boundary[i].p).norm(), 1e-15) << i;
 }
+
+// A piece cut from a fabric of its own: the MATERIAL copied in once, with scope
+// "piece" (a second piece cut from the same fabric shares it), named by an
+// ASSOCIATION; the garment's fabric stays the garment's. Cut from the garment's
+// fabric again, the association goes, and the piece MATERIAL with the last one.
+// The fixture's pattern1 names the garment's own MATERIAL: cut from another
+// fabric, that MATERIAL stays (it is the garment's); undo restores everything.
+TEST(SetPieceMaterial, CopiesTheFabricOnceAndDropsItWhenNoPieceNamesIt) {
+  Document doc = full_document();
+  const std::string garment = garment_material(doc);
+  ASSERT_FALSE(garment.empty());
+  ASSERT_EQ(piece_material(doc, *doc.find("pattern1")), garment);
+  const std::size_t materials = doc.container("MATERIALS")->children.size();
+  Node denim{"MATERIAL", {{"id", "denim"}, {"name", "denim 12 oz"}},
+             {Node{"PARAMETER", {{"id", "p1"}, {"name", "density"}, {"value", "0.42"}, {"unit", "kg/m2"}}, {}}}};
+  SetPieceMaterial a("pattern2", denim);
+  const std::string id = execute(doc, a);
+  EXPECT_EQ(piece_material(doc, *doc.find("pattern2")), id);
+  EXPECT_EQ(doc.find(id)->attribute("scope"), "piece");
+  EXPECT_EQ(doc.container("MATERIALS")->children.size(), materials + 1);
+  SetPieceMaterial b("pattern3", denim);
+  EXPECT_EQ(execute(doc, b), id) << "the same fabric is not copied twice";
+  EXPECT_EQ(doc.container("MATERIALS")->children.size(), materials + 1);
+  EXPECT_EQ(garment_material(doc), garment);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  SetPieceMaterial back2("pattern2", std::nullopt);
+  execute(doc, back2);
+  EXPECT_EQ(piece_material(doc, *doc.find("pattern2")), "");
+  EXPECT_NE(doc.find(id), nullptr) << "pattern3 still names it";
+  SetPieceMaterial back3("pattern3", std::nullopt);
+  execute(doc, back3);
+  EXPECT_EQ(doc.find(id), nullptr);
+  EXPECT_EQ(doc.container("MATERIALS")->children.size(), materials);
+  const Document before = doc;
+  UndoStack stack(doc);
+  stack.execute(std::make_unique<SetPieceMaterial>("pattern1", denim));
+  EXPECT_EQ(doc.find(piece_material(doc, *doc.find("pattern1")))->attribute("name"), "denim 12 oz");
+  EXPECT_NE(doc.find(garment), nullptr) << "the garment's MATERIAL stays";
+  EXPECT_EQ(garment_material(doc), garment);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+  SetPieceMaterial notes("pattern1", Node{"PARAMETER", {{"id", "x"}}, {}});
+  EXPECT_THROW(execute(doc, notes), vgd::Error);
+}

@@ -64,6 +64,9 @@ struct MadePiece {
   std::string name;
   sim::Model model;
   std::string segment;  // the body segment it was placed on (PieceInfo::segment)
+  // The MATERIAL id, in the cloth's garment document, the piece is cut from
+  // when it names its own (xvc::piece_material); "" = the cloth's material.
+  std::string material;
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;

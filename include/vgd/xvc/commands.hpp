@@ -311,6 +311,24 @@ class RotatePattern : public Command {
   double degrees_;
 };
 
+// Cuts a PATTERN from a fabric of its own: `material` (a MATERIAL element, e.g.
+// from a shipped fabric's document) is added to MATERIALS with fresh ids and scope
+// "piece" (never the garment's fabric: xvc::garment_material), unless a piece
+// MATERIAL with the same content is there already, and the pattern names it with an
+// ASSOCIATION (role "material"), replacing the one it had. nullopt: the pattern is
+// cut from the garment's fabric again. A piece MATERIAL no ASSOCIATION names any
+// more goes; a garment one stays. Returns the MATERIAL's id ("" for nullopt).
+class SetPieceMaterial : public Command {
+ public:
+  SetPieceMaterial(std::string pattern_id, std::optional<Node> material);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  std::optional<Node> material_;
+};
+
 // Sets (or adds) a GARMENT-level PARAMETER. An empty unit means the known parameter's
 // unit; unknown parameters need one. Returns the PARAMETER's id.
 class SetParameter : public Command {

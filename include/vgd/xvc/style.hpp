@@ -44,6 +44,15 @@ pattern::RoleGuess piece_role(const Document& doc, const Node& pattern);
 // vgd dress, corrected by the designer), nothing when it has none.
 std::optional<bool> drape_attribute(const Node& pattern);
 
+// The MATERIAL a PATTERN is cut from when it names its own (an ASSOCIATION
+// with role "material" referring to a MATERIAL of `doc`): its id, else "".
+std::string piece_material(const Document& doc, const Node& pattern);
+
+// The garment's own fabric: its first MATERIAL of scope "garment" (the
+// default; "piece" MATERIALs serve only the pieces that name them), else ""
+// (pieces without their own are then cut from the default fabric).
+std::string garment_material(const Document& doc);
+
 // A boundary C2DSEQ of a pattern and the vertices it holds in the piece's boundary:
 // indices first .. first + count - 1. Its edge runs on to the first vertex of the next
 // stretch (cyclically), so a stretch from corner to corner holds the first corner only.

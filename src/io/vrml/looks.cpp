@@ -1,5 +1,8 @@
 // Piece looks from the XVC document's MATERIAL, TEXTURE and ASSOCIATION elements.
 #include "vgd/io/vrml/looks.hpp"
+#include "vgd/xvc/style.hpp"
+
+#include <set>
 
 #include "vgd/core/strings.hpp"
 
@@ -42,13 +45,14 @@ void apply_texture(const xvc::Node& texture, PieceLook& look) {
 
 std::vector<PieceLook> looks_from_xvc(const xvc::Document& doc, const std::vector<std::string>& pieces,
                                       Diagnostics* diagnostics) {
-  // The document-wide look: its only coloured MATERIAL, else the default.
+  // The document-wide look: its only coloured MATERIAL, else the default. A
+  // MATERIAL of scope "piece" is the look of the pieces that name it only.
   PieceLook garment_look;
   garment_look.source = "default";
   if (const xvc::Node* materials = doc.container("MATERIALS")) {
     std::vector<const xvc::Node*> coloured;
     for (const auto& m : materials->children)
-      if (m.tag == "MATERIAL" && child(m, "COLORRGBA")) coloured.push_back(&m);
+      if (m.tag == "MATERIAL" && child(m, "COLORRGBA") && m.attribute("scope") != "piece") coloured.push_back(&m);
     if (coloured.size() == 1) apply_material(*coloured.front(), garment_look);
   }
 
