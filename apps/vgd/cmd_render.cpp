@@ -28,6 +28,9 @@
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
+#include "vgd/core/data.hpp"
+#include "vgd/scene/material.hpp"
+#include "vgd/xvc/style.hpp"
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
 
@@ -182,6 +185,48 @@ std::optional<vgd::xvc::Document> look_document(const Options& o, const fs::path
   }
 }
 
+// The fabrics of a stress map: the garment document (--look, else the one the
+// folder's certificate names) for the pieces' own MATERIALs, and the
+// garment's fabric: the certificate's `material` input, else the document's
+// own, else vgd's shirting.
+struct StressFabrics {
+  std::optional<vgd::xvc::Document> doc;
+  vgd::scene::MaterialDef garment;
+};
+
+StressFabrics stress_fabrics(const Options& o, const fs::path& folder, const vgd::cli::Common& common) {
+  StressFabrics out;
+  vgd::Diagnostics diags;
+  out.doc = look_document(o, folder, diags);
+  vgd::cli::print_diagnostics(diags, common);
+  std::string source;
+  std::error_code ec;
+  if (!folder.empty() && fs::exists(folder / "certificate.json", ec)) {
+    const auto j = nlohmann::json::parse(vgd::read_file(folder / "certificate.json"), nullptr, false);
+    if (j.is_object() && j.contains("inputs") && j["inputs"].is_object() && j["inputs"].contains("material") &&
+        j["inputs"]["material"].is_string()) {
+      const std::string m = j["inputs"]["material"].get<std::string>();
+      const auto hash = m.rfind('#');
+      if (hash != std::string::npos) {
+        out.garment = vgd::scene::load_xvc_material(m.substr(0, hash), m.substr(hash + 1));
+        source = m;
+      }
+    }
+  }
+  if (source.empty() && out.doc)
+    if (const std::string own = vgd::xvc::garment_material(*out.doc); !own.empty()) {
+      out.garment = vgd::scene::material_from_xvc(*out.doc, own, out.doc->name());
+      source = out.doc->name() + "#" + own;
+    }
+  if (source.empty()) {
+    source = vgd::data_file("materials/shirting.xvc").string() + "#shirting";
+    out.garment = vgd::scene::load_xvc_material(vgd::data_file("materials/shirting.xvc"), "shirting");
+  }
+  vgd::cli::say(common, "vgd: stress from the fabrics' sheet moduli: the garment's " + source +
+                            (out.doc ? ", each piece's own from " + out.doc->name() : std::string()));
+  return out;
+}
+
 // Each piece's colour and texture from the document (io::vrml::looks_from_xvc,
 // as the VRML and glTF exports use them). A piece the document gives no colour
 // keeps the default fabric colour. A textured piece shows the image as it is
@@ -285,15 +330,28 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
     // A fit map: each piece coloured by its strain; the figures said per piece.
     const auto map = *render::parse_fit_map(o.map);
     const render::FitScale scale = fit_scale(o);
+    // The stress map's fabrics: each piece's own, else the garment's.
+    std::optional<StressFabrics> fabrics;
+    if (map == render::FitMap::stress) fabrics = stress_fabrics(o, folder, common);
     for (auto* m : garment_meshes) {
-      const auto values = render::fit_values(*m, map);
+      std::optional<render::Membrane> membrane;
+      std::string fabric_name;
+      if (fabrics) {
+        const vgd::scene::MaterialDef f =
+            fabrics->doc ? vgd::scene::piece_fabric(*fabrics->doc, m->name, fabrics->garment, fabrics->doc->name())
+                         : fabrics->garment;
+        const auto ortho = vgd::scene::orthotropic_of(f);
+        membrane = render::Membrane{ortho.E_warp, ortho.E_weft, ortho.G, ortho.nu_warp_weft};
+        fabric_name = " (" + f.name + ")";
+      }
+      const auto values = render::fit_values(*m, map, membrane ? &*membrane : nullptr);
       render::colour_by(*m, values, scale);
       std::vector<double> sorted = values;
       std::sort(sorted.begin(), sorted.end());
       if (sorted.empty()) continue;
       const auto at = [&](double q) { return sorted[static_cast<std::size_t>(std::lround(q * (sorted.size() - 1)))]; };
       vgd::cli::say(common, "vgd: " + render::title_of(map) + " of " + (m->name.empty() ? "the garment" : m->name) +
-                                ": p50 " + vgd::format_fixed(at(0.5), 1) + ", p95 " + vgd::format_fixed(at(0.95), 1) +
+                                fabric_name + ": p50 " + vgd::format_fixed(at(0.5), 1) + ", p95 " + vgd::format_fixed(at(0.95), 1) +
                                 ", max " + vgd::format_fixed(sorted.back(), 1) + " (per vertex)");
     }
   }
@@ -333,10 +391,11 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
                                      "one a drape folder's certificate.json names");
   sub->add_flag("--no-texture", o->no_texture, "Flat colours: draw no texture");
   sub->add_option("--map", o->map, "A fit map instead of the looks: the garment coloured by warp, weft or largest "
-                                   "stretch strain (%) or shear (deg), with a legend (docs/render.md)")
-      ->check(CLI::IsMember({"warp", "weft", "shear", "stretch"}));
+                                   "stretch strain (%), shear (deg) or stress (the larger principal tension, N/m, "
+                                   "from each piece's fabric), with a legend (docs/render.md)")
+      ->check(CLI::IsMember({"warp", "weft", "shear", "stretch", "stress"}));
   sub->add_option("--map-range", o->map_range, "LO,HI: the values the map's colours span (default 0,40 for strain "
-                                               "in %, 0,20 for shear in deg)");
+                                               "in %, 0,20 for shear in deg, 0,100 for stress in N/m)");
   sub->add_option("--body-colour,--body-color", o->body_colour, "Body colour (default a neutral light grey)");
   sub->add_option("--fit", o->fit, "Frame the views on the body (default) or on the garment (closer)")
       ->check(CLI::IsMember({"body", "garment"}))

@@ -309,13 +309,28 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
   const Eigen::Matrix3d r = to_up(axis);
   mesh::SurfaceMesh along = m;
   mesh::transform(along, r);
-  // The girth profile from 15 % of the way down (below the armpit) to 92 %:
-  // at each station the loop nearest the last station's (an arm bent at the
-  // elbow leaves the straight shoulder–fingertip line by several cm), the
-  // first within 6 cm of that line.
+  double thinnest = std::numeric_limits<double>::infinity(), at = 0;
+  for (double t = 0.45 * L; t <= 0.92 * L; t += 0.005) {
+    const Vec3 c = r * (a.shoulder + t * axis);
+    const Vec2d cxz(c.x(), c.z());
+    double best_d = 0.06, perimeter = 0;
+    for (const auto& l : mesh::slice_horizontal(along, c.y())) {
+      if (l.size() < 3) continue;
+      const double d = (loop_centroid(l) - cxz).norm();
+      if (d < best_d) best_d = d, perimeter = mesh::convex_hull_perimeter(l);
+    }
+    if (perimeter > 0 && perimeter < thinnest) thinnest = perimeter, at = t;
+  }
+  if (!std::isfinite(thinnest)) return std::nullopt;
+  a.wrist = a.shoulder + at * axis;
+  a.wrist_girth = thinnest;
+  // The girth profile from 15 % of the way down (below the armpit) to the
+  // wrist, for the elbow: at each station the loop nearest the last
+  // station's (an arm bent at the elbow leaves the straight shoulder–fingertip
+  // line by several cm), the first within 6 cm of that line.
   std::vector<Vec2d> profile;
   std::optional<Vec2d> last;
-  for (double t = 0.15 * L; t <= 0.92 * L; t += 0.005) {
+  for (double t = 0.15 * L; t <= at + 1e-9; t += 0.005) {
     const Vec3 c = r * (a.shoulder + t * axis);
     const Vec2d from = last ? *last : Vec2d(c.x(), c.z());
     double best_d = 0.06, perimeter = 0;
@@ -327,12 +342,6 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
     }
     if (perimeter > 0) profile.push_back({t, perimeter}), last = centre;
   }
-  double thinnest = std::numeric_limits<double>::infinity(), at = 0;
-  for (const auto& p : profile)
-    if (p.x() >= 0.45 * L - 1e-9 && p.y() < thinnest) thinnest = p.y(), at = p.x();
-  if (!std::isfinite(thinnest)) return std::nullopt;
-  a.wrist = a.shoulder + at * axis;
-  a.wrist_girth = thinnest;
   // The elbow. Going up from the wrist the girth grows to the forearm's
   // fullest (a local maximum) and narrows above it where the upper arm's
   // muscles end (at least 2 mm less within 8 cm); the joint lies between the
@@ -340,9 +349,7 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
   // its profile bends over the lower 70 % (profile_bend, at least 5 mm of
   // girth off the chord; the armpit's flare above is left out).
   std::optional<double> bend;
-  std::size_t w = 0;
-  while (w + 1 < profile.size() && profile[w + 1].x() <= at + 1e-9) ++w;
-  for (std::size_t i = w; i >= 1 && i + 1 < profile.size() && !bend; --i) {
+  for (std::size_t i = profile.size() < 2 ? 0 : profile.size() - 2; i >= 1 && !bend; --i) {
     const double t = profile[i].x();
     if (t > 0.8 * at) continue;
     if (t < 0.3 * at) break;

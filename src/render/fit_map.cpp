@@ -21,7 +21,7 @@
 namespace vgd::render {
 
 std::optional<FitMap> parse_fit_map(std::string_view name) {
-  for (FitMap m : {FitMap::warp, FitMap::weft, FitMap::shear, FitMap::stretch})
+  for (FitMap m : {FitMap::warp, FitMap::weft, FitMap::shear, FitMap::stretch, FitMap::stress})
     if (iequals(name, to_string(m))) return m;
   return std::nullopt;
 }
@@ -32,11 +32,12 @@ const char* to_string(FitMap map) {
     case FitMap::weft: return "weft";
     case FitMap::shear: return "shear";
     case FitMap::stretch: return "stretch";
+    case FitMap::stress: return "stress";
   }
   return "?";
 }
 
-const char* unit_of(FitMap map) { return map == FitMap::shear ? "deg" : "%"; }
+const char* unit_of(FitMap map) { return map == FitMap::shear ? "deg" : map == FitMap::stress ? "N/m" : "%"; }
 
 std::string title_of(FitMap map) {
   switch (map) {
@@ -44,17 +45,38 @@ std::string title_of(FitMap map) {
     case FitMap::weft: return "weft strain, %";
     case FitMap::shear: return "shear, deg";
     case FitMap::stretch: return "largest stretch, %";
+    case FitMap::stress: return "tension, N/m";
   }
   return "?";
 }
 
-FitScale default_scale(FitMap map) { return map == FitMap::shear ? FitScale{0.0, 20.0} : FitScale{0.0, 40.0}; }
+FitScale default_scale(FitMap map) {
+  if (map == FitMap::shear) return {0.0, 20.0};
+  if (map == FitMap::stress) return {0.0, 100.0};
+  return {0.0, 40.0};
+}
 
-std::vector<double> fit_values(const Mesh& mesh, FitMap map) {
+namespace {
+// The larger principal membrane tension (N/m, ≥ 0) of a strained triangle.
+double tension(const mesh::TriangleStrain& s, const Membrane& f) {
+  const double nu_fw = f.nu_warp_weft * f.e_weft / f.e_warp;
+  const double d = 1.0 - f.nu_warp_weft * nu_fw;
+  const double sw = f.e_warp * (s.warp + nu_fw * s.weft) / d, sf = f.e_weft * (s.weft + f.nu_warp_weft * s.warp) / d;
+  const double tau = f.g * s.shear_deg * 3.14159265358979323846 / 180.0;
+  return std::max(0.0, 0.5 * (sw + sf) + std::hypot(0.5 * (sw - sf), tau));
+}
+}  // namespace
+
+std::vector<double> fit_values(const Mesh& mesh, FitMap map, const Membrane* fabric) {
   const std::size_t n = mesh.positions.size();
   if (mesh.uv.size() != n)
     throw Error(mesh.name, "", "no material coordinates (uv) to measure strain against: a fit map needs the "
                                "garment's rest shape (garment.obj's vt, a trajectory's topology)");
+  if (map == FitMap::stress &&
+      (!fabric || !(fabric->e_warp > 0) || !(fabric->e_weft > 0) || !(fabric->g >= 0) ||
+       !(fabric->nu_warp_weft >= 0) || !(fabric->nu_warp_weft * fabric->nu_warp_weft * fabric->e_weft / fabric->e_warp < 1)))
+    throw Error(mesh.name, "", "a stress map needs the fabric's sheet moduli (E_warp, E_weft > 0, G >= 0, "
+                               "0 <= nu_warp_weft with nu_xy nu_yx < 1)");
   std::vector<double> sum(n, 0.0), weight(n, 0.0);
   auto v2 = [&](int i) { return Eigen::Vector2d(mesh.uv[i][0], mesh.uv[i][1]); };
   auto v3 = [&](int i) { return Eigen::Vector3d(mesh.positions[i][0], mesh.positions[i][1], mesh.positions[i][2]); };
@@ -69,6 +91,7 @@ std::vector<double> fit_values(const Mesh& mesh, FitMap map) {
       case FitMap::weft: value = 100.0 * s.weft; break;
       case FitMap::shear: value = std::abs(s.shear_deg); break;
       case FitMap::stretch: value = 100.0 * s.stretch; break;
+      case FitMap::stress: value = tension(s, *fabric); break;
     }
     for (int k = 0; k < 3; ++k) sum[t[k]] += area * value, weight[t[k]] += area;
   }
@@ -136,7 +159,7 @@ int text_width(const std::string& s, int scale) {
 std::string label(double v, const char* unit) {
   const double r = std::round(v * 10.0) / 10.0;
   std::string t = std::abs(r - std::round(r)) < 1e-9 ? format_fixed(r, 0) : format_fixed(r, 1);
-  return t + (std::string(unit) == "%" ? " %" : " deg");
+  return t + " " + unit;
 }
 
 }  // namespace

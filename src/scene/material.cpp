@@ -1,6 +1,7 @@
 // Materials: the parameter vocabulary shared by scene files and XVC MATERIAL
 // modules, unit conversion, and reading a MATERIAL from an XVC document.
 #include "vgd/scene/material.hpp"
+#include "vgd/xvc/style.hpp"
 
 #include <array>
 #include <cmath>
@@ -179,6 +180,16 @@ std::string orthotropic_problem(const MaterialDef& m) {
   std::string all;
   for (const auto& s : p) all += (all.empty() ? "" : "; ") + s;
   return all;
+}
+
+MaterialDef piece_fabric(const xvc::Document& garment, std::string_view piece, const MaterialDef& garment_fabric,
+                         const std::string& file) {
+  for (const xvc::Node* p : garment.patterns())
+    if (p->attribute("block") == piece || p->attribute("piece") == piece) {
+      const std::string own = xvc::piece_material(garment, *p);
+      return own.empty() ? garment_fabric : material_from_xvc(garment, own, file);
+    }
+  return garment_fabric;
 }
 
 }  // namespace vgd::scene

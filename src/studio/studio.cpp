@@ -28,6 +28,7 @@
 #include "vgd/mesh/surface.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
+#include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
@@ -143,6 +144,10 @@ struct Studio::Impl {
   // Drape.
   dress::DrapeOptions drape;
   std::string body_text;  // the body file typed in; "" = the mannequin of the size
+  // Other garments worn with the document, innermost first: under it, then
+  // over it (as vgd drape skirt.xvc t-shirt.xvc), and the path being typed.
+  std::vector<fs::path> under, over;
+  std::string layer_text;
   std::vector<std::string> body_notes;  // what the importer decided for the last drape's body
   std::vector<std::string> preparation;  // what the last drape decided for the document (dress::Preparation)
   DrapeJob here;          // draped in this process
@@ -160,7 +165,9 @@ struct Studio::Impl {
   bool preview_dirty = false;
   double last_preview = -1e9;
   double azimuth = 35, elevation = 8;
-  int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch)
+  int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch, stress)
+  // The stress map's fabric of each piece drawn, by name, resolved once per drape.
+  mutable std::map<std::string, render::Membrane> membranes;
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
   // file, MATERIAL id, short name, and for a tooltip its full name and figures.
@@ -1106,6 +1113,7 @@ struct Studio::Impl {
     track("time limit");
     fabric_combo();
     body_row();
+    layers_row();
     server_row();
     ImGui::EndDisabled();
 
@@ -1151,6 +1159,49 @@ struct Studio::Impl {
         if (!all.empty()) ImGui::SetTooltip("%s", all.c_str());
       }
     }
+  }
+
+  // Garments worn with the document: a path typed, added under or over it;
+  // each listed with its place and a button to take it off.
+  void layers_row() {
+    ImGui::SetNextItemWidth(-2 * ImGui::CalcTextSize("Add over").x - 4 * ImGui::GetStyle().ItemSpacing.x);
+    ImGui::InputTextWithHint("##layer", "another garment worn with it (an XVC document)", &layer_text);
+    track("layer");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("An XVC garment draped with this one, under it (a skirt under a T-shirt) or over it, in the "
+                        "same size; each is made ready as vgd dress makes it");
+    for (const auto& [label, list] : {std::pair{"Add under", &under}, std::pair{"Add over", &over}}) {
+      ImGui::SameLine();
+      ImGui::BeginDisabled(layer_text.empty());
+      if (ImGui::Button(label)) {
+        std::error_code ec;
+        const fs::path p = fs::absolute(layer_text, ec);
+        if (!fs::is_regular_file(p, ec)) {
+          say("No garment document " + layer_text + ".", true);
+        } else {
+          list->push_back(p);
+          layer_text.clear();
+        }
+      }
+      track(label);
+      ImGui::EndDisabled();
+    }
+    auto listed = [&](std::vector<fs::path>& list, const char* where) {
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        ImGui::PushID(static_cast<int>(k) + (where[0] == 'o' ? 1000 : 0));
+        ImGui::TextDisabled("%s: %s", where, list[k].filename().string().c_str());
+        ImGui::SameLine();
+        const bool off = ImGui::SmallButton("take off");
+        track(std::string("take off:") + list[k].filename().string());
+        ImGui::PopID();
+        if (off) {
+          list.erase(list.begin() + static_cast<std::ptrdiff_t>(k));
+          break;
+        }
+      }
+    };
+    listed(under, "under");
+    listed(over, "over");
   }
 
   // The body: the mannequin of the garment's size, or a file (OBJ, glTF,
@@ -1313,11 +1364,35 @@ struct Studio::Impl {
         }
       }
       preparation = prep.decisions;
+      membranes.clear();  // fabrics may have changed
       std::string made;
       if (prep.seams_added > 0) made += ", " + std::to_string(prep.seams_added) + " seams suggested (not in the document)";
       if (!prep.left_out.empty()) {
         made += ", left out:";
         for (const auto& n : prep.left_out) made += " " + n;
+      }
+      // Garments worn with it: each made ready likewise (their left-out
+      // pieces marked drape="false" in their copies), innermost first.
+      if (!under.empty() || !over.empty()) {
+        if (remote) throw Error("", "", "garments worn with it are draped here only: take them off to simulate on a server");
+        std::vector<fs::path> order;
+        auto ready = [&](const fs::path& f, std::size_t k) {
+          xvc::Document other = xvc::load_file(f);
+          const dress::Preparation lp = dress::prepare_garment(other, po);
+          for (const auto& dd : lp.decisions) preparation.push_back(f.filename().string() + ": " + dd);
+          const fs::path c = work_dir / ("layer" + std::to_string(k)) / f.filename();  // pieces named after its stem
+          fs::create_directories(c.parent_path());
+          xvc::save_file(other, c);
+          return c;
+        };
+        for (std::size_t k = 0; k < under.size(); ++k) order.push_back(ready(under[k], k));
+        order.push_back(copy);
+        for (std::size_t k = 0; k < over.size(); ++k) order.push_back(ready(over[k], under.size() + k));
+        d.garment = order.front();
+        d.over.assign(order.begin() + 1, order.end());
+        d.pieces.clear();  // each document marks its own left-out pieces
+        made += ", worn with " + std::to_string(under.size() + over.size()) + " other garment" +
+                (under.size() + over.size() > 1 ? "s" : "");
       }
       scene::SceneDef def = dress::drape_scene(d);
       const std::string quality = kQualityNames[static_cast<int>(drape.quality)];
@@ -1404,7 +1479,8 @@ struct Studio::Impl {
           // A fit map: the piece coloured by its strain against its rest shape.
           for (const auto& q : cloth.uv) m.uv.push_back({static_cast<float>(q[0]), static_cast<float>(q[1])});
           const auto map = static_cast<render::FitMap>(fit_map - 1);
-          render::colour_by(m, render::fit_values(m, map), render::default_scale(map));
+          const render::Membrane* fabric = map == render::FitMap::stress ? &membrane_of(m.name) : nullptr;
+          render::colour_by(m, render::fit_values(m, map, fabric), render::default_scale(map));
         }
         if (!m.triangles.empty()) sc.meshes.push_back(std::move(m));
       }
@@ -1412,13 +1488,34 @@ struct Studio::Impl {
     return sc;
   }
 
+  // A piece's fabric for the stress map: its own MATERIAL in the document,
+  // else the garment's (the fabric chosen in the simulate panel, else the
+  // document's own, else shirting), as the drape cut it.
+  const render::Membrane& membrane_of(const std::string& piece) const {
+    if (const auto it = membranes.find(piece); it != membranes.end()) return it->second;
+    scene::MaterialDef garment;
+    try {
+      if (!drape.material_xvc.empty())
+        garment = scene::load_xvc_material(drape.material_xvc, drape.material_id);
+      else if (const std::string own = xvc::garment_material(doc); !own.empty())
+        garment = scene::material_from_xvc(doc, own, file.string());
+      else
+        garment = scene::load_xvc_material(data_file("materials/shirting.xvc"), "shirting");
+      garment = scene::piece_fabric(doc, piece, garment, file.string());
+    } catch (const std::exception&) {
+      garment = scene::MaterialDef{};  // the default sheet moduli (sim::OrthotropicMaterial)
+    }
+    const auto o = scene::orthotropic_of(garment);
+    return membranes[piece] = render::Membrane{o.E_warp, o.E_weft, o.G, o.nu_warp_weft};
+  }
+
   void preview_panel() {
     if (!cloth.positions.empty()) {
       // The garment's colours, or a fit map (docs/studio.md).
-      static const char* const kMaps[] = {"looks", "warp strain", "weft strain", "shear", "largest stretch"};
+      static const char* const kMaps[] = {"looks", "warp strain", "weft strain", "shear", "largest stretch", "stress"};
       ImGui::SetNextItemWidth(150);
       if (ImGui::BeginCombo("map", kMaps[fit_map])) {
-        for (int k = 0; k < 5; ++k) {
+        for (int k = 0; k < 6; ++k) {
           if (ImGui::Selectable(kMaps[k], k == fit_map) && k != fit_map) fit_map = k, preview_dirty = true;
           track(std::string("map:") + kMaps[k]);
         }
@@ -1427,7 +1524,8 @@ struct Studio::Impl {
       track("map");
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Colour the garment by its strain against the flat pattern (warp, weft, shear, largest "
-                          "stretch), with a legend; docs/render.md, Fit maps");
+                          "stretch) or by the tension its fabric carries there (stress, N/m), with a legend; "
+                          "docs/render.md, Fit maps");
     }
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const int w = std::max(16, static_cast<int>(avail.x)), h = std::max(16, static_cast<int>(avail.y));

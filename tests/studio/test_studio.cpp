@@ -908,3 +908,49 @@ TEST(Studio, APieceIsCutFromAFabricOfItsOwn) {
   EXPECT_TRUE(h.studio().document().container("MATERIALS")->children.empty()) << h.studio().status();
   EXPECT_EQ(vgd::xvc::piece_material(h.studio().document(), *h.studio().document().find(band)), "");
 }
+
+// Garments worn with the document: a path that is no file refused; the skirt
+// added under the T-shirt, and the drape made of both, each piece named after
+// its garment (t-shirt/FRONT_38, a-line-skirt/FRONT_38); taken off, the next
+// drape is the T-shirt's alone.
+TEST(Studio, AGarmentIsWornUnderTheDocument) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  h.click("layer");
+  h.type("no-such-garment.xvc");
+  h.click("Add under");
+  EXPECT_NE(h.studio().status().find("No garment document"), std::string::npos) << h.studio().status();
+  h.frame();
+  h.click("error:ok");
+  h.click("layer");
+  h.key("ctrl+a");
+  h.type(kSkirt.string());
+  h.click("Add under");
+  h.frame();
+  ASSERT_TRUE(h.studio().widget("take off:a-line-skirt.xvc").has_value()) << h.studio().status();
+  auto& d = h.studio().drape_options();
+  d.spacing = 0.03;
+  d.time_limit = 0.2;
+  d.quality = vgd::scene::Quality::preview;
+  auto pieces = [&] {
+    std::set<std::string> names;
+    for (const auto& p : h.studio().certificate()->placement) names.insert(p.piece);
+    return names;
+  };
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(3);
+  ASSERT_TRUE(h.studio().certificate().has_value()) << h.studio().status();
+  auto names = pieces();
+  EXPECT_TRUE(names.count("a-line-skirt/FRONT_38")) << h.studio().status();
+  EXPECT_TRUE(names.count("t-shirt/FRONT_38"));
+  EXPECT_EQ(names.size(), 7u) << "three skirt pieces and four T-shirt pieces";
+  h.click("take off:a-line-skirt.xvc");
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(3);
+  names = pieces();
+  EXPECT_TRUE(names.count("FRONT_38")) << h.studio().status();
+  EXPECT_EQ(names.size(), 4u);
+}

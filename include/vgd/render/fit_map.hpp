@@ -25,24 +25,39 @@ enum class FitMap {
   weft,     // along the weft, %
   shear,    // change of the warp–weft angle, degrees (its magnitude)
   stretch,  // largest principal stretch − 1, %
+  stress,   // largest principal membrane tension, N/m (needs the fabric: Membrane)
 };
-std::optional<FitMap> parse_fit_map(std::string_view name);  // "warp", "weft", "shear", "stretch"
+std::optional<FitMap> parse_fit_map(std::string_view name);  // "warp", "weft", "shear", "stretch", "stress"
 const char* to_string(FitMap map);
-const char* unit_of(FitMap map);   // "%" or "deg"
+const char* unit_of(FitMap map);   // "%", "deg" or "N/m"
 std::string title_of(FitMap map);  // "weft strain, %"
 
 // The values the colour ramp spans: [lo, hi] in the map's unit. Defaults:
 // 0–40 % for the strains (a woven hangs at 0–5 %, a knit worn with negative
-// ease at 20–40 %), 0–20° for shear. Values beyond take the end colours.
+// ease at 20–40 %), 0–20° for shear, 0–100 N/m for stress (a woven under its
+// own weight carries under 1 N/m; a waistband gripping the waist, tens).
+// Values beyond take the end colours.
 struct FitScale {
   double lo = 0.0, hi = 40.0;
 };
 FitScale default_scale(FitMap map);
 
+// A fabric's sheet moduli for the stress map (the MATERIAL's E_warp, E_weft,
+// G, N/m, and nu_warp_weft): plane stress from the small strains,
+//   σ_w = E_w (ε_w + ν_fw ε_f) / (1 − ν_wf ν_fw),  ν_fw = ν_wf E_f / E_w,
+//   σ_f = E_f (ε_f + ν_wf ε_w) / (1 − ν_wf ν_fw),  τ = G γ,
+// and the map shows the larger principal tension, 0 where both are
+// compressive (cloth buckles rather than carry compression).
+struct Membrane {
+  double e_warp = 0.0, e_weft = 0.0, g = 0.0;  // N/m
+  double nu_warp_weft = 0.0;                   // –
+};
+
 // Per vertex of a garment mesh, in the map's unit: the mean of its triangles'
 // values weighted by their rest areas (0 for a vertex of no valid triangle).
-// Throws vgd::Error when the mesh has no uv (nothing to measure against).
-std::vector<double> fit_values(const Mesh& mesh, FitMap map);
+// Throws vgd::Error when the mesh has no uv (nothing to measure against), and
+// for the stress map without a fabric.
+std::vector<double> fit_values(const Mesh& mesh, FitMap map, const Membrane* fabric = nullptr);
 
 // Ramp from blue (lo) through cyan, green and yellow to red (hi), sRGB; t in [0, 1].
 Colour ramp(double t);

@@ -87,4 +87,11 @@ std::string orthotropic_problem(const MaterialDef& m);
 // The orthotropic material with the MaterialDef's density and thickness.
 sim::OrthotropicMaterial orthotropic_of(const MaterialDef& m);
 
+// The fabric a piece of a garment document is cut from: the MATERIAL its
+// PATTERN names as its own (xvc::piece_material; the pattern found by block
+// or piece name, any size; `file` names the document in errors), else
+// `garment_fabric`.
+MaterialDef piece_fabric(const xvc::Document& garment, std::string_view piece, const MaterialDef& garment_fabric,
+                         const std::string& file);
+
 }  // namespace vgd::scene
