@@ -7,6 +7,7 @@
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/image.hpp"
 
@@ -129,4 +130,82 @@ TEST(CmdRender, AFitMapColoursTheGarmentByItsStrainWithALegend) {
   EXPECT_NE(alone.err.find("applies to a fit map"), std::string::npos) << alone.err;
   const auto unknown = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
   EXPECT_NE(unknown.code, 0);
+}
+
+// The stress map against plane stress by hand: a sheet stretched 2 % along
+// the warp only (ε_f = 0, γ = 0) in shirting's moduli (E_w 5000, E_f 3000,
+// G 400 N/m, ν_wf 0.3; ν_fw = 0.18) carries σ_w = E_w ε_w / (1 − ν_wf ν_fw) =
+// 100 / 0.946 = 105.7 N/m, the larger principal tension; 2 % along the weft
+// only, σ_f = 60 / 0.946 = 63.4 N/m; compressed both ways, 0 (cloth buckles).
+// Without a fabric the map is refused.
+TEST(FitMap, StressIsTheLargerPrincipalTensionOfPlaneStress) {
+  const render::Membrane shirting{5000.0, 3000.0, 400.0, 0.3};
+  const double d = 1.0 - 0.3 * 0.3 * 3000.0 / 5000.0;
+  for (double v : render::fit_values(stretched_sheet(1.02, 1.0), render::FitMap::stress, &shirting))
+    EXPECT_NEAR(v, 5000.0 * 0.02 / d, 1e-2);
+  for (double v : render::fit_values(stretched_sheet(1.0, 1.02), render::FitMap::stress, &shirting))
+    EXPECT_NEAR(v, 3000.0 * 0.02 / d, 1e-2);
+  for (double v : render::fit_values(stretched_sheet(0.97, 0.98), render::FitMap::stress, &shirting))
+    EXPECT_EQ(v, 0.0);
+  EXPECT_THROW(render::fit_values(stretched_sheet(1.02, 1.0), render::FitMap::stress), vgd::Error);
+  const render::Membrane bad{0.0, 3000.0, 400.0, 0.3};
+  EXPECT_THROW(render::fit_values(stretched_sheet(1.02, 1.0), render::FitMap::stress, &bad), vgd::Error);
+  EXPECT_STREQ(render::unit_of(render::FitMap::stress), "N/m");
+}
+
+// `vgd render --map stress` takes each piece's fabric from the garment
+// document: the sheet stretched 2 % along the warp, cut from shirting (the
+// default) and then from a MATERIAL of its own (E_warp 10 000 N/m): twice the
+// tension, each said with its fabric's name.
+TEST(CmdRender, AStressMapTakesEachPiecesFabricFromTheDocument) {
+  const auto dir = test::scratch_dir("cmd_render_stress_map");
+  const auto m = stretched_sheet(1.02, 1.0);
+  std::string obj = "g SHEET\n";
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    obj += "v " + std::to_string(m.positions[i][0]) + " " + std::to_string(m.positions[i][1]) + " 0\nvt " +
+           std::to_string(m.uv[i][0]) + " " + std::to_string(m.uv[i][1]) + "\n";
+  for (const auto& t : m.triangles)
+    obj += "f " + std::to_string(t[0] + 1) + "/" + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + "/" +
+           std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "/" + std::to_string(t[2] + 1) + "\n";
+  write_file_atomic(dir / "garment.obj", obj);
+  auto doc = [&](bool own) {
+    std::string x = R"(<?xml version="1.0" encoding="UTF-8"?>
+<GARMENT id="garment" version="1.0" name="SHEET">
+  <PATTERNS id="patterns">
+    <PATTERN id="pattern1" block="SHEET" piece="SHEET" size="38" quantity="1">
+      <C2DSEQ id="seq1"><C2D x="0" y="0" kind="turn"/><C2D x="0.4" y="0"/><C2D x="0.4" y="0.3"/><C2D x="0" y="0.3"/></C2DSEQ>)";
+    if (own) x += R"(
+      <ASSOCIATION id="assoc1" ref="stiff" role="material"/>)";
+    x += R"(
+    </PATTERN>
+  </PATTERNS>
+  <MATERIALS id="materials">)";
+    if (own) x += R"(
+    <MATERIAL id="stiff" name="stiff twill" scope="piece">
+      <PARAMETER id="p1" name="density" value="0.3" unit="kg/m2"/>
+      <PARAMETER id="p2" name="E_warp" value="10000" unit="N/m"/>
+      <PARAMETER id="p3" name="E_weft" value="6000" unit="N/m"/>
+      <PARAMETER id="p4" name="G" value="400" unit="N/m"/>
+      <PARAMETER id="p5" name="nu_warp_weft" value="0.3" unit="1"/>
+    </MATERIAL>)";
+    x += R"(
+  </MATERIALS>
+</GARMENT>
+)";
+    return x;
+  };
+  const double d = 1.0 - 0.3 * 0.3 * 3000.0 / 5000.0;
+  write_file_atomic(dir / "plain.xvc", doc(false));
+  write_file_atomic(dir / "own.xvc", doc(true));
+  const auto plain = test::run_vgd({"render", dir.string(), "--map", "stress", "--look", (dir / "plain.xvc").string(),
+                                    "--views", "front", "--size", "200x150", "-o", (dir / "plain").string()});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const std::string want = format_fixed(5000.0 * 0.02 / d, 1);
+  EXPECT_NE(plain.err.find("tension, N/m of SHEET (shirting"), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find("p50 " + want), std::string::npos) << want << "\n" << plain.err;
+  const auto own = test::run_vgd({"render", dir.string(), "--map", "stress", "--look", (dir / "own.xvc").string(),
+                                  "--views", "front", "--size", "200x150", "-o", (dir / "own").string()});
+  ASSERT_EQ(own.code, 0) << own.err;
+  EXPECT_NE(own.err.find("tension, N/m of SHEET (stiff twill): p50 " + format_fixed(10000.0 * 0.02 / d, 1)),
+            std::string::npos) << own.err;
 }
