@@ -1913,9 +1913,10 @@ void Studio::draw() {
   ImGui::SameLine();
   ImGui::BeginChild("right", {right_w, body_h});
   // Rows: size and quality; self-collision, spacing, limit; fabric; body; its
-  // unit, up, facing; server; Drape, Simulate on server, Stop; progress; the
-  // certificate; the body's notes.
-  const float sim_rows = 8.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size());
+  // unit, up, facing; garments worn with it, one row each; server; Drape,
+  // Simulate on server, Stop; progress; the certificate; the body's notes.
+  const float sim_rows = 9.5f + static_cast<float>(I.body_text.empty() ? 0 : 1 + I.body_notes.size()) +
+                         static_cast<float>(I.under.size() + I.over.size());
   ImGui::BeginChild("simulate", {0, sim_rows * ImGui::GetFrameHeightWithSpacing() + 8}, true);
   I.simulate_panel();
   ImGui::EndChild();
