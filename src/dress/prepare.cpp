@@ -586,7 +586,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // document. Not for tops: a file that writes a top's front and back as
   // halves cut once (Valentina's shirt) gives half their girth.
   const auto* materials = doc.container("MATERIALS");
-  if (!options.fabric_given && (!materials || materials->children.empty()) && lower && !legs.empty() && girth > 0) {
+  // (A document whose only MATERIALs are pieces' own has no fabric of its own.)
+  if (!options.fabric_given && xvc::garment_material(doc).empty() && lower && !legs.empty() && girth > 0) {
     double body_girth = 0;
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
