@@ -36,6 +36,19 @@ render::Mesh stretched_sheet(double su, double sv) {
   return m;
 }
 
+// The sheet as dir/garment.obj with its material coordinates (vt), as vgd
+// drape writes a garment.
+void write_garment_obj(const fs::path& dir, const render::Mesh& m) {
+  std::string obj = "g SHEET\n";
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    obj += "v " + std::to_string(m.positions[i][0]) + " " + std::to_string(m.positions[i][1]) + " 0\nvt " +
+           std::to_string(m.uv[i][0]) + " " + std::to_string(m.uv[i][1]) + "\n";
+  for (const auto& t : m.triangles)
+    obj += "f " + std::to_string(t[0] + 1) + "/" + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + "/" +
+           std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "/" + std::to_string(t[2] + 1) + "\n";
+  write_file_atomic(dir / "garment.obj", obj);
+}
+
 bool same(const render::Colour& a, const render::Colour& b) {
   return std::abs(a.r - b.r) < 1e-6 && std::abs(a.g - b.g) < 1e-6 && std::abs(a.b - b.b) < 1e-6;
 }
@@ -102,14 +115,7 @@ TEST(CmdRender, AFitMapColoursTheGarmentByItsStrainWithALegend) {
   // garment.obj with material coordinates (vt), as vgd drape writes it: the
   // sheet stretched 30 % along the weft.
   const auto m = stretched_sheet(1.0, 1.30);
-  std::string obj = "g SHEET\n";
-  for (std::size_t i = 0; i < m.positions.size(); ++i)
-    obj += "v " + std::to_string(m.positions[i][0]) + " " + std::to_string(m.positions[i][1]) + " 0\nvt " +
-           std::to_string(m.uv[i][0]) + " " + std::to_string(m.uv[i][1]) + "\n";
-  for (const auto& t : m.triangles)
-    obj += "f " + std::to_string(t[0] + 1) + "/" + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + "/" +
-           std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "/" + std::to_string(t[2] + 1) + "\n";
-  write_file_atomic(dir / "garment.obj", obj);
+  write_garment_obj(dir, m);
   const auto r = test::run_vgd({"render", dir.string(), "--map", "weft", "--views", "front", "--size", "200x150",
                                 "--no-floor", "-o", (dir / "out").string()});
   ASSERT_EQ(r.code, 0) << r.err;
@@ -160,14 +166,7 @@ TEST(FitMap, StressIsTheLargerPrincipalTensionOfPlaneStress) {
 TEST(CmdRender, AStressMapTakesEachPiecesFabricFromTheDocument) {
   const auto dir = test::scratch_dir("cmd_render_stress_map");
   const auto m = stretched_sheet(1.02, 1.0);
-  std::string obj = "g SHEET\n";
-  for (std::size_t i = 0; i < m.positions.size(); ++i)
-    obj += "v " + std::to_string(m.positions[i][0]) + " " + std::to_string(m.positions[i][1]) + " 0\nvt " +
-           std::to_string(m.uv[i][0]) + " " + std::to_string(m.uv[i][1]) + "\n";
-  for (const auto& t : m.triangles)
-    obj += "f " + std::to_string(t[0] + 1) + "/" + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + "/" +
-           std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "/" + std::to_string(t[2] + 1) + "\n";
-  write_file_atomic(dir / "garment.obj", obj);
+  write_garment_obj(dir, m);
   auto doc = [&](bool own) {
     std::string x = R"(<?xml version="1.0" encoding="UTF-8"?>
 <GARMENT id="garment" version="1.0" name="SHEET">
