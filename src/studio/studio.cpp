@@ -128,6 +128,7 @@ struct Studio::Impl {
   ImVec2 pan{0, 0};  // px
   std::optional<std::pair<std::string, std::string>> hovered;
   std::vector<std::pair<std::string, std::string>> picked;
+  std::size_t picked_a = 0;  // the first picked_a picks are hem A (Shift+click adds to it), the rest hem B
   std::string seam_name = "seam";
   std::map<std::pair<std::string, std::string>, Rect> stretch_rects;
   // Outline editing (a PATTERN selected): the point selected, the one being
@@ -378,7 +379,7 @@ struct Studio::Impl {
     saved = std::move(as_saved);
     file = std::move(f);
     selected.clear();
-    picked.clear();
+    picked.clear(), picked_a = 0;
     drape.size.clear();
     cert.reset();
     body.reset();
@@ -714,6 +715,14 @@ struct Studio::Impl {
     }
     if (ImGui::Button("Delete")) delete_selected();
     track("Delete");
+    if (node->tag == "SEAM") {
+      ImGui::SameLine();
+      if (ImGui::Button("Flip seam")) run(std::make_unique<xvc::FlipSeam>(selected));
+      track("Flip seam");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Sew the second side the other way along the first (a twisted seam untwisted): its hems in "
+                          "reverse order, each reversed");
+    }
     if (node->tag == "PATTERN") {
       // A piece: a copy of it (its own block, piece name and gradation), or
       // it mirrored about its grain line (a left piece from a right one).
@@ -865,7 +874,9 @@ struct Studio::Impl {
           ImU32 col = sewn ? rgb(40, 120, 200) : rgb(60, 60, 60);
           float thick = sewn ? 2.5f : 1.5f;
           if (in_selected) col = rgb(20, 160, 90), thick = 4.0f;  // the seam or piece selected in the tree
-          if (pick != picked.end()) col = pick == picked.begin() ? rgb(230, 110, 20) : rgb(200, 40, 140), thick = 3.5f;
+          if (pick != picked.end())
+            col = static_cast<std::size_t>(pick - picked.begin()) < picked_a ? rgb(230, 110, 20) : rgb(200, 40, 140),
+            thick = 3.5f;
           if (hovered && *hovered == key) col = rgb(240, 170, 0), thick = 4.0f;
           dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, thick);
           dl->AddCircleFilled(pts.front(), 2.5f, rgb(60, 60, 60));
@@ -878,9 +889,19 @@ struct Studio::Impl {
       if (sel_piece) draw_points(dl, *sel_piece, point_hover);
       dl->PopClipRect();
       if (hovered && ImGui::IsItemClicked()) {
+        // A click picks for hem B (the first for hem A); Shift+click adds to
+        // hem A; a click on a pick drops it.
         const auto it = std::find(picked.begin(), picked.end(), *hovered);
-        if (it != picked.end()) picked.erase(it);
-        else picked.push_back(*hovered);
+        if (it != picked.end()) {
+          if (static_cast<std::size_t>(it - picked.begin()) < picked_a) --picked_a;
+          picked.erase(it);
+        } else if (picked.empty() || ImGui::GetIO().KeyShift) {
+          picked.insert(picked.begin() + static_cast<std::ptrdiff_t>(picked_a), *hovered);
+          ++picked_a;
+        } else {
+          picked.push_back(*hovered);
+        }
+        if (picked_a == 0 && !picked.empty()) picked_a = 1;  // hem A's last pick dropped: the next becomes A
       } else if (!point_hover && ImGui::IsItemClicked()) {
         // A click inside a piece selects it (its points to edit); outside every
         // piece, nothing.
@@ -903,24 +924,24 @@ struct Studio::Impl {
         ImGui::SetTooltip("%s\nclick to pick it for a new seam", tip.c_str());
       }
     }
-    // Seam picking: the first pick is sewn forward to the others, reversed.
+    // Seam picking: hem A's picks are sewn forward to the others, reversed.
     std::string picks;
     for (std::size_t i = 0; i < picked.size(); ++i) {
       const xvc::Node* p = doc.find(picked[i].first);
-      picks += (i ? (i == 1 ? "  to  " : " + ") : "") + (p ? std::string(p->attribute("piece")) : picked[i].first) +
-               " " + picked[i].second;
+      picks += (i == 0 ? "" : i == picked_a ? "  to  " : " + ") +
+               (p ? std::string(p->attribute("piece")) : picked[i].first) + " " + picked[i].second;
     }
-    ImGui::Text("Picked: %s", picks.empty() ? "(click stretches of the outlines)" : picks.c_str());
+    ImGui::Text("Picked: %s", picks.empty() ? "(click stretches; Shift+click adds to the first side)" : picks.c_str());
     ImGui::SetNextItemWidth(160);
     ImGui::InputText("##seam name", &seam_name);
     track("seam name");
     ImGui::SameLine();
-    ImGui::BeginDisabled(picked.size() < 2);
+    ImGui::BeginDisabled(picked.size() < 2 || picked_a >= picked.size());
     if (ImGui::Button("Add seam")) add_seam();
     track("Add seam");
     ImGui::EndDisabled();
     ImGui::SameLine();
-    if (ImGui::Button("Clear picks")) picked.clear();
+    if (ImGui::Button("Clear picks")) picked.clear(), picked_a = 0;
     track("Clear picks");
     ImGui::SameLine();
     if (ImGui::Button("Suggest seams")) suggest();
@@ -995,18 +1016,50 @@ struct Studio::Impl {
     dl->AddCircleFilled(b0->first, 4.0f, col);
   }
 
+  // Hem A: its picks, stretches following one another on one piece, as one
+  // HEM from the first to the last in contour order (M:N seams); hem B: each
+  // pick a HEM of its own, reversed (pieces face up, seams.hpp), in the order
+  // picked.
   void add_seam() {
-    std::vector<xvc::HemRef> hems;
-    for (std::size_t i = 0; i < picked.size(); ++i) {
+    xvc::HemRef a;
+    a.pattern = picked[0].first;
+    const xvc::Node* pat = doc.find(a.pattern);
+    const auto stretches = pat ? xvc::boundary_stretches(*pat) : std::vector<xvc::Stretch>{};
+    const std::size_t n = stretches.size();
+    std::vector<std::size_t> at;  // hem A's stretches' places on the outline
+    for (std::size_t i = 0; i < picked_a; ++i) {
+      std::size_t k = 0;
+      while (k < n && stretches[k].id != picked[i].second) ++k;
+      if (picked[i].first != a.pattern || k == n) {
+        say("Hem A's stretches must be on one piece: pick them again.", true);
+        return;
+      }
+      at.push_back(k);
+    }
+    // The run's first stretch: the one whose predecessor (cyclically) is not picked.
+    std::size_t first = at[0];
+    for (std::size_t k : at)
+      if (std::find(at.begin(), at.end(), (k + n - 1) % n) == at.end()) first = k;
+    for (std::size_t j = 0; j < at.size(); ++j)
+      if (std::find(at.begin(), at.end(), (first + j) % n) == at.end()) {
+        say("Hem A's stretches must follow one another along the outline (" + std::to_string(at.size()) +
+                " picked, not in a row): pick them again.",
+            true);
+        return;
+      }
+    a.from = stretches[first].id;
+    a.to = stretches[(first + at.size() - 1) % n].id;
+    std::vector<xvc::HemRef> hems{a};
+    for (std::size_t i = picked_a; i < picked.size(); ++i) {
       xvc::HemRef h;
       h.pattern = picked[i].first;
       h.from = h.to = picked[i].second;
-      h.reverse = i > 0;  // pieces face up: one side forward, the other reverse (seams.hpp)
+      h.reverse = true;
       hems.push_back(h);
     }
     std::vector<xvc::Node> nodes{xvc::seam_node(seam_name.empty() ? "seam" : seam_name, hems)};
     run(std::make_unique<xvc::AddSeams>(std::move(nodes)));
-    picked.clear();
+    picked.clear(), picked_a = 0;
   }
 
   // Suggest seams: vgd's suggestions for the size shown, listed in a dialog
@@ -1976,6 +2029,7 @@ const std::vector<std::string>& Studio::preparation() const { return impl_->prep
 void Studio::wait_for_drape() { impl_->job->wait(); }
 const std::string& Studio::selected() const { return impl_->selected; }
 const std::vector<std::pair<std::string, std::string>>& Studio::picked() const { return impl_->picked; }
+std::size_t Studio::picked_first_side() const { return impl_->picked_a; }
 void Studio::set_restore_context(std::function<void()> restore) { impl_->restore = std::move(restore); }
 
 std::optional<Rect> Studio::widget(std::string_view name) const {

@@ -13,6 +13,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
 #include "vgd/xvc/style.hpp"
+#include "edit_helpers.hpp"
 
 namespace vgd::xvc {
 
@@ -1175,6 +1176,30 @@ std::string AddSeams::apply(Editor& edit) {
     last = add.apply(edit);
   }
   return last;
+}
+
+FlipSeam::FlipSeam(std::string seam_id) : id_(std::move(seam_id)) {}
+
+std::string FlipSeam::label() const { return "Flip seam " + id_; }
+
+std::string FlipSeam::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = detail::require(doc, id_, "SEAM");
+  Node seam = doc.at(path);
+  std::vector<std::size_t> hems;  // child indices of the HEMs, in order
+  for (std::size_t i = 0; i < seam.children.size(); ++i)
+    if (seam.children[i].tag == "HEM") hems.push_back(i);
+  if (hems.size() < 2) throw Error(doc.name(), id_, id_ + " has fewer than two hems to flip", seam.line);
+  std::vector<Node> b;
+  for (std::size_t k = 1; k < hems.size(); ++k) {
+    Node h = seam.children[hems[k]];
+    h.set_attribute("direction", h.attribute("direction") == "reverse" ? "forward" : "reverse");
+    b.push_back(std::move(h));
+  }
+  std::reverse(b.begin(), b.end());
+  for (std::size_t k = 1; k < hems.size(); ++k) seam.children[hems[k]] = std::move(b[k - 1]);
+  edit.replace(path, std::move(seam));
+  return id_;
 }
 
 }  // namespace vgd::xvc

@@ -954,3 +954,58 @@ TEST(Studio, AGarmentIsWornUnderTheDocument) {
   EXPECT_TRUE(names.count("FRONT_38")) << h.studio().status();
   EXPECT_EQ(names.size(), 4u);
 }
+
+// An M:N seam: two stretches of the front that follow one another picked for
+// hem A (the second with Shift), one of the back for hem B: one SEAM whose
+// hem A runs from the first to the second, forward, and whose hem B is the
+// back's, reversed. Stretches of hem A not in a row are refused with the
+// reason. "Flip seam" on the new seam reverses hem B; undo takes it back.
+TEST(Studio, AnMToNSeamIsPickedWithShiftAndFlipped) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  const auto& doc = h.studio().document();
+  const std::string front = pattern_id(doc, "FRONT", "38"), back = pattern_id(doc, "BACK", "38");
+  const std::string a1 = stretch_id(doc, front, 1), a2 = stretch_id(doc, front, 2), b = stretch_id(doc, back, 0);
+  const std::size_t seams_before = vgd::xvc::list_seams(doc).size();
+  auto pick = [&](const std::string& pat, const std::string& seq, bool shift) {
+    const auto r = h.studio().stretch_on_screen(pat, seq);
+    ASSERT_TRUE(r) << pat << " " << seq;
+    h.click_at(r->cx(), r->cy(), shift);
+  };
+  pick(front, a1, false);
+  pick(back, b, false);
+  pick(front, a2, true);
+  ASSERT_EQ(h.studio().picked().size(), 3u);
+  EXPECT_EQ(h.studio().picked_first_side(), 2u);
+  EXPECT_EQ(h.studio().picked()[1], (std::pair{front, a2})) << "Shift+click joins hem A";
+  h.click("Add seam");
+  auto seams = vgd::xvc::list_seams(h.studio().document());
+  ASSERT_EQ(seams.size(), seams_before + 1) << h.studio().status();
+  const auto added = seams.back();
+  ASSERT_EQ(added.hems.size(), 2u);
+  EXPECT_EQ(added.hems[0].pattern, front);
+  EXPECT_EQ(added.hems[0].from, a1);
+  EXPECT_EQ(added.hems[0].to, a2);
+  EXPECT_FALSE(added.hems[0].reverse);
+  EXPECT_EQ(added.hems[1].from, b);
+  EXPECT_TRUE(added.hems[1].reverse);
+  // Not in a row: refused, nothing added.
+  pick(front, stretch_id(doc, front, 0), false);
+  pick(front, stretch_id(doc, front, 2), true);
+  pick(back, b, false);
+  h.click("Add seam");
+  EXPECT_NE(h.studio().status().find("follow one another"), std::string::npos) << h.studio().status();
+  EXPECT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), seams_before + 1);
+  h.frame();
+  h.click("error:ok");
+  h.click("Clear picks");
+  // Flipped from the inspector, then undone.
+  const auto before = h.studio().document();
+  h.click("tree:" + added.id);
+  h.click("Flip seam");
+  const auto flipped = vgd::xvc::list_seams(h.studio().document()).back();
+  EXPECT_FALSE(flipped.hems[1].reverse) << h.studio().status();
+  h.key("ctrl+z");
+  EXPECT_TRUE(h.studio().document() == before);
+}

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "fixtures.hpp"
 #include "support/split_sleeve.hpp"
 #include "support/trousers.hpp"
 #include "support/test_paths.hpp"
@@ -535,4 +536,37 @@ TEST(SeamSuggestions, TheCentreEdgesOfHalvesWithNoFoldLineAreNotSideSeams) {
     EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
   }
   EXPECT_EQ(sides, 1);
+}
+
+// A seam flipped: hem B's HEMs in reverse order, each direction flipped; hem
+// A as it was; flipped twice, the document as before; not a SEAM: refused.
+TEST(FlipSeam, ReversesTheSecondSideAndTwiceIsNoChange) {
+  Document doc = vgd::xvc::test::full_document();
+  const Document before = doc;
+  const Node* seam = nullptr;
+  for (const auto& s : doc.container("SEAMS")->children) seam = &s;
+  ASSERT_NE(seam, nullptr);
+  const std::string id(seam->id());
+  std::vector<Node> hems;
+  for (const auto& h : seam->children)
+    if (h.tag == "HEM") hems.push_back(h);
+  ASSERT_GE(hems.size(), 2u);
+  FlipSeam flip(id);
+  EXPECT_EQ(execute(doc, flip), id);
+  std::vector<Node> after;
+  for (const auto& h : doc.find(id)->children)
+    if (h.tag == "HEM") after.push_back(h);
+  ASSERT_EQ(after.size(), hems.size());
+  EXPECT_EQ(after[0], hems[0]) << "hem A stays";
+  for (std::size_t k = 1; k < hems.size(); ++k) {
+    const Node& was = hems[hems.size() - k];
+    EXPECT_EQ(after[k].attribute("from"), was.attribute("from"));
+    EXPECT_NE(after[k].attribute("direction") == "reverse", was.attribute("direction") == "reverse");
+  }
+  EXPECT_FALSE(check(doc).has_errors()) << vgd::xvc::test::dump(check(doc));
+  FlipSeam again(id);
+  execute(doc, again);
+  EXPECT_EQ(doc.root(), before.root());
+  FlipSeam wrong("pattern1");
+  EXPECT_THROW(execute(doc, wrong), vgd::Error);
 }

@@ -176,8 +176,11 @@ class Studio {
   void wait_for_drape();
   // The id of the element selected in the tree ("" when none).
   const std::string& selected() const;
-  // The stretches picked for the next seam: (pattern id, C2DSEQ id).
+  // The stretches picked for the next seam: (pattern id, C2DSEQ id); the
+  // first picked_first_side() of them are hem A (a click picks for hem B, the
+  // first for hem A; Shift+click adds to hem A).
   const std::vector<std::pair<std::string, std::string>>& picked() const;
+  std::size_t picked_first_side() const;
 
   // Boxes of the last frame's named widgets: buttons and menu items by their
   // label ("Drape", "Add seam", "Undo"), combo items as "<combo>:<item>"

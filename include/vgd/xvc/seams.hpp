@@ -105,4 +105,18 @@ class AddSeams : public Command {
   std::vector<Node> seams_;
 };
 
+// Undoable: sews a SEAM's hem B the other way along hem A (a twisted seam
+// untwisted, or the reverse): its HEMs after the first in reverse order, each
+// with its direction flipped. Flipping twice gives the SEAM back. Returns the
+// SEAM's id.
+class FlipSeam : public Command {
+ public:
+  explicit FlipSeam(std::string seam_id);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+};
+
 }  // namespace vgd::xvc
