@@ -169,6 +169,7 @@ struct Studio::Impl {
   int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch, stress)
   // The stress map's fabric of each piece drawn, by name, resolved once per drape.
   mutable std::map<std::string, render::Membrane> membranes;
+  mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
   // file, MATERIAL id, short name, and for a tooltip its full name and figures.
@@ -1555,8 +1556,10 @@ struct Studio::Impl {
       else
         garment = scene::load_xvc_material(data_file("materials/shirting.xvc"), "shirting");
       garment = scene::piece_fabric(doc, piece, garment, file.string());
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       garment = scene::MaterialDef{};  // the default sheet moduli (sim::OrthotropicMaterial)
+      fabric_problem = "The stress map uses default sheet moduli for " + piece + ": its fabric cannot be read (" +
+                       e.what() + ").";
     }
     const auto o = scene::orthotropic_of(garment);
     return membranes[piece] = render::Membrane{o.E_warp, o.E_weft, o.G, o.nu_warp_weft};
@@ -1597,6 +1600,7 @@ struct Studio::Impl {
           const auto map = static_cast<render::FitMap>(fit_map - 1);
           render::draw_legend(img, map, render::default_scale(map));
         }
+        if (!fabric_problem.empty()) say(fabric_problem, true), fabric_problem.clear();
         if (restore) restore();
         texture = gl::upload_texture(img, texture);
         tex_w = w, tex_h = h;
