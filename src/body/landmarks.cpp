@@ -140,6 +140,19 @@ std::pair<double, double> leg_thinnest(const mesh::SurfaceMesh& m, double cx, do
   return {best_y, best};
 }
 
+// The triangles of `m` that reach into the band lo <= y <= hi (all vertices
+// kept): slicing it there gives the loops slicing `m` does, at a fraction of
+// the cost when the band is a limb's.
+mesh::SurfaceMesh band(const mesh::SurfaceMesh& m, double lo, double hi) {
+  mesh::SurfaceMesh out;
+  out.vertices = m.vertices;
+  for (const auto& t : m.triangles) {
+    const double a = m.vertices[t[0]].y(), b = m.vertices[t[1]].y(), c = m.vertices[t[2]].y();
+    if (std::max({a, b, c}) >= lo && std::min({a, b, c}) <= hi) out.triangles.push_back(t);
+  }
+  return out;
+}
+
 // Where a limb's girth profile bends most: the sample farthest from the
 // chord between the profile's two ends (an arm whose forearm tapers to the
 // wrist faster than the upper arm does). Samples are (position along the
@@ -176,10 +189,11 @@ std::optional<double> profile_bend(const std::vector<Vec2d>& s, double least) {
 // forward. Heights, m, of the legs where one was found.
 std::vector<double> knees_on_surface(const mesh::SurfaceMesh& m, double cx, double ankle, double crotch, double H) {
   const double top = crotch - 0.03 * H, step = 0.005 * H, span = crotch - ankle;
+  const mesh::SurfaceMesh legs = band(m, ankle, top + step);
   std::vector<Vec2d> side[2], back[2];  // (y, girth) and (y, z of the back of the leg)
   for (double y = ankle; y <= top + 1e-12; y += step) {
     double area[2] = {0, 0}, girth[2] = {0, 0}, z[2] = {0, 0};
-    for (const auto& l : mesh::slice_horizontal(m, y)) {
+    for (const auto& l : mesh::slice_horizontal(legs, y)) {
       if (l.size() < 3) continue;
       const int k = loop_centroid(l).x() > cx ? 0 : 1;
       if (const double ar = loop_area(l); ar > area[k]) {
@@ -330,12 +344,14 @@ std::optional<ArmLandmarks> arm_landmarks(const mesh::SurfaceMesh& m, const std:
   // line by several cm), the first within 6 cm of that line.
   std::vector<Vec2d> profile;
   std::optional<Vec2d> last;
+  const double y_from = (r * (a.shoulder + 0.15 * L * axis)).y(), y_to = (r * (a.shoulder + at * axis)).y();
+  const mesh::SurfaceMesh arm = band(along, std::min(y_from, y_to) - 0.01, std::max(y_from, y_to) + 0.01);
   for (double t = 0.15 * L; t <= at + 1e-9; t += 0.005) {
     const Vec3 c = r * (a.shoulder + t * axis);
     const Vec2d from = last ? *last : Vec2d(c.x(), c.z());
     double best_d = 0.06, perimeter = 0;
     Vec2d centre;
-    for (const auto& l : mesh::slice_horizontal(along, c.y())) {
+    for (const auto& l : mesh::slice_horizontal(arm, c.y())) {
       if (l.size() < 3) continue;
       const Vec2d q = loop_centroid(l);
       if (const double d = (q - from).norm(); d < best_d) best_d = d, perimeter = mesh::convex_hull_perimeter(l), centre = q;
