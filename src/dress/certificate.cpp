@@ -48,6 +48,7 @@ PieceStrain piece_strain(const sim::Model& m, const scene::PieceInfo& p, const s
   }
   PieceStrain s;
   s.piece = p.name;
+  s.fabric = p.material.name;
   s.warp = percentiles(warp);
   s.weft = percentiles(weft);
   s.shear_deg = percentiles(shear);
@@ -452,7 +453,7 @@ std::string to_json(const Certificate& c) {
   j["seams"] = seams;
   json strain = json::array();
   for (const auto& s : c.strain)
-    strain.push_back({{"piece", s.piece}, {"warp", to_json(s.warp)}, {"weft", to_json(s.weft)},
+    strain.push_back({{"piece", s.piece}, {"fabric", s.fabric}, {"warp", to_json(s.warp)}, {"weft", to_json(s.weft)},
                       {"shear_deg", to_json(s.shear_deg)}});
   j["strain"] = strain;
   json where = json::array();
@@ -627,6 +628,7 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
   for (std::size_t i = 0; i < strain.size(); ++i) {
     const std::string p = "strain[" + std::to_string(i) + "]";
     c.strain.push_back({r.text(r.at(strain[i], "piece", p), p + ".piece"),
+                        strain[i].contains("fabric") ? r.text(strain[i]["fabric"], p + ".fabric") : std::string(),
                         r.percentiles(r.at(strain[i], "warp", p), p + ".warp"),
                         r.percentiles(r.at(strain[i], "weft", p), p + ".weft"),
                         r.percentiles(r.at(strain[i], "shear_deg", p), p + ".shear_deg")});

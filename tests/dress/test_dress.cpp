@@ -75,7 +75,21 @@ TEST(DressBuild, APieceCutFromItsOwnFabricWeighsWhatItsDensitySays) {
   const auto file = std::filesystem::temp_directory_path() / ("vgd-piece-fabric-" + std::to_string(::getpid()) + ".xvc");
   xvc::save_file(doc, file);
   const auto after = piece_masses(file);
+  // The certificate names each piece's fabric (a few steps are enough).
+  DrapeOptions d;
+  d.garment = file;
+  d.spacing = 0.03;
+  d.time_limit = 0.04;
+  const DrapeResult r = run_drape(drape_scene(d), {});
   std::filesystem::remove(file);
+  for (const auto& s : r.certificate.strain) {
+    SCOPED_TRACE(s.piece);
+    EXPECT_NE(s.fabric.find(s.piece == "WAISTBAND_38" ? "denim" : "shirting"), std::string::npos) << s.fabric;
+  }
+  EXPECT_EQ(r.certificate.strain.size(), 3u);
+  const Certificate back = certificate_from_json(to_json(r.certificate), "certificate.json");
+  ASSERT_EQ(back.strain.size(), 3u);
+  EXPECT_EQ(back.strain[2].fabric, r.certificate.strain[2].fabric) << "read back";
   ASSERT_EQ(before.size(), 3u);
   ASSERT_EQ(after.size(), 3u);
   const std::string denim_name(denim.container("MATERIALS")->children.front().attribute("name"));

@@ -32,6 +32,7 @@ struct Percentiles {
 
 struct PieceStrain {
   std::string piece;
+  std::string fabric;      // the name of the MATERIAL the piece was draped in ("" in older certificates)
   Percentiles warp, weft;  // engineering strain, dimensionless (0.01 = 1 %)
   Percentiles shear_deg;   // change of the warp–weft angle, degrees
 };
