@@ -28,9 +28,8 @@
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/offscreen.hpp"
-#include "vgd/core/data.hpp"
+#include "vgd/dress/drape.hpp"
 #include "vgd/scene/material.hpp"
-#include "vgd/xvc/style.hpp"
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
 
@@ -187,8 +186,8 @@ std::optional<vgd::xvc::Document> look_document(const Options& o, const fs::path
 
 // The fabrics of a stress map: the garment document (--look, else the one the
 // folder's certificate names) for the pieces' own MATERIALs, and the
-// garment's fabric: the certificate's `material` input, else the document's
-// own, else vgd's shirting.
+// garment's fabric: the certificate's `material` input (what the drape used),
+// else as a drape would choose it (dress::garment_fabric).
 struct StressFabrics {
   std::optional<vgd::xvc::Document> doc;
   vgd::scene::MaterialDef garment;
@@ -213,14 +212,13 @@ StressFabrics stress_fabrics(const Options& o, const fs::path& folder, const vgd
       }
     }
   }
-  if (source.empty() && out.doc)
-    if (const std::string own = vgd::xvc::garment_material(*out.doc); !own.empty()) {
-      out.garment = vgd::scene::material_from_xvc(*out.doc, own, out.doc->name());
-      source = out.doc->name() + "#" + own;
-    }
   if (source.empty()) {
-    source = vgd::data_file("materials/shirting.xvc").string() + "#shirting";
-    out.garment = vgd::scene::load_xvc_material(vgd::data_file("materials/shirting.xvc"), "shirting");
+    const vgd::xvc::Document none;
+    const vgd::xvc::Document& doc = out.doc ? *out.doc : none;
+    const fs::path file = out.doc ? fs::path(out.doc->name()) : fs::path();
+    const auto src = vgd::dress::garment_fabric(doc, file);
+    source = src.xvc.string() + "#" + src.id;
+    out.garment = vgd::dress::garment_fabric_of(doc, file);
   }
   vgd::cli::say(common, "vgd: stress from the fabrics' sheet moduli: the garment's " + source +
                             (out.doc ? ", each piece's own from " + out.doc->name() : std::string()));

@@ -502,8 +502,9 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& m) {
     for (const double k : knees) sum += k;
     if (!knees.empty()) lm.knee = sum / static_cast<double>(knees.size()) - y0;
     if (knees.size() < 2)
-      out.notes.push_back(knees.empty() ? "no knee found: neither leg shows one between calf and thigh (no bump over the narrowing under it, no hollow behind it)"
-                                        : "knee found on one leg only");
+      out.notes.push_back(knees.empty() ? "no knee found on the surface: neither leg shows one between calf and thigh "
+                                          "(no bump over the narrowing under it, no hollow behind it)"
+                                        : "knee found on the surface of one leg only");
   }
 
   // Arms: slices across x beside the trunk (its width at the chest).

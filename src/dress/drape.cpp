@@ -29,6 +29,36 @@ std::string metres(double v) { return format_double(v) + " m"; }
 
 }  // namespace
 
+scene::MaterialSource garment_fabric(const xvc::Document& garment, const fs::path& garment_file,
+                                     const fs::path& material_xvc, const std::string& material_id) {
+  scene::MaterialSource fabric;
+  if (!material_xvc.empty()) {
+    fabric.xvc = fs::absolute(material_xvc);
+    fabric.id = material_id;
+  } else if (const std::string own = xvc::garment_material(garment); !own.empty()) {
+    fabric.xvc = garment_file;
+    fabric.id = own;
+  } else {
+    fabric.xvc = data_file("materials/shirting.xvc");
+    fabric.id = "shirting";
+  }
+  if (fabric.id.empty()) {
+    const xvc::Document mdoc = xvc::load_file(fabric.xvc);
+    const auto* mats = mdoc.container("MATERIALS");
+    if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
+    fabric.id = std::string(mats->children.front().id());
+  }
+  return fabric;
+}
+
+scene::MaterialDef garment_fabric_of(const xvc::Document& garment, const fs::path& garment_file,
+                                     const fs::path& material_xvc, const std::string& material_id) {
+  const scene::MaterialSource src = garment_fabric(garment, garment_file, material_xvc, material_id);
+  // The document's own from the document in hand (it may be unsaved).
+  if (material_xvc.empty() && src.xvc == garment_file) return scene::material_from_xvc(garment, src.id, garment_file.string());
+  return scene::load_xvc_material(src.xvc, src.id);
+}
+
 scene::SceneDef drape_scene(const DrapeOptions& o) {
   std::error_code ec;
   if (!fs::is_regular_file(o.garment, ec)) throw Error(o.garment.string(), "", "no such garment document");
@@ -65,23 +95,7 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
     std::optional<xvc::Document> loaded;
     if (k > 0) loaded = xvc::load_file(garments[k]);
     const xvc::Document& gdoc = k == 0 ? doc : *loaded;
-    scene::MaterialSource fabric;
-    if (!o.material_xvc.empty()) {
-      fabric.xvc = fs::absolute(o.material_xvc);
-      fabric.id = o.material_id;
-    } else if (const std::string own = xvc::garment_material(gdoc); !own.empty()) {
-      fabric.xvc = garments[k];
-      fabric.id = own;
-    } else {
-      fabric.xvc = data_file("materials/shirting.xvc");
-      fabric.id = "shirting";
-    }
-    if (fabric.id.empty()) {
-      const xvc::Document mdoc = xvc::load_file(fabric.xvc);
-      const auto* mats = mdoc.container("MATERIALS");
-      if (!mats || mats->children.empty()) throw Error(fabric.xvc.string(), "MATERIALS", "holds no MATERIAL");
-      fabric.id = std::string(mats->children.front().id());
-    }
+    const scene::MaterialSource fabric = garment_fabric(gdoc, garments[k], o.material_xvc, o.material_id);
     const std::string mat = k == 0 ? "fabric" : "fabric" + std::to_string(k + 1);
     def.materials[mat] = fabric;
 

@@ -1,7 +1,6 @@
 // Materials: the parameter vocabulary shared by scene files and XVC MATERIAL
 // modules, unit conversion, and reading a MATERIAL from an XVC document.
 #include "vgd/scene/material.hpp"
-#include "vgd/xvc/style.hpp"
 
 #include <array>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/xvc/document.hpp"
 #include "vgd/xvc/io.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace vgd::scene {
 

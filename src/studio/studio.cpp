@@ -1542,20 +1542,15 @@ struct Studio::Impl {
     return sc;
   }
 
-  // A piece's fabric for the stress map: its own MATERIAL in the document,
-  // else the garment's (the fabric chosen in the simulate panel, else the
-  // document's own, else shirting), as the drape cut it.
+  // A piece's fabric for the stress map, as the drape cut it: its own
+  // MATERIAL in the document, else the garment's (dress::garment_fabric: the
+  // fabric chosen in the simulate panel, else the document's own, else shirting).
   const render::Membrane& membrane_of(const std::string& piece) const {
     if (const auto it = membranes.find(piece); it != membranes.end()) return it->second;
     scene::MaterialDef garment;
     try {
-      if (!drape.material_xvc.empty())
-        garment = scene::load_xvc_material(drape.material_xvc, drape.material_id);
-      else if (const std::string own = xvc::garment_material(doc); !own.empty())
-        garment = scene::material_from_xvc(doc, own, file.string());
-      else
-        garment = scene::load_xvc_material(data_file("materials/shirting.xvc"), "shirting");
-      garment = scene::piece_fabric(doc, piece, garment, file.string());
+      garment = scene::piece_fabric(doc, piece, dress::garment_fabric_of(doc, file, drape.material_xvc, drape.material_id),
+                                    file.string());
     } catch (const std::exception& e) {
       garment = scene::MaterialDef{};  // the default sheet moduli (sim::OrthotropicMaterial)
       fabric_problem = "The stress map uses default sheet moduli for " + piece + ": its fabric cannot be read (" +

@@ -2,8 +2,6 @@
 // each field goes; attributes holding a default value are left out.
 #include "vgd/xvc/style.hpp"
 
-#include <set>
-
 #include <algorithm>
 #include <map>
 

@@ -54,6 +54,19 @@ struct DrapeOptions {
   scene::Quality quality = scene::Quality::standard;   // implicit Euler at 2 / 4 / 8 steps per frame (quality.hpp)
 };
 
+// The fabric a garment's pieces without their own are cut from (a piece
+// naming a MATERIAL of its own is cut from that: xvc::piece_material):
+// `material_xvc` (its `material_id`, else its first MATERIAL) when given, else
+// the document's own (xvc::garment_material, in `garment_file`), else vgd's
+// shirting. garment_fabric_of reads it, the document's own from `garment`
+// itself. Throw vgd::Error naming the file for a fabric that cannot be read.
+scene::MaterialSource garment_fabric(const xvc::Document& garment, const std::filesystem::path& garment_file,
+                                     const std::filesystem::path& material_xvc = {},
+                                     const std::string& material_id = {});
+scene::MaterialDef garment_fabric_of(const xvc::Document& garment, const std::filesystem::path& garment_file,
+                                     const std::filesystem::path& material_xvc = {},
+                                     const std::string& material_id = {});
+
 // The scene the options describe (materials resolved to files, not read yet).
 // Throws vgd::Error for options that cannot make one (no such file, ...).
 scene::SceneDef drape_scene(const DrapeOptions& options);

@@ -1,8 +1,5 @@
 // Piece looks from the XVC document's MATERIAL, TEXTURE and ASSOCIATION elements.
 #include "vgd/io/vrml/looks.hpp"
-#include "vgd/xvc/style.hpp"
-
-#include <set>
 
 #include "vgd/core/strings.hpp"
 
