@@ -172,10 +172,12 @@ struct Studio::Impl {
   mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
-  // file, MATERIAL id, short name, and for a tooltip its full name and figures.
+  // file, MATERIAL id, short name, for a tooltip its full name and figures,
+  // and the MATERIAL itself (copied into a document for a piece's fabric).
   struct Fabric {
     fs::path file;
     std::string id, name, figures;
+    xvc::Node material;
   };
   std::optional<std::vector<Fabric>> fabrics;
   const std::vector<Fabric>& fabric_library() {
@@ -191,7 +193,7 @@ struct Studio::Impl {
         const auto* mats = d.container("MATERIALS");
         if (!mats || mats->children.empty()) continue;
         const xvc::Node& m = mats->children.front();
-        Fabric fab{f, std::string(m.id()), f.stem().string(), std::string(m.attribute("name"))};
+        Fabric fab{f, std::string(m.id()), f.stem().string(), std::string(m.attribute("name")), m};
         for (const auto& p : m.children) {
           const std::string name(p.attribute("name"));
           if (name == "density" || name == "spring.warp" || name == "spring.weft" || name == "E_warp" ||
@@ -1298,25 +1300,37 @@ struct Studio::Impl {
   // else as vgd dress chooses: the shipped knit for legs cut for stretch,
   // shirting otherwise) or one of the shipped fabrics.
   void fabric_combo() {
+    const Fabric* now = nullptr;
+    for (const auto& f : fabric_library())
+      if (!drape.material_xvc.empty() && f.file == drape.material_xvc) now = &f;
+    const auto chosen = fabric_menu("fabric", now ? now->name : "garment's", now,
+                                    "The fabric of the next drape: the garment's own MATERIAL (else shirting, or the "
+                                    "shipped knit for legs cut for stretch) or a shipped fabric (docs/fabric-lab.md)");
+    if (!chosen) return;
+    if (*chosen) drape.material_xvc = (*chosen)->file, drape.material_id = (*chosen)->id;
+    else drape.material_xvc.clear(), drape.material_id.clear();
+  }
+
+  // A combo of "garment's" and the shipped fabrics (their figures on hover),
+  // tracked as "<label>:<item>". Returns what was picked this frame: nullptr
+  // for "garment's", nullopt for nothing.
+  std::optional<const Fabric*> fabric_menu(const char* label, const std::string& current, const Fabric* now,
+                                           const char* tooltip) {
+    std::optional<const Fabric*> chosen;
     ImGui::SetNextItemWidth(160);
-    const auto& lib = fabric_library();
-    std::string current = "garment's";
-    for (const auto& f : lib)
-      if (!drape.material_xvc.empty() && f.file == drape.material_xvc) current = f.name;
-    if (ImGui::BeginCombo("fabric", current.c_str())) {
-      if (ImGui::Selectable("garment's", drape.material_xvc.empty())) drape.material_xvc.clear(), drape.material_id.clear();
-      track("fabric:garment's");
-      for (const auto& f : lib) {
-        if (ImGui::Selectable(f.name.c_str(), f.file == drape.material_xvc)) drape.material_xvc = f.file, drape.material_id = f.id;
-        track("fabric:" + f.name);
+    if (ImGui::BeginCombo(label, current.c_str())) {
+      if (ImGui::Selectable("garment's", current == "garment's")) chosen = nullptr;
+      track(std::string(label) + ":garment's");
+      for (const auto& f : fabric_library()) {
+        if (ImGui::Selectable(f.name.c_str(), &f == now)) chosen = &f;
+        track(std::string(label) + ":" + f.name);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.figures.c_str());
       }
       ImGui::EndCombo();
     }
-    track("fabric");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("The fabric of the next drape: the garment's own MATERIAL (else shirting, or the shipped "
-                        "knit for legs cut for stretch) or a shipped fabric (docs/fabric-lab.md)");
+    track(label);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+    return chosen;
   }
 
   // The selected piece's own fabric: the garment's, or a shipped fabric
@@ -1327,35 +1341,14 @@ struct Studio::Impl {
     std::string current = "garment's";
     if (!own.empty())
       if (const xvc::Node* m = doc.find(own)) current = m->attribute("name").empty() ? own : std::string(m->attribute("name"));
-    ImGui::SetNextItemWidth(160);
-    const auto& lib = fabric_library();
-    std::optional<std::optional<xvc::Node>> chosen;
-    if (ImGui::BeginCombo("piece fabric", current.c_str())) {
-      if (ImGui::Selectable("garment's", own.empty())) chosen.emplace(std::nullopt);
-      track("piece fabric:garment's");
-      for (const auto& f : lib) {
-        if (ImGui::Selectable(f.name.c_str(), false)) {
-          try {
-            const xvc::Document d = xvc::load_file(f.file);
-            if (const xvc::Node* m = d.find(f.id)) chosen.emplace(*m);
-          } catch (const std::exception& e) {
-            say("Cannot read the fabric " + f.file.string() + ": " + e.what(), true);
-          }
-        }
-        track("piece fabric:" + f.name);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.figures.c_str());
-      }
-      ImGui::EndCombo();
-    }
-    track("piece fabric");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("The fabric this piece is cut from: the garment's, or a shipped fabric of its own (a collar in "
-                        "denim, cuffs in jersey); the next drape uses it");
-    if (chosen) {
-      const std::string piece(pattern.id());  // `pattern` may move with the edit
-      run(std::make_unique<xvc::SetPieceMaterial>(piece, *chosen));
-      selected = piece;  // the piece stays selected, not its new MATERIAL
-    }
+    const auto chosen = fabric_menu("piece fabric", current, nullptr,
+                                    "The fabric this piece is cut from: the garment's, or a shipped fabric of its own "
+                                    "(a collar in denim, cuffs in jersey); the next drape uses it");
+    if (!chosen) return;
+    const std::string piece(pattern.id());  // `pattern` may move with the edit
+    run(std::make_unique<xvc::SetPieceMaterial>(piece, *chosen ? std::optional<xvc::Node>((*chosen)->material)
+                                                               : std::nullopt));
+    selected = piece;  // the piece stays selected, not its new MATERIAL
   }
 
   // The vgd-server that "Simulate on server" sends the drape to.
