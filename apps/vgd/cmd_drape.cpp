@@ -24,7 +24,7 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
-  bool self_collision = true, frames = false, json = false, between = true;
+  bool self_collision = true, frames = false, json = false, between = true, offset_contact = false;
 };
 
 vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
@@ -71,6 +71,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
                 "heels, a crotch under a seam junction; docs/collisions.md)");
+  sub->add_flag("--offset-contact", o->offset_contact,
+                "Offset contact instead of the body collision and self-collision: no cloth through the body or "
+                "through cloth at the end of any step. Experimental: slow, and it does not yet sew the shipped "
+                "garments to rest (docs/collisions.md, \"Offset contact\")");
   sub->add_flag("--frames", o->frames, "Also write every frame as OBJ into OUTPUT/frames/");
   sub->add_option("--trj", o->trj, "Also record every frame as a trajectory (docs/formats/trj.md); written as "
                                    "FILE.partial while the run goes, renamed to FILE at its end");
@@ -100,6 +104,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.quality = scene::parse_quality(o->quality);
     d.self_collision = o->self_collision;
     d.between_particles = o->between;
+    d.offset_contact = o->offset_contact;
     d.model = scene::parse_cloth_model(o->model);
     if (!o->avatar.empty()) {
       d.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);

@@ -374,7 +374,7 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     const sim::Eval e{m, 0.0, x, v};
     for (const auto& eff : scene.system->effects()) {
       const std::string name = eff->name();
-      if (name != "body-collision" && name != "self-collision") eff->add_forces(e, f);
+      if (name != "body-collision" && name != "self-collision" && name != "contact") eff->add_forces(e, f);
     }
     // Each particle's cloth area: a third of each of its triangles (flat rest shape).
     std::vector<double> part(m.num_particles(), 0.0);

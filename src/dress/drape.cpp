@@ -149,6 +149,16 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
     e.speed_limit = sim::SpeedLimitDef{1.0};
   }
 
+  if (o.offset_contact) {
+    e.collision.reset();
+    e.self_collision.reset();
+    e.contact = sim::ContactDef{};
+    e.speed_limit = sim::SpeedLimitDef{1.0};
+    // A seam's two sides are kept apart like any cloth, so they merge a
+    // millimetre beyond the contact radius, where the repulsion lets them come.
+    e.seams->effect.merge_distance = e.contact->radius + 0.001;
+  }
+
   // Implicit Euler at 2, 4 or 8 steps per frame (quality.hpp).
   def.integrator = scene::quality_integrator(o.quality, true);
   def.run.fps = o.fps;
@@ -232,11 +242,16 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     c.settings.emplace_back("clearance", metres(def.effects.collision->clearance));
     contact = def.effects.collision->clearance + 0.001;
   }
+  if (def.effects.contact) {
+    c.settings.emplace_back("clearance", metres(def.effects.contact->radius));
+    contact = def.effects.contact->radius + 0.001;
+  }
   if (def.effects.seams) {
     merge_distance = def.effects.seams->effect.merge_distance;
     c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
   }
   c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
+  if (def.effects.contact) c.settings.emplace_back("contact", "offset");
   c.settings.emplace_back("between_particles",
                           def.effects.collision && def.effects.collision->vertex_clearance > 0.0 ? "on" : "off");
   c.stop_reason = !r.summary.ok ? "error" : r.summary.at_rest ? "rest" : "time limit";

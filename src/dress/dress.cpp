@@ -56,7 +56,7 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
-                                       const Avatar& avatar, const std::vector<Underlayer>& under) {
+                                       const Avatar& avatar, const std::vector<Underlayer>& under, double nest) {
   std::vector<PlacedPiece> out;
   for (const auto& gp : garment.pieces) {
     const auto it = arrangements.find(gp.pattern_id);
@@ -68,7 +68,7 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
     const xvc::Arrangement& a = it->second[gp.copy];
     PiecePlacement p;
     try {
-      p = place_piece(gp.mesh.nodes, a, avatar, under);
+      p = place_piece(gp.mesh.nodes, a, avatar, under, nest);
     } catch (const Error& e) {
       throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
     }
@@ -155,7 +155,10 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     std::vector<Underlayer> under;  // the garments of lower layers placed so far
     for (const auto& [layer, cloth] : layers)
       if (layer < gd.layer) under.insert(under.end(), cloth.begin(), cloth.end());
-    const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under);
+    // Offset contact keeps the start's relations: a back and front wrapped on
+    // one curve start a contact radius and a half apart where they overlap.
+    const double nest = def.effects.contact ? 1.5 * def.effects.contact->radius : 0.0;
+    const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under, nest);
     {
       std::vector<std::string> segments;
       for (const auto& p : placed) segments.push_back(p.segment);

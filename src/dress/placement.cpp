@@ -83,7 +83,7 @@ bool trunk(const std::string& segment) { return segment == "neck" || segment == 
 }  // namespace
 
 PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::Arrangement& ar, const Avatar& avatar,
-                           const std::vector<Underlayer>& under) {
+                           const std::vector<Underlayer>& under, double nest) {
   const BodySegment* seg = nullptr;
   for (const auto& s : avatar.segments)
     if (s.name == ar.segment) seg = &s;
@@ -209,18 +209,23 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   // which turns with the limb: a left arm's outside (+X hanging down) is its
   // top in a T-pose (+Y), so a sleeve's cap stays on the shoulder's side from
   // A- to T-pose and beyond; no swap where the limb crosses the horizontal.
+  // A half piece on the trunk (front or back, at most half way round) follows
+  // the body's taper (below); a wider one is wrapped on the one curve.
+  const bool follow = !limb && (ar.side == "front" || ar.side == "back") && !nodes.empty() &&
+                      width <= 0.5 * curve.perimeter;
+  if (!follow && nest > 0.0 && ar.side == "back") {
+    curve.c += nest;
+    curve.build();
+  }
   const double arc0 = curve.arc_at_theta(theta0);
 
-  // A half piece on the trunk (front or back, at most half way round) follows
-  // the body's taper: each height gets the offset curve of the rings near it,
+  // A half piece that follows the body's taper: each height gets the offset curve of the rings near it,
   // with the clearance grown where the piece is wider there than a quarter of
   // that curve on each side of its centre, so front and back meet at the
   // sides, not overlap. One cylinder at the largest ring of the whole piece put
   // a bodice's sides (as wide as the shoulders) into the A-posed arms below
   // the armpits, and the sleeves were sewn round them. Vertical lengths
   // stretch by √(1 + (dr/ds)²) where the radius r changes along the axis.
-  const bool follow = !limb && (ar.side == "front" || ar.side == "back") && !nodes.empty() &&
-                      width <= 0.5 * curve.perimeter;
   constexpr double kBin = 0.01, kWindow = 0.03;  // m: height step of the curves, rings looked at around each
   std::vector<OffsetCurve> bins;
   std::vector<double> bin_arc0;

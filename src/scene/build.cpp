@@ -8,6 +8,7 @@
 
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/mesh.hpp"
+#include "vgd/sim/sdf.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/bending.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
@@ -467,7 +468,24 @@ std::vector<std::string> effect_names(const SceneDef& def) {
   if (e.seams) names.push_back("seams");
   if (e.collision) names.push_back("body-collision");
   if (e.self_collision) names.push_back("self-collision");
+  if (e.contact) names.push_back("contact");
   return names;
+}
+
+// Moves every free particle closer than `gap` to the body (or inside it) to
+// `gap` out along the body's normal at its closest point (exact, TriangleBvh).
+// Returns how many moved.
+static int start_outside(sim::Model& model, const mesh::SurfaceMesh& body, double gap, const std::vector<int>& pinned) {
+  const sim::TriangleBvh bvh(body);
+  int moved = 0;
+  for (int i = 0; i < model.num_particles(); ++i) {
+    if (std::binary_search(pinned.begin(), pinned.end(), i)) continue;
+    const auto c = bvh.closest(sim::at(model.x0, i), 0.1);  // deep inside a limb too
+    if (!(c.distance < gap)) continue;
+    sim::at(model.x0, i) = c.point + gap * c.normal.normalized();
+    ++moved;
+  }
+  return moved;
 }
 
 Scene build(const SceneDef& def) {
@@ -495,6 +513,10 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
   }
   std::sort(s.pinned.begin(), s.pinned.end());
   s.pinned.erase(std::unique(s.pinned.begin(), s.pinned.end()), s.pinned.end());
+  // Offset contact keeps the start's relations (nothing through anything) and
+  // cannot undo one: cloth the arrangement put inside the body or within the
+  // contact radius of it starts outside it.
+  if (def.effects.contact && s.avatar) start_outside(model, s.avatar->surface, 1.5 * def.effects.contact->radius, s.pinned);
 
   // The effects the scene lists, each constructed only when listed.
   std::vector<std::unique_ptr<sim::Effect>> effects;
@@ -595,6 +617,14 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
       effects.push_back(sim::make_self_collision(model, sc));
     }
     if (body) effects.push_back(std::move(body));
+    // Offset contact last: its bounds cut the step's whole move, every other
+    // after-step change included.
+    if (e.contact) {
+      sim::ContactDef cd = *e.contact;
+      cd.body = s.avatar->surface;
+      cd.fixed = s.pinned;
+      effects.push_back(sim::make_contact(model, cd));
+    }
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));
   } catch (const sim::SimulationError& err) {
     throw Error(def.source.string(), "", std::string("cannot build the simulation: ") + err.what());

@@ -474,6 +474,20 @@ EffectsDef read_effects(Object o) {
     if (c.enabled()) e.self_collision = d;
     c.finish();
   }
+  if (const json* j = o.find("contact")) {
+    Object c(*j, o.at("contact"), o.context());
+    sim::ContactDef d;
+    c.number("radius", d.radius, dim::length);
+    c.number("reach", d.reach, dim::length);
+    c.number("gamma", d.gamma, dim::none);
+    c.number("stiffness", d.stiffness, dim::stiffness);
+    c.number("friction", d.friction, dim::none);
+    c.number("slip_speed", d.slip_speed, dim::velocity);
+    c.integer("rounds", d.rounds);
+    c.number("floor", d.floor, dim::length);
+    if (c.enabled()) e.contact = d;
+    c.finish();
+  }
   if (const json* j = o.find("seams")) {
     Object c(*j, o.at("seams"), o.context());
     SeamsDef d;

@@ -21,7 +21,7 @@ const char* to_string(Quality q) {
   return "?";
 }
 
-bool has_contact(const EffectsDef& e) { return e.collision || e.seams || e.self_collision; }
+bool has_contact(const EffectsDef& e) { return e.collision || e.seams || e.self_collision || e.contact; }
 
 IntegratorDef quality_integrator(Quality q, bool contact) {
   IntegratorDef d;

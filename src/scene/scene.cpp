@@ -212,6 +212,20 @@ class Checker {
       non_negative("effects.self_collision.stiffness", e.self_collision->stiffness);
       if (e.self_collision->passes < 1) fail("effects.self_collision.passes", "must be >= 1");
     }
+    if (e.contact) {
+      if (!def_.avatar) fail("effects.contact", "keeps the cloth off the avatar, but the scene has no avatar");
+      if (e.collision || e.self_collision)
+        fail("effects.contact", "replaces collision and self_collision: give contact or those, not both");
+      positive("effects.contact.radius", e.contact->radius);
+      if (!(e.contact->reach >= e.contact->radius)) fail("effects.contact.reach", "must be >= radius");
+      if (!(e.contact->gamma > 0.0 && e.contact->gamma < 0.5)) fail("effects.contact.gamma", "must be in (0, 0.5)");
+      non_negative("effects.contact.stiffness", e.contact->stiffness);
+      non_negative("effects.contact.friction", e.contact->friction);
+      positive("effects.contact.slip_speed", e.contact->slip_speed);
+      if (e.contact->rounds < 1) fail("effects.contact.rounds", "must be >= 1");
+      if (!(e.contact->floor >= 0.0 && e.contact->floor < e.contact->radius))
+        fail("effects.contact.floor", "must be >= 0 and smaller than the radius");
+    }
     if (e.seams) {
       non_negative("effects.seams.stiffness", e.seams->effect.stiffness);
       positive("effects.seams.max_force", e.seams->effect.max_force);

@@ -426,6 +426,8 @@ bool System::apply_merges(State& s) {
   std::vector<std::array<int, 2>> requests;
   for (std::size_t i = 0; i < effects_.size(); ++i)
     if (active_[i]) effects_[i]->merge_requests(model_, sf_, requests);
+  for (std::size_t i = 0; i < effects_.size() && !requests.empty(); ++i)
+    if (active_[i]) effects_[i]->review_merges(model_, sf_, requests);
   if (requests.empty()) return false;
 
   // Union with the merges so far; a class holds at most one prescribed particle.

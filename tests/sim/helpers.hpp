@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vgd/sim/effect.hpp"
+#include "vgd/sim/model.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
 #include "vgd/sim/system.hpp"
 
@@ -105,6 +106,32 @@ inline MassSpringMaterial soft_cloth() {
   mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
   mat.damping = 0.01;
   return mat;
+}
+
+// n × n cloths at a 3 cm spacing, 2 g particles, `layers` of them 1 cm apart,
+// the lowest at height y, centred over the origin.
+inline Model sheets(int n, double y, int layers) {
+  constexpr double d = 0.03;
+  const Vec3 corner(-0.5 * d * (n - 1), y, -0.5 * d * (n - 1));
+  Model m = make_grid(n, n, d, d, corner, Vec3::UnitX(), Vec3::UnitZ(), 0.002);
+  m.triangle_piece.assign(m.triangles.size(), 0);
+  m.pieces = {"A"};
+  for (int l = 1; l < layers; ++l) {
+    const Model b = make_grid(n, n, d, d, corner + Vec3(0, 0.01 * l, 0), Vec3::UnitX(), Vec3::UnitZ(), 0.002);
+    const int na = m.num_particles(), nb = b.num_particles();
+    m.x0.conservativeResize(3 * (na + nb));
+    m.x0.tail(3 * nb) = b.x0;
+    m.mass.conservativeResize(na + nb);
+    m.mass.tail(nb) = b.mass;
+    m.uv.insert(m.uv.end(), b.uv.begin(), b.uv.end());
+    for (auto t : b.triangles) {
+      m.triangles.push_back({t[0] + na, t[1] + na, t[2] + na});
+      m.triangle_piece.push_back(l);
+    }
+    m.pieces.push_back(std::string(1, static_cast<char>('A' + l)));
+  }
+  m.v0 = VecX::Zero(m.x0.size());
+  return m;
 }
 
 }  // namespace vgd::sim::test

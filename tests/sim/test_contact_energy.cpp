@@ -21,32 +21,6 @@ namespace {
 using test::effects;
 using test::sci;
 
-// n × n cloths at a 3 cm spacing, 2 g particles, `layers` of them 1 cm apart,
-// the lowest at height y, centred over the origin.
-Model sheets(int n, double y, int layers) {
-  constexpr double d = 0.03;
-  const Vec3 corner(-0.5 * d * (n - 1), y, -0.5 * d * (n - 1));
-  Model m = make_grid(n, n, d, d, corner, Vec3::UnitX(), Vec3::UnitZ(), 0.002);
-  m.triangle_piece.assign(m.triangles.size(), 0);
-  m.pieces = {"A"};
-  for (int l = 1; l < layers; ++l) {
-    const Model b = make_grid(n, n, d, d, corner + Vec3(0, 0.01 * l, 0), Vec3::UnitX(), Vec3::UnitZ(), 0.002);
-    const int na = m.num_particles(), nb = b.num_particles();
-    m.x0.conservativeResize(3 * (na + nb));
-    m.x0.tail(3 * nb) = b.x0;
-    m.mass.conservativeResize(na + nb);
-    m.mass.tail(nb) = b.mass;
-    m.uv.insert(m.uv.end(), b.uv.begin(), b.uv.end());
-    for (auto t : b.triangles) {
-      m.triangles.push_back({t[0] + na, t[1] + na, t[2] + na});
-      m.triangle_piece.push_back(l);
-    }
-    m.pieces.push_back(std::string(1, static_cast<char>('A' + l)));
-  }
-  m.v0 = VecX::Zero(m.x0.size());
-  return m;
-}
-
 struct EnergyTrace {
   double start = 0.0;         // J: total energy at the start
   double end = 0.0;           // J: at the end
@@ -60,7 +34,7 @@ struct EnergyTrace {
 // the touching particles inside its step (IntegratorSettings::hold_contacts).
 EnergyTrace drop(int n, int layers, double h, double seconds, bool hold = false) {
   constexpr double r = 0.3;
-  Model m = sheets(n, r + 0.05, layers);
+  Model m = test::sheets(n, r + 0.05, layers);
   BodyCollisionDef def;
   def.body = test::uv_sphere(r);
   auto body = make_body_collision(m, def);

@@ -45,6 +45,10 @@ struct DrapeOptions {
   // docs/collisions.md, "Between particles"). Off, a crotch or a heel shows
   // through the cloth between particles that all stay outside the body.
   bool between_particles = true;
+  // Offset contact instead of the body collision and self-collision: no
+  // cloth through the body or through cloth at the end of any step
+  // (docs/collisions.md, "Offset contact").
+  bool offset_contact = false;
   double time_limit = 8.0;               // s of simulated time
   // J: mean kinetic energy per particle counted as rest (~1.5 cm/s at 40 mg);
   // the preview preset stops at 10 times it (~5 cm/s): sooner, less settled.

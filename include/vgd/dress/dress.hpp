@@ -44,7 +44,8 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 // `under`: the cloth of garments already placed that this one is worn over.
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
-                                       const body::Avatar& avatar, const std::vector<Underlayer>& under = {});
+                                       const body::Avatar& avatar, const std::vector<Underlayer>& under = {},
+                                       double nest = 0.0);
 
 // Every garment entry of `def` assembled (dress/garment.hpp) and placed round
 // `avatar`, keyed by its index in def.cloth. Garments are taken in cloth

@@ -61,7 +61,11 @@ inline constexpr double kUnderlayerGap = 0.015;  // m between a piece and the cl
 // Throws vgd::Error naming the segment when the avatar has no such segment, the
 // segment has no rings, or (neck/torso/hips) its axis is too close to horizontal for
 // a world height to be meaningful.
+// `nest` (m): a back piece wrapped on one curve with its front (the two too
+// wide to meet at the body's sides) starts this much further out, so the two
+// overlap at the sides one over the other instead of in one surface, through
+// each other (offset contact keeps what the start has).
 PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::Arrangement& arrangement,
-                           const body::Avatar& avatar, const std::vector<Underlayer>& under = {});
+                           const body::Avatar& avatar, const std::vector<Underlayer>& under = {}, double nest = 0.0);
 
 }  // namespace vgd::dress

@@ -21,6 +21,7 @@
 #include "vgd/scene/material.hpp"
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
+#include "vgd/sim/effects/contact.hpp"
 #include "vgd/sim/effects/seam.hpp"
 #include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/sim/integrator.hpp"
@@ -182,6 +183,11 @@ struct EffectsDef {
   // explicit methods (docs/collisions.md).
   std::string collision_seam_response = "body";
   std::optional<sim::SelfCollisionDef> self_collision;
+  // Offset contact (sim/effects/contact.hpp): cloth against the avatar and
+  // against itself with no intersection at the end of any step; replaces
+  // `collision` and `self_collision` (a scene gives one or the others). The
+  // body, seam pairs and pins are filled by build().
+  std::optional<sim::ContactDef> contact;
   std::optional<SeamsDef> seams;
 };
 

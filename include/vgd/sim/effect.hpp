@@ -72,6 +72,10 @@ class Effect {
   // particle now; `full` holds every particle of the Model (merged particles'
   // copies share position and velocity).
   virtual void merge_requests(const Model& m, const State& full, std::vector<std::array<int, 2>>& out) {}
+  // Drops the requests this effect cannot allow now (offset contact: a merge
+  // whose jump could carry cloth through cloth or the body); the seam keeps
+  // pulling and asks again. Called after every effect's merge_requests.
+  virtual void review_merges(const Model& m, const State& full, std::vector<std::array<int, 2>>& requests) {}
   // Particles were merged. Effects keep their original indexing and are
   // evaluated on full vectors, so nothing is required; representative[i] is
   // the reduced particle of original particle i (equal values: one particle),
