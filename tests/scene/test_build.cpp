@@ -4,6 +4,10 @@
 // and region, and pieces of an XVC document meshed and laid flat.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "vgd/sim/sdf.hpp"
+
 #include <cmath>
 #include <numeric>
 
@@ -269,6 +273,65 @@ TEST(SceneBuild, AGarmentEntryNeedsTheDressStage) {
   j["effects"].erase("pins");
   const SceneDef def = test::parse(j, "garment-scene.json");
   test::expect_error([&] { build(def); }, "garment-scene.json", "cloth[0].garment", "dress::build");
+}
+
+// Offset contact replaces the body collision and self-collision, and the
+// cloth starts outside the body: a sheet hanging through a sphere has its
+// particles inside moved out to 1.5 contact radii from the sphere's surface.
+TEST(SceneBuild, OffsetContactReplacesBothContactsAndStartsTheClothOutsideTheBody) {
+  json j = test::tiny_scene();
+  j["avatar"] = json::parse(R"({"sphere": {"centre": [0.2, 0.8, 0], "radius": 0.1}})");
+  j["effects"]["contact"] = json::parse(R"({"radius": "3 mm"})");
+  const SceneDef def = test::parse(j, "contact-scene.json");
+  ASSERT_TRUE(def.effects.contact);
+  EXPECT_DOUBLE_EQ(def.effects.contact->radius, 0.003);
+  const auto names = effect_names(def);
+  EXPECT_NE(std::find(names.begin(), names.end(), "contact"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "body-collision"), names.end());
+  const Scene s = build(def);
+  bool contact = false;
+  for (const auto& e : s.system->effects()) contact = contact || std::string(e->name()) == "contact";
+  EXPECT_TRUE(contact);
+  const sim::TriangleBvh bvh(s.avatar->surface);
+  const auto& m = s.system->model();
+  int inside_before = 0;
+  const sim::Model raw = [&] {
+    json k = j;
+    k["effects"].erase("contact");
+    return build(test::parse(k, "plain.json")).system->model();
+  }();
+  for (int i = 0; i < raw.num_particles(); ++i)
+    if (bvh.closest(sim::at(raw.x0, i)).distance < 0.0) ++inside_before;
+  EXPECT_GT(inside_before, 0);  // the case has cloth inside the body
+  for (int i = 0; i < m.num_particles(); ++i)
+    EXPECT_GE(bvh.closest(sim::at(m.x0, i)).distance, 1.5 * 0.003 - 1e-9) << i;
+}
+
+TEST(SceneBuild, OffsetContactIsCheckedAndGoesAlone) {
+  const auto with_avatar = [](json& j) {
+    j["avatar"] = json::parse(R"({"sphere": {"centre": [0.2, 0.8, 0], "radius": 0.1}})");
+  };
+  test::expect_scene_error([](json& j) { j["effects"]["contact"] = json::object(); }, "effects.contact",
+                           "no avatar");
+  test::expect_scene_error(
+      [&](json& j) {
+        with_avatar(j);
+        j["effects"]["contact"] = json::object();
+        j["effects"]["self_collision"] = json::object();
+      },
+      "effects.contact", "not both");
+  test::expect_scene_error(
+      [&](json& j) {
+        with_avatar(j);
+        j["effects"]["contact"] = {{"gamma", 0.6}};
+      },
+      "effects.contact.gamma", "(0, 0.5)");
+  test::expect_scene_error(
+      [&](json& j) {
+        with_avatar(j);
+        j["effects"]["contact"] = {{"radius", "3 mm"}, {"reach", "2 mm"}};
+      },
+      "effects.contact.reach", ">= radius");
 }
 
 }  // namespace
