@@ -429,6 +429,11 @@ std::string to_json(const Certificate& c) {
     j["profile"]["self_collision"] = {
         {"detections", c.self_detections}, {"pairs", c.self_pairs}, {"reverted_particles", c.self_reverted},
         {"untangling_moves", c.self_untangled}};
+  if (c.contact_detections >= 0)
+    j["profile"]["contact"] = {{"detections", c.contact_detections},
+                               {"cut", c.contact_cut},
+                               {"unfinished", c.contact_unfinished},
+                               {"merges_held", c.contact_merges_held}};
   j["cloth"] = {{"particles", c.particles}, {"triangles", c.triangles}};
   j["penetration"] = {{"max_m", c.max_penetration}, {"particles_inside", c.particles_inside},
                       {"deepest_at_m", json::array({c.deepest_at.x(), c.deepest_at.y(), c.deepest_at.z()})},
@@ -589,6 +594,14 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
     c.self_pairs = static_cast<long>(r.integer(r.at(s, "pairs", p), p + ".pairs"));
     c.self_reverted = static_cast<long>(r.integer(r.at(s, "reverted_particles", p), p + ".reverted_particles"));
     c.self_untangled = static_cast<long>(r.integer(r.at(s, "untangling_moves", p), p + ".untangling_moves"));
+  }
+  if (prof.contains("contact")) {
+    const json& s = prof["contact"];
+    const std::string p = "profile.contact";
+    c.contact_detections = static_cast<long>(r.integer(r.at(s, "detections", p), p + ".detections"));
+    c.contact_cut = static_cast<long>(r.integer(r.at(s, "cut", p), p + ".cut"));
+    c.contact_unfinished = static_cast<long>(r.integer(r.at(s, "unfinished", p), p + ".unfinished"));
+    c.contact_merges_held = static_cast<long>(r.integer(r.at(s, "merges_held", p), p + ".merges_held"));
   }
   const json& cloth = r.at(j, "cloth", "");
   c.particles = r.int32(r.at(cloth, "particles", "cloth"), "cloth.particles");

@@ -12,6 +12,7 @@
 #include "vgd/dress/dress.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/sim/effects/seam.hpp"
+#include "vgd/sim/effects/contact.hpp"
 #include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/sim/threads.hpp"
 #include "vgd/xvc/io.hpp"
@@ -273,6 +274,10 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     if (std::string(e->name()) == "self-collision") {
       const auto& st = sim::self_collision_stats(*e);
       c.self_detections = st.detections, c.self_pairs = st.pairs_total, c.self_reverted = st.reverted, c.self_untangled = st.untangled;
+    } else if (std::string(e->name()) == "contact") {
+      const auto& st = sim::contact_stats(*e);
+      c.contact_detections = st.detections, c.contact_cut = st.cut, c.contact_unfinished = st.unfinished;
+      c.contact_merges_held = st.merges_held;
     }
   c.steps = r.summary.stats.steps;
   c.force_evaluations = r.summary.stats.rhs_evaluations;

@@ -122,6 +122,7 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   c.effect_seconds = {{"gravity", 0.01}, {"springs", 0.75}};
   c.steps = 200, c.force_evaluations = 410, c.linear_iterations = 9000;
   c.self_detections = 20, c.self_pairs = 3000, c.self_reverted = 4, c.self_untangled = 1;
+  c.contact_detections = 850, c.contact_cut = 17000, c.contact_unfinished = 13, c.contact_merges_held = 6;
   c.particles = 1234, c.triangles = 2222;
   c.particles_inside = 1, c.deepest_at = Vec3(0.1, 1.2, -0.05);
   c.body_through_cloth = 3, c.max_body_through = 0.002, c.body_through_by_piece = {{"FRONT_38", 3}};

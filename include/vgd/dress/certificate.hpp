@@ -100,6 +100,10 @@ struct Certificate {
   // Self-collision's work over the run (absent: -1): detection passes, pairs
   // found, particles its fail-safe put back to their step's start.
   long self_detections = -1, self_pairs = 0, self_reverted = 0, self_untangled = 0;
+  // Offset contact's work (absent: -1): detections, particle moves cut to
+  // their bound, particles short of their step's end after the last round,
+  // seam merges held back.
+  long contact_detections = -1, contact_cut = 0, contact_unfinished = 0, contact_merges_held = 0;
   // The state reached.
   int particles = 0, triangles = 0;
   double max_penetration = 0;   // m, exact

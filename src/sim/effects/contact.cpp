@@ -164,6 +164,13 @@ struct Contact4 {
   }
 };
 
+// The squared distance between two axis-aligned boxes (0 when they overlap), m²: no
+// two points of them are nearer, so a pair whose boxes are a reach apart is
+// no pair.
+inline double box_gap2(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+  return (blo - ahi).cwiseMax(alo - bhi).cwiseMax(0.0).squaredNorm();
+}
+
 class ContactEffect final : public Effect {
  public:
   ContactEffect(const Model& m, const ContactDef& d) : def_(d), mass_(m.mass) {
@@ -209,18 +216,22 @@ class ContactEffect final : public Effect {
     if (!d.body.triangles.empty()) {
       const double cell = std::max(bsum / (3.0 * d.body.triangles.size()), 2.0 * d.reach);
       const auto& bt = d.body.triangles;
+      body_tri_box_.resize(bt.size());
       body_tri_hash_.build_items(static_cast<int>(bt.size()), cell, [&](int k, Vec3& lo, Vec3& hi) {
         lo = bv[bt[k][0]].cwiseMin(bv[bt[k][1]]).cwiseMin(bv[bt[k][2]]);
         hi = bv[bt[k][0]].cwiseMax(bv[bt[k][1]]).cwiseMax(bv[bt[k][2]]);
+        body_tri_box_[k] = {lo, hi};
         return k;
       });
       body_vertex_hash_.build_items(static_cast<int>(bv.size()), cell, [&](int k, Vec3& lo, Vec3& hi) {
         lo = hi = bv[k];
         return k;
       });
+      body_edge_box_.resize(body_edges_.size());
       body_edge_hash_.build_items(static_cast<int>(body_edges_.size()), cell, [&](int k, Vec3& lo, Vec3& hi) {
         lo = bv[body_edges_[k][0]].cwiseMin(bv[body_edges_[k][1]]);
         hi = bv[body_edges_[k][0]].cwiseMax(bv[body_edges_[k][1]]);
+        body_edge_box_[k] = {lo, hi};
         return k;
       });
     }
@@ -502,14 +513,18 @@ class ContactEffect final : public Effect {
     const auto& bv = def_.body.vertices;
     const auto& bt = def_.body.triangles;
     const bool body = !bt.empty();
+    tri_box_.resize(nt);
+    edge_box_.resize(ne);
     cloth_tri_hash_.build_items(nt, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
       lo = P[tris_[k][0]].cwiseMin(P[tris_[k][1]]).cwiseMin(P[tris_[k][2]]);
       hi = P[tris_[k][0]].cwiseMax(P[tris_[k][1]]).cwiseMax(P[tris_[k][2]]);
+      tri_box_[k] = {lo, hi};
       return k;
     });
     cloth_edge_hash_.build_items(ne, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
       lo = P[edges_[k][0]].cwiseMin(P[edges_[k][1]]);
       hi = P[edges_[k][0]].cwiseMax(P[edges_[k][1]]);
+      edge_box_[k] = {lo, hi};
       return k;
     });
     cloth_vertex_hash_.build_items(nv, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
@@ -520,18 +535,32 @@ class ContactEffect final : public Effect {
     std::vector<std::vector<Pair>> found(threads);
     std::vector<double> min_cloth(threads, 1e300), min_body(threads, 1e300);
     const Vec3 pad = Vec3::Constant(R);
+    const double R2 = R * R;
+    // A candidate met in several cells is tested once (the last query that
+    // met it is remembered per thread), and only when the boxes come within
+    // the reach: the exact distances were most of the detection's time.
+    if (static_cast<int>(seen_.size()) < threads) seen_.resize(threads);
+    for (auto& sn : seen_) {
+      sn.tri.assign(nt, -1);
+      sn.edge.assign(ne, -1);
+      sn.body_tri.assign(def_.body.triangles.size(), -1);
+      sn.body_edge.assign(body_edges_.size(), -1);
+    }
 #pragma omp parallel num_threads(threads)
     {
       const int id = omp_get_thread_num();
       auto& out = found[id];
       double& mc = min_cloth[id];
       double& mb = min_body[id];
+      Seen& sn = seen_[id];
       Vec3 w;
 #pragma omp for schedule(static)
       for (int v = 0; v < nv; ++v) {
         const Vec3& p = P[v];
         cloth_tri_hash_.for_each_in_box(p - pad, p + pad, [&](int t) {
-          if (!may_touch_triangle(v, t)) return;
+          if (sn.tri[t] == v) return;
+          sn.tri[t] = v;
+          if (box_gap2(p, p, tri_box_[t].lo, tri_box_[t].hi) >= R2 || !may_touch_triangle(v, t)) return;
           const auto& tr = tris_[t];
           const double d = point_triangle_distance(p, P[tr[0]], P[tr[1]], P[tr[2]], w);
           if (d < R) out.push_back({Kind::vertex_triangle, v, t});
@@ -539,6 +568,9 @@ class ContactEffect final : public Effect {
         });
         if (body)
           body_tri_hash_.for_each_in_box(p - pad, p + pad, [&](int t) {
+            if (sn.body_tri[t] == v) return;
+            sn.body_tri[t] = v;
+            if (box_gap2(p, p, body_tri_box_[t].lo, body_tri_box_[t].hi) >= R2) return;
             const double d = point_triangle_distance(p, bv[bt[t][0]], bv[bt[t][1]], bv[bt[t][2]], w);
             if (d < R) out.push_back({Kind::vertex_body, v, t});
             mb = std::min(mb, d);
@@ -561,14 +593,20 @@ class ContactEffect final : public Effect {
         const Vec3& b = P[edges_[e][1]];
         const Vec3 lo = a.cwiseMin(b) - pad, hi = a.cwiseMax(b) + pad;
         double s, u;
+        const Box& be = edge_box_[e];
         cloth_edge_hash_.for_each_in_box(lo, hi, [&](int g) {
-          if (g <= e || !may_touch_edge(e, g)) return;
+          if (g <= e || sn.edge[g] == e) return;
+          sn.edge[g] = e;
+          if (box_gap2(be.lo, be.hi, edge_box_[g].lo, edge_box_[g].hi) >= R2 || !may_touch_edge(e, g)) return;
           const double d = segment_distance(a, b, P[edges_[g][0]], P[edges_[g][1]], s, u);
           if (d < R) out.push_back({Kind::edge_edge, e, g});
           mc = std::min(mc, d);
         });
         if (body)
           body_edge_hash_.for_each_in_box(lo, hi, [&](int g) {
+            if (sn.body_edge[g] == e) return;
+            sn.body_edge[g] = e;
+            if (box_gap2(be.lo, be.hi, body_edge_box_[g].lo, body_edge_box_[g].hi) >= R2) return;
             const double d = segment_distance(a, b, bv[body_edges_[g][0]], bv[body_edges_[g][1]], s, u);
             if (d < R) out.push_back({Kind::edge_body, e, g});
             mb = std::min(mb, d);
@@ -809,6 +847,14 @@ class ContactEffect final : public Effect {
   // Detection.
   double cloth_cell_ = 0.0;
   SpatialHash cloth_tri_hash_, cloth_edge_hash_, cloth_vertex_hash_;
+  struct Box {
+    Vec3 lo, hi;
+  };
+  std::vector<Box> tri_box_, edge_box_, body_tri_box_, body_edge_box_;
+  struct Seen {  // per thread: the last query item that met each candidate
+    std::vector<int> tri, edge, body_tri, body_edge;
+  };
+  std::vector<Seen> seen_;
   std::vector<Pair> pairs_;
   std::vector<Contact4> linear_;  // pairs_ frozen at the detection
   // Per vertex (CSR): each pair it is in allows it to move at most `slack`
