@@ -289,8 +289,10 @@ class ContactEffect final : public Effect {
     const int n = vertices_;
     std::vector<Vec3> target = reduced(s.x), start = reduced(xs_), cur = start;
     if (!detected_) detect(start);
+    std::vector<char> moving(n, 0);
     for (int round = 0; round < def_.rounds; ++round) {
       bool left = false;
+      std::fill(moving.begin(), moving.end(), 0);
       for (int r = 0; r < n; ++r) {
         if (fixed_[r]) {
           cur[r] = target[r];
@@ -304,10 +306,14 @@ class ContactEffect final : public Effect {
           cur[r] += a * delta;
           ++stats_.cut;
           left = true;
+          moving[r] = 1;
         }
       }
-      detect(cur);
-      if (!left) break;
+      if (!left || round + 1 == def_.rounds) {
+        detect(cur);
+        break;
+      }
+      detect_moving(cur, moving);
     }
     const double h = s.t - ts_;
     std::vector<Vec3> vel(n);
@@ -513,24 +519,7 @@ class ContactEffect final : public Effect {
     const auto& bv = def_.body.vertices;
     const auto& bt = def_.body.triangles;
     const bool body = !bt.empty();
-    tri_box_.resize(nt);
-    edge_box_.resize(ne);
-    cloth_tri_hash_.build_items(nt, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
-      lo = P[tris_[k][0]].cwiseMin(P[tris_[k][1]]).cwiseMin(P[tris_[k][2]]);
-      hi = P[tris_[k][0]].cwiseMax(P[tris_[k][1]]).cwiseMax(P[tris_[k][2]]);
-      tri_box_[k] = {lo, hi};
-      return k;
-    });
-    cloth_edge_hash_.build_items(ne, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
-      lo = P[edges_[k][0]].cwiseMin(P[edges_[k][1]]);
-      hi = P[edges_[k][0]].cwiseMax(P[edges_[k][1]]);
-      edge_box_[k] = {lo, hi};
-      return k;
-    });
-    cloth_vertex_hash_.build_items(nv, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
-      lo = hi = P[k];
-      return k;
-    });
+    build_cloth_hashes(P);
     const int threads = nv >= kParallelMin ? omp_get_max_threads() : 1;
     std::vector<std::vector<Pair>> found(threads);
     std::vector<double> min_cloth(threads, 1e300), min_body(threads, 1e300);
@@ -650,11 +639,17 @@ class ContactEffect final : public Effect {
       }
       linear_.push_back(c);
     }
-    // The bound (header): per vertex, half-spaces from every pair, and a cap.
+    set_limits(pairs_, x, nullptr);
+  }
+
+  // The bound (header): per vertex, the half-spaces of every pair it is in
+  // (of those vertices flagged in `only`, when given; the others get none).
+  void set_limits(const std::vector<Pair>& pairs, const VecX& x, const std::vector<char>* only) {
+    const int nv = vertices_;
     limit_start_.assign(nv + 1, 0);
     std::vector<Contact4> all;
-    all.reserve(pairs_.size());
-    for (const Pair& p : pairs_) {
+    all.reserve(pairs.size());
+    for (const Pair& p : pairs) {
       Contact4 c;
       if (geometry(p, x, c)) all.push_back(c);
       else {  // touching (d ≤ 1e-12): nothing of it may move nearer, in any direction
@@ -663,14 +658,133 @@ class ContactEffect final : public Effect {
         all.push_back(c);
       }
     }
+    const auto wanted = [&](int r) { return !only || (*only)[r]; };
     for (const Contact4& c : all)
-      for (int k = 0; k < c.n; ++k) ++limit_start_[rep_[c.v[k]] + 1];
+      for (int k = 0; k < c.n; ++k)
+        if (wanted(rep_[c.v[k]])) ++limit_start_[rep_[c.v[k]] + 1];
     for (int r = 0; r < nv; ++r) limit_start_[r + 1] += limit_start_[r];
     limits_.resize(limit_start_[nv]);
     std::vector<int> fill(limit_start_.begin(), limit_start_.end() - 1);
     for (const Contact4& c : all)
       for (int k = 0; k < c.n; ++k)
-        limits_[fill[rep_[c.v[k]]]++] = {c.side[k] * c.normal, def_.gamma * std::max(0.0, c.d - def_.floor)};
+        if (wanted(rep_[c.v[k]]))
+          limits_[fill[rep_[c.v[k]]]++] = {c.side[k] * c.normal, def_.gamma * std::max(0.0, c.d - def_.floor)};
+  }
+
+  void build_cloth_hashes(const std::vector<Vec3>& P) {
+    const int nt = static_cast<int>(tris_.size()), ne = static_cast<int>(edges_.size()), nv = vertices_;
+    tri_box_.resize(nt);
+    edge_box_.resize(ne);
+    cloth_tri_hash_.build_items(nt, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
+      lo = P[tris_[k][0]].cwiseMin(P[tris_[k][1]]).cwiseMin(P[tris_[k][2]]);
+      hi = P[tris_[k][0]].cwiseMax(P[tris_[k][1]]).cwiseMax(P[tris_[k][2]]);
+      tri_box_[k] = {lo, hi};
+      return k;
+    });
+    cloth_edge_hash_.build_items(ne, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
+      lo = P[edges_[k][0]].cwiseMin(P[edges_[k][1]]);
+      hi = P[edges_[k][0]].cwiseMax(P[edges_[k][1]]);
+      edge_box_[k] = {lo, hi};
+      return k;
+    });
+    cloth_vertex_hash_.build_items(nv, cloth_cell_, [&](int k, Vec3& lo, Vec3& hi) {
+      lo = hi = P[k];
+      return k;
+    });
+  }
+
+  // Between a step's rounds only the particles still short of their end move:
+  // their half-spaces come from the pairs that hold one of them (found from
+  // their vertices, edges and triangles; the same pairs a whole detection
+  // finds for them), and nothing else is detected. The step's last detection
+  // is whole: the next step's forces and first round need every pair.
+  void detect_moving(const std::vector<Vec3>& P, const std::vector<char>& moving) {
+    ++stats_.local_detections;
+    build_cloth_hashes(P);
+    const double R = def_.reach, R2 = R * R;
+    const Vec3 pad = Vec3::Constant(R);
+    const int nt = static_cast<int>(tris_.size()), ne = static_cast<int>(edges_.size());
+    const auto& bv = def_.body.vertices;
+    const auto& bt = def_.body.triangles;
+    const bool body = !bt.empty();
+    std::vector<char> tri_in(nt, 0), edge_in(ne, 0);
+    for (int v = 0; v < vertices_; ++v)
+      if (moving[v]) {
+        for (int t : vertex_tris_[v]) tri_in[t] = 1;
+        for (int e : vertex_edges_[v]) edge_in[e] = 1;
+      }
+    if (seen_.empty()) seen_.resize(1);
+    Seen& sn = seen_[0];
+    sn.tri.assign(nt, -1);
+    sn.edge.assign(ne, -1);
+    sn.body_tri.assign(bt.size(), -1);
+    sn.body_edge.assign(body_edges_.size(), -1);
+    std::vector<Pair> found;
+    Vec3 w;
+    double s, u;
+    for (int v = 0; v < vertices_; ++v) {
+      if (!moving[v]) continue;
+      const Vec3& p = P[v];
+      cloth_tri_hash_.for_each_in_box(p - pad, p + pad, [&](int t) {
+        if (sn.tri[t] == v) return;
+        sn.tri[t] = v;
+        if (box_gap2(p, p, tri_box_[t].lo, tri_box_[t].hi) >= R2 || !may_touch_triangle(v, t)) return;
+        if (point_triangle_distance(p, P[tris_[t][0]], P[tris_[t][1]], P[tris_[t][2]], w) < R)
+          found.push_back({Kind::vertex_triangle, v, t});
+      });
+      if (body)
+        body_tri_hash_.for_each_in_box(p - pad, p + pad, [&](int t) {
+          if (sn.body_tri[t] == v) return;
+          sn.body_tri[t] = v;
+          if (box_gap2(p, p, body_tri_box_[t].lo, body_tri_box_[t].hi) >= R2) return;
+          if (point_triangle_distance(p, bv[bt[t][0]], bv[bt[t][1]], bv[bt[t][2]], w) < R)
+            found.push_back({Kind::vertex_body, v, t});
+        });
+    }
+    for (int t = 0; t < nt; ++t) {
+      if (!tri_in[t]) continue;
+      const auto& tr = tris_[t];
+      const Vec3 lo = tri_box_[t].lo - pad, hi = tri_box_[t].hi + pad;
+      cloth_vertex_hash_.for_each_in_box(lo, hi, [&](int q) {
+        if (!may_touch_triangle(q, t)) return;
+        if (point_triangle_distance(P[q], P[tr[0]], P[tr[1]], P[tr[2]], w) < R)
+          found.push_back({Kind::vertex_triangle, q, t});
+      });
+      if (body)
+        body_vertex_hash_.for_each_in_box(lo, hi, [&](int q) {
+          if (point_triangle_distance(bv[q], P[tr[0]], P[tr[1]], P[tr[2]], w) < R)
+            found.push_back({Kind::body_triangle, t, q});
+        });
+    }
+    for (int e = 0; e < ne; ++e) {
+      if (!edge_in[e]) continue;
+      const Vec3& a = P[edges_[e][0]];
+      const Vec3& b = P[edges_[e][1]];
+      const Box& be = edge_box_[e];
+      cloth_edge_hash_.for_each_in_box(be.lo - pad, be.hi + pad, [&](int g) {
+        if (g == e || sn.edge[g] == e) return;
+        sn.edge[g] = e;
+        if (box_gap2(be.lo, be.hi, edge_box_[g].lo, edge_box_[g].hi) >= R2 || !may_touch_edge(e, g)) return;
+        // In the whole detection's order (smaller edge first): the same arithmetic.
+        const int e0 = std::min(e, g), e1 = std::max(e, g);
+        if (segment_distance(P[edges_[e0][0]], P[edges_[e0][1]], P[edges_[e1][0]], P[edges_[e1][1]], s, u) < R)
+          found.push_back({Kind::edge_edge, e0, e1});
+      });
+      if (body)
+        body_edge_hash_.for_each_in_box(be.lo - pad, be.hi + pad, [&](int g) {
+          if (sn.body_edge[g] == e) return;
+          sn.body_edge[g] = e;
+          if (box_gap2(be.lo, be.hi, body_edge_box_[g].lo, body_edge_box_[g].hi) >= R2) return;
+          if (segment_distance(a, b, bv[body_edges_[g][0]], bv[body_edges_[g][1]], s, u) < R)
+            found.push_back({Kind::edge_body, e, g});
+        });
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    VecX x(3 * nfull_);
+    for (int i = 0; i < nfull_; ++i) at(x, i) = P[rep_[i]];
+    set_limits(found, x, &moving);
+    detected_ = false;  // pairs_ and the forces' pairs are not those of P
   }
 
   // The distance (capped at the reach) from vertex v and the edges and

@@ -69,7 +69,8 @@ struct ContactDef {
 
 struct ContactStats {
   long steps = 0;
-  long detections = 0;        // whole run
+  long detections = 0;        // whole run: whole detections (one per step at least)
+  long local_detections = 0;  // whole run: detections between a step's rounds, of the particles still moving
   long cut = 0;               // whole run: particle moves cut to their bound (all rounds)
   long unfinished = 0;        // whole run: particles still short of the step's end after the last round
   long merges_held = 0;       // whole run: seam merges held back (their jump could carry cloth through cloth)
