@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "vgd/core/diagnostics.hpp"
@@ -37,6 +38,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   // keeps an eliminated particle with its survivor's attributes), so every
   // frame of a run has one topology whatever merged.
   VecX full, prev_x;
+  std::optional<State> last;  // the last state the sinks saw
   auto emit = [&](int index) {
     const VecX* x = &s.x;
     if (sys.merged()) {
@@ -44,6 +46,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
       x = &full;
     }
     for (auto* sink : sinks) sink->frame(index, s.t, *x);
+    last = s;
     summary.frames = index + 1;
     summary.times.push_back(s.t);
     // The kinetic energy of the motion between frames, ½ Σ m |Δx fps|² / N:
@@ -107,6 +110,7 @@ RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings&
   } catch (const SimulationError& e) {
     summary.ok = false;
     summary.error = e.what();
+    if (last) s = *last;
   }
   summary.simulated_s = s.t - t0;
   summary.wall_s = wall();

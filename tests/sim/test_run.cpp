@@ -67,6 +67,11 @@ TEST(Run, ABlowUpStopsTheRunAndNoNaNReachesASink) {
   EXPECT_NE(r.error.find("non-finite"), std::string::npos) << r.error;
   EXPECT_EQ(r.frames, 3);  // 0, 0.1, 0.2 s
   for (const auto& f : mem.frames) EXPECT_TRUE(f.allFinite());
+  // The state is left at the last frame the sink received, not half-way
+  // through the failing step.
+  EXPECT_DOUBLE_EQ(s.t, 0.2);
+  EXPECT_EQ(s.x, mem.frames.back());
+  EXPECT_DOUBLE_EQ(r.simulated_s, 0.2);
 }
 
 TEST(Run, AnUnstableStepIsRefusedBeforeTheFirstFrame) {

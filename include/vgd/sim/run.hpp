@@ -85,6 +85,10 @@ struct RunSummary {
 // every original particle. Seam merges are applied at frame boundaries
 // (System::apply_merges; the integrator is then reset); sinks always receive
 // the original particle set, a merged particle's copies at one position.
+// A run that fails (summary.ok false) leaves s at the last frame its sinks
+// received, when there was one: a failing step can leave the integrator's
+// state half-way through it, before the after-step hooks (contacts) had their
+// say, and nothing downstream (a certificate) should measure that.
 RunSummary run(System& sys, Integrator& integrator, State& s, const RunSettings& settings,
                const std::vector<FrameSink*>& sinks, const std::function<void(const Progress&)>& progress = {});
 
