@@ -3,11 +3,10 @@
 //
 // Everything works on the merged mesh (sim/topology.hpp): copies of one
 // particle are one vertex, read from their first copy and written to all.
-// Detection fills, per vertex, edge and triangle, the distance to the nearest
-// primitive it may touch (capped at the reach), and the pairs within the reach
-// that the next step's forces act on. Each of the three loops writes only its
-// own items' entries, and the pairs are sorted, so the result does not depend
-// on the threads.
+// Detection finds the pairs within the reach, from which each particle's
+// half-spaces (the bound) and the next step's forces come. Each thread
+// collects its own pairs and the pairs are sorted, so the result does not
+// depend on the threads.
 #include "vgd/sim/effects/contact.hpp"
 
 #include <algorithm>
@@ -184,9 +183,6 @@ class ContactEffect final : public Effect {
     if (!(d.floor >= 0.0 && d.floor < d.radius)) throw SimulationError("contact: floor must be in [0, radius)");
     model_tris_ = m.triangles;
     nfull_ = m.num_particles();
-    for (const auto& j : d.joined)
-      if (j[0] < 0 || j[0] >= nfull_ || j[1] < 0 || j[1] >= nfull_)
-        throw SimulationError("contact: a seam pair names a particle outside the model");
     // Mean rest edge: the cloth hashes' cell.
     double sum = 0.0;
     int count = 0;
@@ -354,8 +350,7 @@ class ContactEffect final : public Effect {
       const int a = find(rep_[rq[0]]), b = find(rep_[rq[1]]);
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
-    std::vector<double> mass(vertices_, 0.0);
-    for (int i = 0; i < nfull_; ++i) mass[rep_[i]] += mass_[i];
+    const std::vector<double>& mass = vertex_mass_;
     std::vector<std::vector<int>> members(vertices_);
     for (const auto& rq : requests)
       for (int k : rq) {
@@ -458,41 +453,26 @@ class ContactEffect final : public Effect {
       for (int k : tris_[t]) vertex_tris_[k].push_back(t);
     for (int e = 0; e < static_cast<int>(edges_.size()); ++e)
       for (int k : edges_[e]) vertex_edges_[k].push_back(e);
-    partner_.assign(vertices_, {});
-    for (const auto& j : def_.joined) {
-      const int a = rep_[j[0]], b = rep_[j[1]];
-      if (a == b) continue;
-      partner_[a].push_back(b);
-      partner_[b].push_back(a);
-    }
     fixed_.assign(vertices_, 0);
     for (int p : def_.fixed)
       if (p >= 0 && p < nfull_) fixed_[rep_[p]] = 1;
-    std::vector<double> mass(vertices_, 0.0);
-    for (int i = 0; i < nfull_; ++i) mass[rep_[i]] += mass_[i];
+    vertex_mass_.assign(vertices_, 0.0);
+    for (int i = 0; i < nfull_; ++i) vertex_mass_[rep_[i]] += mass_[i];
     inv_mass_.resize(vertices_);
-    for (int r = 0; r < vertices_; ++r) inv_mass_[r] = fixed_[r] || !(mass[r] > 0.0) ? 0.0 : 1.0 / mass[r];
+    for (int r = 0; r < vertices_; ++r)
+      inv_mass_[r] = fixed_[r] || !(vertex_mass_[r] > 0.0) ? 0.0 : 1.0 / vertex_mass_[r];
   }
 
-  // Vertex v may touch triangle t: not one of its corners, not holding the
-  // particle v is sewn to.
+  // Vertex v may touch triangle t: not one of its corners.
   bool may_touch_triangle(int v, int t) const {
     const auto& tr = tris_[t];
-    if (tr[0] == v || tr[1] == v || tr[2] == v) return false;
-    for (int p : partner_[v])
-      if (tr[0] == p || tr[1] == p || tr[2] == p) return false;
-    return true;
+    return tr[0] != v && tr[1] != v && tr[2] != v;
   }
+  // Edges e and g may touch: they share no particle.
   bool may_touch_edge(int e, int g) const {
     const auto& a = edges_[e];
     const auto& b = edges_[g];
-    for (int x : a)
-      for (int y : b) {
-        if (x == y) return false;
-        for (int p : partner_[x])
-          if (p == y) return false;
-      }
-    return true;
+    return a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1];
   }
 
   std::vector<Vec3> reduced(const VecX& x) const {
@@ -945,7 +925,8 @@ class ContactEffect final : public Effect {
 
   ContactDef def_;
   VecX mass_;                // kg, per model particle
-  std::vector<double> inv_mass_;  // 1/kg per merged vertex (0: fixed)
+  std::vector<double> vertex_mass_;  // kg per merged vertex
+  std::vector<double> inv_mass_;     // 1/kg per merged vertex (0: fixed)
   std::vector<std::array<int, 3>> model_tris_;
   int nfull_ = 0;
   // The merged mesh.
@@ -953,7 +934,7 @@ class ContactEffect final : public Effect {
   int vertices_ = 0;
   std::vector<std::array<int, 3>> tris_;
   std::vector<std::array<int, 2>> edges_;
-  std::vector<std::vector<int>> vertex_tris_, vertex_edges_, partner_;
+  std::vector<std::vector<int>> vertex_tris_, vertex_edges_;
   std::vector<char> fixed_;
   // The body.
   std::vector<std::array<int, 2>> body_edges_;

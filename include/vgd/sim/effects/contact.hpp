@@ -5,36 +5,41 @@
 // Contact" (SIGGRAPH 2025). One effect replaces the body collision and the
 // self-collision with their repairs.
 //
-//  - Detection, at the start of every step: for each cloth vertex, edge and
-//    triangle, its distance d to the nearest primitive it may touch (vertex–
-//    triangle and edge–edge pairs of the cloth, not sharing a particle; the
-//    cloth's vertices, edges and triangles against the body's triangles,
-//    edges and vertices), up to the reach R.
-//  - Bound: each particle may move at most b = γ (min(d) − floor) over the
-//    primitives it belongs to (γ < ½). Two primitives d apart then each move
-//    at most γ (d − floor), every point of them too (a point of a primitive
-//    moves by a convex combination of its corners' moves), so they stay
-//    ≥ d − 2γ (d − floor) ≥ floor apart along the whole straight-line motion
-//    of the step: no vertex passes
-//    through a triangle, no edge through an edge, so no triangle through a
-//    triangle (a first touch between two moving triangles is one of those).
-//  - After the integrator's step: each particle's move is cut to its bound;
-//    detection again at the cut positions and the rest of the move cut to the
-//    new bounds, up to `rounds` times. A particle that was cut leaves with the
-//    velocity of the move it made (never faster than the step gave it).
+//  - Detection, at the start of every step: every pair of primitives closer
+//    than the reach R that share no particle: cloth vertex–cloth triangle,
+//    cloth edge–cloth edge, cloth vertex–body triangle, body vertex–cloth
+//    triangle, cloth edge–body edge.
+//  - Bound: two convex primitives d apart stay apart while every point of one
+//    moves at most δ₁ towards the other along the normal of their closest
+//    points and every point of the other at most δ₂, δ₁ + δ₂ < d (the plane
+//    between them keeps separating them along the whole straight-line move).
+//    A point of a primitive moves by a convex combination of its corners'
+//    moves, so each particle keeps u · Δ ≥ −γ (d − floor) for every pair it
+//    is in (u: the normal away from the other primitive, γ < ½) and moves at
+//    most γ R in all: no vertex passes through a triangle, no edge through an
+//    edge, so no triangle through a triangle (a first touch between two
+//    moving triangles is one of those). Sideways and away a particle moves
+//    freely.
+//  - After the integrator's step: each particle's move is cut to the largest
+//    fraction that keeps its half-spaces; the particles still short of their
+//    end are detected again at the cut positions and the rest of the move cut
+//    to their new half-spaces, up to `rounds` times; the step's last
+//    detection is whole. A particle that was cut leaves with the velocity of
+//    the move it made (never faster than the step gave it).
 //  - Forces (implicit): within the contact radius r < R a pair repels with
-//    k (r − d) along the line of its closest points, shared by barycentric
-//    weight; the Jacobian's diagonal blocks −k w² n nᵀ. Against the body,
-//    Coulomb friction μ k (r − d) against the slip, viscous below
-//    `slip_speed`. The forces keep cloth off cloth and off the body; the
-//    bounds make the promise.
+//    k (r − d) along its closest points' normal, shared by barycentric
+//    weight, normal and weights frozen at the detection (linear over the
+//    step; full Jacobian blocks); against the body only each cloth vertex's
+//    nearest body triangle pushes, with Coulomb friction μ k (r − d) against
+//    the slip, viscous below `slip_speed`. The forces keep cloth off cloth and
+//    off the body; the bounds make the promise.
 //
 // What the promise needs and what it leaves out: the start must be free of
-// intersections (checked: a pair closer than 1 µm at the first detection is
-// an error). A seam's two sides must meet, so a particle is exempt against the
-// primitives holding the particle it is sewn to until the two merge; merges
-// (System::apply_merges) and prescribed particles (pins) move outside the
-// bound. The body is static.
+// intersections (not checked here: scene::build moves cloth out of the body,
+// the arrangement keeps pieces apart). Seam pairs get no exemption; merges
+// (System::apply_merges) are let through by review_merges only when their
+// jumps keep the promise. Prescribed particles (pins) move by their path,
+// outside the bound. The body is static.
 #include <array>
 #include <memory>
 #include <vector>
@@ -61,9 +66,6 @@ struct ContactDef {
   double slip_speed = 0.01; // m/s: below it friction grows linearly with the slip
   int rounds = 4;           // cut-and-detect rounds per step
   mesh::SurfaceMesh body;   // static obstacle (m); empty for none
-  // Seam pairs (particles that are to become one): exempt against each
-  // other's primitives until merged.
-  std::vector<std::array<int, 2>> joined;
   std::vector<int> fixed;   // prescribed particles: moved by their path, not bounded
 };
 
