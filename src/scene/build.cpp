@@ -623,6 +623,7 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
       sim::ContactDef cd = *e.contact;
       cd.body = s.avatar->surface;
       cd.fixed = s.pinned;
+      for (const auto& sp : s.seams) cd.sewn.insert(cd.sewn.end(), sp.pairs.begin(), sp.pairs.end());
       effects.push_back(sim::make_contact(model, cd));
     }
     s.system = std::make_unique<sim::System>(std::move(model), std::move(effects));

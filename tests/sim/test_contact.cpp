@@ -14,6 +14,7 @@
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/contact.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
+#include "vgd/sim/effects/seam.hpp"
 #include "vgd/sim/integrator.hpp"
 
 namespace vgd::sim {
@@ -116,6 +117,7 @@ struct Trace {
   double largest_mechanical_gain = 0.0;  // J: the same without the contact's stored energy
   double start_energy = 0.0, end_energy = 0.0;
   ContactStats stats;
+  VecX end_x;                  // m: positions after the last step
 };
 
 // Steps `sys` by implicit Euler at h for `seconds`, checking after each step.
@@ -146,6 +148,7 @@ Trace run(System& sys, const Effect& contact, const mesh::SurfaceMesh& body, dou
     tr.end_energy = e;
   }
   tr.stats = contact_stats(contact);
+  tr.end_x = s.x;
   return tr;
 }
 
@@ -248,6 +251,40 @@ TEST(Contact, TwoSheetsOnASphereNeverCrossAndGainNoEnergyAt5And10ms) {
     EXPECT_LE(t.largest_mechanical_gain, 1e-12) << h;
     EXPECT_LT(t.end_energy, 0.7 * t.start_energy) << h;  // the landing took energy out
   }
+}
+
+// Two sheets 1 cm apart, sewn along one edge (each particle of the lower
+// sheet's edge to the one above it), no gravity: the seam pulls the upper
+// edge down onto the lower. The two sides of a seam do not repel each other,
+// so the seam closes far inside the contact radius (pushed apart by
+// k (r − d) the pull of 0.05 N per pair would stall at r − F/k = 2.5 mm);
+// the bound still keeps them from passing through each other.
+TEST(Contact, ASeamClosesInsideTheContactRadiusWithoutCrossing) {
+  constexpr int n = 11;
+  Model m = test::sheets(n, 0.2, 2);
+  MassSpringMaterial mat;
+  mat.warp = mat.weft = 60.0;
+  mat.shear = mat.bend_warp = mat.bend_weft = 10.0;
+  mat.damping = 0.02;
+  SeamDef sd;
+  sd.merge = false;
+  SeamPairs edge{"edge", {}};
+  for (int i = 0; i < n; ++i) edge.pairs.push_back({i * n + n - 1, n * n + i * n + n - 1});
+  sd.seams = {edge};
+  ContactDef cd;
+  cd.body = test::box(Vec3(1.0, 0.05, 1.0), Mat3::Identity(), Vec3(0, -1.0, 0));  // out of reach
+  cd.sewn = edge.pairs;
+  auto c = make_contact(m, cd);
+  const Effect* ce = c.get();
+  System sys(m, effects(make_mass_spring(m, {mat}), make_seam(m, sd), make_viscosity({0.0, 0.5}), std::move(c)));
+  const Trace t = run(sys, *ce, cd.body, 0.005, 1.0);
+  report(t);
+  EXPECT_EQ(t.worst_crossings, 0);
+  EXPECT_GE(t.stats.min_cloth, cd.floor * (1 - 1e-9));  // the sides close down to the floor (to rounding)
+  double widest = 0.0;
+  for (const auto& p : edge.pairs) widest = std::max(widest, (at(t.end_x, p[0]) - at(t.end_x, p[1])).norm());
+  ::testing::Test::RecordProperty("widest_gap_m", sci(widest));
+  EXPECT_LT(widest, cd.radius / 3);
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -397,7 +396,7 @@ class ContactEffect final : public Effect {
     for (int i = 0; i < nfull_; ++i) at(x, i) = P[rep_[i]];
     for (const Pair& p : pairs_) {
       Contact4 c;
-      if (!geometry(p, x, c) || c.d >= def_.radius) continue;
+      if (!geometry(p, x, c) || c.d >= def_.radius || sewn(c)) continue;
       double vn = 0.0, wm = 0.0;
       for (int k = 0; k < c.n; ++k) {
         const int r = rep_[c.v[k]];
@@ -458,6 +457,14 @@ class ContactEffect final : public Effect {
       if (p >= 0 && p < nfull_) fixed_[rep_[p]] = 1;
     vertex_mass_.assign(vertices_, 0.0);
     for (int i = 0; i < nfull_; ++i) vertex_mass_[rep_[i]] += mass_[i];
+    partners_.assign(vertices_, {});
+    for (const auto& pr : def_.sewn) {
+      if (pr[0] < 0 || pr[0] >= nfull_ || pr[1] < 0 || pr[1] >= nfull_) continue;
+      const int a = rep_[pr[0]], b = rep_[pr[1]];
+      if (a == b) continue;  // merged already
+      partners_[a].push_back(b);
+      partners_[b].push_back(a);
+    }
     inv_mass_.resize(vertices_);
     for (int r = 0; r < vertices_; ++r)
       inv_mass_[r] = fixed_[r] || !(vertex_mass_[r] > 0.0) ? 0.0 : 1.0 / vertex_mass_[r];
@@ -608,7 +615,7 @@ class ContactEffect final : public Effect {
     for (const Pair& p : pairs_) {
       if (p.kind == Kind::body_triangle || p.kind == Kind::edge_body) continue;
       Contact4 c;
-      if (!geometry(p, x, c)) continue;
+      if (!geometry(p, x, c) || sewn(c)) continue;
       if (p.kind == Kind::vertex_body) {
         // Pairs are sorted by vertex: keep the nearest of this vertex's.
         if (nearest_body >= 0 && linear_[nearest_body].v[0] == c.v[0]) {
@@ -825,6 +832,18 @@ class ContactEffect final : public Effect {
 
   // ---- forces --------------------------------------------------------------------
 
+  // A cloth pair whose two primitives hold a particle and its seam partner.
+  bool sewn(const Contact4& c) const {
+    if (c.body) return false;
+    for (int k = 0; k < c.n; ++k) {
+      if (c.side[k] < 0) continue;
+      for (int partner : partners_[rep_[c.v[k]]])
+        for (int j = 0; j < c.n; ++j)
+          if (c.side[j] < 0 && rep_[c.v[j]] == partner) return true;
+    }
+    return false;
+  }
+
   // The pair's geometry at positions x (full vector; a vertex is read from
   // its first copy and its force goes there). False when degenerate.
   bool geometry(const Pair& p, const VecX& x, Contact4& c) const {
@@ -936,6 +955,7 @@ class ContactEffect final : public Effect {
   std::vector<std::array<int, 2>> edges_;
   std::vector<std::vector<int>> vertex_tris_, vertex_edges_;
   std::vector<char> fixed_;
+  std::vector<std::vector<int>> partners_;  // per merged vertex: its seam partners
   // The body.
   std::vector<std::array<int, 2>> body_edges_;
   SpatialHash body_tri_hash_, body_vertex_hash_, body_edge_hash_;

@@ -38,7 +38,8 @@
 // intersections (not checked here: scene::build moves cloth out of the body,
 // the arrangement keeps pieces apart). Seam pairs get no exemption; merges
 // (System::apply_merges) are let through by review_merges only when their
-// jumps keep the promise. Prescribed particles (pins) move by their path,
+// jumps keep the promise; the seam's two sides do not repel each other (the
+// bound holds them apart, the forces would hold them open). Prescribed particles (pins) move by their path,
 // outside the bound. The body is static.
 #include <array>
 #include <memory>
@@ -66,6 +67,11 @@ struct ContactDef {
   double slip_speed = 0.01; // m/s: below it friction grows linearly with the slip
   int rounds = 4;           // cut-and-detect rounds per step
   mesh::SurfaceMesh body;   // static obstacle (m); empty for none
+  // Seam pairs (particles a seam will join): two primitives that hold a
+  // particle and its seam partner do not push each other, so the seam can
+  // pull its sides together; the bound still keeps them apart until the
+  // merge. Nothing else is exempt.
+  std::vector<std::array<int, 2>> sewn;
   std::vector<int> fixed;   // prescribed particles: moved by their path, not bounded
 };
 
