@@ -59,7 +59,8 @@ render::Colour parse_colour_option(const std::string& name, const std::string& t
 // One render mesh per group of an OBJ (its own vertices only), with the
 // file's texture coordinates (`vt`: metres of pattern in vgd's garment.obj)
 // when every face of the group has them.
-std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind kind) {
+std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind kind,
+                                        std::vector<std::vector<int>>* sources = nullptr) {
   const auto obj = vgd::io::obj::read_obj(file);
   const int n_groups = std::max<int>(1, static_cast<int>(obj.groups.size()));
   auto group_of = [&](std::size_t f) { return static_cast<std::size_t>(std::clamp(obj.face_group[f], 0, n_groups - 1)); };
@@ -70,6 +71,7 @@ std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind k
   // (vertex, texture coordinate) -> render vertex: a vertex with two texture
   // coordinates (a cut in texture space) becomes two render vertices.
   std::vector<std::map<std::pair<int, int>, int>> remap(meshes.size());
+  std::vector<std::vector<int>> source(meshes.size());  // per render vertex: its vertex in the file
   for (std::size_t f = 0; f < obj.faces.size(); ++f) {
     const std::size_t g = group_of(f);
     auto& m = meshes[g];
@@ -80,6 +82,7 @@ std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind k
       if (fresh) {
         const auto& p = obj.vertices[static_cast<std::size_t>(v)];
         m.positions.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+        source[g].push_back(v);
         if (t >= 0) {
           const auto& c = obj.texcoords[static_cast<std::size_t>(t)];
           m.uv.push_back({static_cast<float>(c[0]), static_cast<float>(c[1])});
@@ -93,8 +96,13 @@ std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind k
     meshes[g].kind = kind;
     meshes[g].name = g < obj.groups.size() ? obj.groups[g] : file.stem().string();
   }
-  std::erase_if(meshes, [](const render::Mesh& m) { return m.triangles.empty(); });
-  return meshes;
+  std::vector<render::Mesh> kept;
+  for (std::size_t g = 0; g < meshes.size(); ++g) {
+    if (meshes[g].triangles.empty()) continue;
+    kept.push_back(std::move(meshes[g]));
+    if (sources) sources->push_back(std::move(source[g]));
+  }
+  return kept;
 }
 
 // One render mesh per piece of one frame of a trajectory (-1: the last).
@@ -306,7 +314,8 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   if (!trj && o.frame != -1) throw vgd::Error(input.string(), "", "--frame applies to a trajectory (.trj) only");
   const render::Colour fabric = o.colour.empty() ? render::kFabric : parse_colour_option("--colour", o.colour);
   int index = 0;
-  auto pieces = trj ? meshes_of_trj(input, o.frame, common) : meshes_of_obj(garment, render::MeshKind::garment);
+  std::vector<std::vector<int>> sources;  // per piece and render vertex: its vertex of garment.obj
+  auto pieces = trj ? meshes_of_trj(input, o.frame, common) : meshes_of_obj(garment, render::MeshKind::garment, &sources);
   std::vector<render::Mesh*> garment_meshes;
   for (auto& m : pieces) {
     m.kind = render::MeshKind::garment;
@@ -328,10 +337,29 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
     // A fit map: each piece coloured by its strain; the figures said per piece.
     const auto map = *render::parse_fit_map(o.map);
     const render::FitScale scale = fit_scale(o);
+    // The pressure map's values: the drape's contact-pressure.json beside
+    // garment.obj, one per vertex of it (Pa; drawn in kPa).
+    std::vector<double> pressure;
+    if (map == render::FitMap::pressure) {
+      if (trj)
+        throw vgd::Error(input.string(), "", "a contact-pressure map needs a drape folder (its contact-pressure.json), "
+                                             "not a trajectory");
+      const fs::path file = garment.parent_path() / "contact-pressure.json";
+      if (!fs::exists(file, ec))
+        throw vgd::Error(file.string(), "", "not found: a contact-pressure map needs the drape's contact-pressure.json "
+                                            "(vgd drape and vgd dress write it beside garment.obj)");
+      pressure = vgd::dress::contact_pressure_from_json(vgd::read_file(file), file.string());
+      const auto obj_vertices = vgd::io::obj::read_obj(garment).vertices.size();
+      if (pressure.size() != obj_vertices)
+        throw vgd::Error(file.string(), "values", "holds " + std::to_string(pressure.size()) + " pressures for the " +
+                                                      std::to_string(obj_vertices) + " vertices of " + garment.string() +
+                                                      ": not the same drape");
+    }
     // The stress map's fabrics: each piece's own, else the garment's.
     std::optional<StressFabrics> fabrics;
     if (map == render::FitMap::stress) fabrics = stress_fabrics(o, folder, common);
-    for (auto* m : garment_meshes) {
+    for (std::size_t k = 0; k < garment_meshes.size(); ++k) {
+      render::Mesh* m = garment_meshes[k];
       std::optional<render::Membrane> membrane;
       std::string fabric_name;
       if (fabrics) {
@@ -342,7 +370,11 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
         membrane = render::Membrane{ortho.E_warp, ortho.E_weft, ortho.G, ortho.nu_warp_weft};
         fabric_name = " (" + f.name + ")";
       }
-      const auto values = render::fit_values(*m, map, membrane ? &*membrane : nullptr);
+      std::vector<double> values;
+      if (map == render::FitMap::pressure)
+        for (int v : sources[k]) values.push_back(pressure[static_cast<std::size_t>(v)] / 1000.0);
+      else
+        values = render::fit_values(*m, map, membrane ? &*membrane : nullptr);
       render::colour_by(*m, values, scale);
       std::vector<double> sorted = values;
       std::sort(sorted.begin(), sorted.end());
@@ -389,11 +421,13 @@ vgd::cli::Registrar reg{"render", 75, [](CLI::App& app, vgd::cli::Common& common
                                      "one a drape folder's certificate.json names");
   sub->add_flag("--no-texture", o->no_texture, "Flat colours: draw no texture");
   sub->add_option("--map", o->map, "A fit map instead of the looks: the garment coloured by warp, weft or largest "
-                                   "stretch strain (%), shear (deg) or stress (the larger principal tension, N/m, "
-                                   "from each piece's fabric), with a legend (docs/render.md)")
-      ->check(CLI::IsMember({"warp", "weft", "shear", "stretch", "stress"}));
+                                   "stretch strain (%), shear (deg), stress (the larger principal tension, N/m, "
+                                   "from each piece's fabric) or pressure (on the body, kPa, from a drape folder's "
+                                   "contact-pressure.json), with a legend (docs/render.md)")
+      ->check(CLI::IsMember({"warp", "weft", "shear", "stretch", "stress", "pressure"}));
   sub->add_option("--map-range", o->map_range, "LO,HI: the values the map's colours span (default 0,40 for strain "
-                                               "in %, 0,20 for shear in deg, 0,100 for stress in N/m)");
+                                               "in %, 0,20 for shear in deg, 0,100 for stress in N/m, 0,5 for "
+                                               "pressure in kPa)");
   sub->add_option("--body-colour,--body-color", o->body_colour, "Body colour (default a neutral light grey)");
   sub->add_option("--fit", o->fit, "Frame the views on the body (default) or on the garment (closer)")
       ->check(CLI::IsMember({"body", "garment"}))

@@ -118,6 +118,8 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
   if (r.scene.avatar) body::export_avatar(*r.scene.avatar, out / "avatar.obj");
   const std::string cert = dress::to_json(r.certificate);
   vgd::write_file_atomic(out / "certificate.json", cert);
+  const bool pressure = !r.certificate.contact.particle_pressure.empty();
+  if (pressure) vgd::write_file_atomic(out / "contact-pressure.json", dress::contact_pressure_json(r.certificate));
 
   const auto& c = r.certificate;
   if (run.json) {
@@ -139,8 +141,8 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
         "%d crossing triangle pairs\n",
         c.particles, c.triangles, closed, pairs, fixed(c.max_penetration * 1000, 2).c_str(),
         c.triangle_intersections);
-    std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s\n", out.string().c_str(),
-                run.frames ? ", frames/" : "");
+    std::printf("  outputs in %s: garment.obj, avatar.obj, certificate.json%s%s\n", out.string().c_str(),
+                pressure ? ", contact-pressure.json" : "", run.frames ? ", frames/" : "");
     if (!run.trj.empty()) std::printf("  trajectory: %s\n", run.trj.c_str());
     std::fflush(stdout);
   }

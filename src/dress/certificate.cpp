@@ -391,6 +391,7 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     if (!grid) grid = &own.emplace(scene.avatar->surface);
     const sim::SignedDistanceGrid& sdf = *grid;
     std::vector<double> pressure;
+    out.contact.particle_pressure.assign(m.num_particles(), 0.0);
     for (int i = 0; i < m.num_particles(); ++i) {
       Vec3 n;
       if (sdf.sample(points[i], n) > contact_distance) continue;
@@ -399,6 +400,7 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
       out.contact.area += part[i];
       out.contact.force += fn;
       pressure.push_back(part[i] > 0 ? fn / part[i] : 0.0);
+      out.contact.particle_pressure[i] = pressure.back();
     }
     out.contact.pressure = percentiles(pressure);
   }
@@ -673,6 +675,34 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
   c.times = r.numbers(r.at(ke, "times_s", "kinetic_energy"), "kinetic_energy.times_s");
   c.kinetic_energy = r.numbers(r.at(ke, "values", "kinetic_energy"), "kinetic_energy.values");
   return c;
+}
+
+std::string contact_pressure_json(const Certificate& c) {
+  nlohmann::json j;
+  j["unit"] = "Pa";
+  j["values"] = c.contact.particle_pressure;
+  return j.dump() + "\n";
+}
+
+std::vector<double> contact_pressure_from_json(std::string_view text, const std::string& source) {
+  using nlohmann::json;
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) throw Error(source, "", "not JSON (a contact-pressure.json is)");
+  if (!j.is_object()) throw Error(source, "", "expected an object with \"unit\" and \"values\"");
+  const auto unit = j.find("unit");
+  if (unit == j.end() || !unit->is_string() || unit->get<std::string>() != "Pa")
+    throw Error(source, "unit", "expected \"Pa\" (vgd writes pressures in pascals)");
+  const auto values = j.find("values");
+  if (values == j.end() || !values->is_array()) throw Error(source, "values", "expected an array of pressures, Pa");
+  std::vector<double> out;
+  out.reserve(values->size());
+  for (std::size_t i = 0; i < values->size(); ++i) {
+    const json& v = (*values)[i];
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
+      throw Error(source, "values[" + std::to_string(i) + "]", "expected a finite pressure >= 0, Pa");
+    out.push_back(v.get<double>());
+  }
+  return out;
 }
 
 }  // namespace vgd::dress

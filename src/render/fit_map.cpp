@@ -21,7 +21,7 @@
 namespace vgd::render {
 
 std::optional<FitMap> parse_fit_map(std::string_view name) {
-  for (FitMap m : {FitMap::warp, FitMap::weft, FitMap::shear, FitMap::stretch, FitMap::stress})
+  for (FitMap m : {FitMap::warp, FitMap::weft, FitMap::shear, FitMap::stretch, FitMap::stress, FitMap::pressure})
     if (iequals(name, to_string(m))) return m;
   return std::nullopt;
 }
@@ -33,11 +33,19 @@ const char* to_string(FitMap map) {
     case FitMap::shear: return "shear";
     case FitMap::stretch: return "stretch";
     case FitMap::stress: return "stress";
+    case FitMap::pressure: return "pressure";
   }
   return "?";
 }
 
-const char* unit_of(FitMap map) { return map == FitMap::shear ? "deg" : map == FitMap::stress ? "N/m" : "%"; }
+const char* unit_of(FitMap map) {
+  switch (map) {
+    case FitMap::shear: return "deg";
+    case FitMap::stress: return "N/m";
+    case FitMap::pressure: return "kPa";
+    default: return "%";
+  }
+}
 
 std::string title_of(FitMap map) {
   switch (map) {
@@ -46,6 +54,7 @@ std::string title_of(FitMap map) {
     case FitMap::shear: return "shear, deg";
     case FitMap::stretch: return "largest stretch, %";
     case FitMap::stress: return "tension, N/m";
+    case FitMap::pressure: return "contact pressure, kPa";
   }
   return "?";
 }
@@ -53,6 +62,7 @@ std::string title_of(FitMap map) {
 FitScale default_scale(FitMap map) {
   if (map == FitMap::shear) return {0.0, 20.0};
   if (map == FitMap::stress) return {0.0, 100.0};
+  if (map == FitMap::pressure) return {0.0, 5.0};
   return {0.0, 40.0};
 }
 
@@ -69,6 +79,9 @@ double tension(const mesh::TriangleStrain& s, const Membrane& f) {
 
 std::vector<double> fit_values(const Mesh& mesh, FitMap map, const Membrane* fabric) {
   const std::size_t n = mesh.positions.size();
+  if (map == FitMap::pressure)
+    throw Error(mesh.name, "", "a contact-pressure map comes from the drape's forces (contact-pressure.json beside "
+                               "garment.obj), not from the garment's shape");
   if (mesh.uv.size() != n)
     throw Error(mesh.name, "", "no material coordinates (uv) to measure strain against: a fit map needs the "
                                "garment's rest shape (garment.obj's vt, a trajectory's topology)");
@@ -92,6 +105,7 @@ std::vector<double> fit_values(const Mesh& mesh, FitMap map, const Membrane* fab
       case FitMap::shear: value = std::abs(s.shear_deg); break;
       case FitMap::stretch: value = 100.0 * s.stretch; break;
       case FitMap::stress: value = tension(s, *fabric); break;
+      case FitMap::pressure: break;
     }
     for (int k = 0; k < 3; ++k) sum[t[k]] += area * value, weight[t[k]] += area;
   }

@@ -166,10 +166,11 @@ struct Studio::Impl {
   bool preview_dirty = false;
   double last_preview = -1e9;
   double azimuth = 35, elevation = 8;
-  int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch, stress)
+  int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch, stress, pressure)
   // The stress map's fabric of each piece drawn, by name, resolved once per drape.
   mutable std::map<std::string, render::Membrane> membranes;
   mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
+  mutable bool pressure_missing_said = false;  // the pressure map's "no drape finished here" (said once per choice)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
   // file, MATERIAL id, short name, for a tooltip its full name and figures,
@@ -1526,8 +1527,19 @@ struct Studio::Impl {
           // A fit map: the piece coloured by its strain against its rest shape.
           for (const auto& q : cloth.uv) m.uv.push_back({static_cast<float>(q[0]), static_cast<float>(q[1])});
           const auto map = static_cast<render::FitMap>(fit_map - 1);
-          const render::Membrane* fabric = map == render::FitMap::stress ? &membrane_of(m.name) : nullptr;
-          render::colour_by(m, render::fit_values(m, map, fabric), render::default_scale(map));
+          if (map == render::FitMap::pressure) {
+            // The pressure on the body, from the finished drape's forces (its certificate).
+            std::vector<double> kpa(m.positions.size(), 0.0);
+            if (cert && cert->contact.particle_pressure.size() == m.positions.size())
+              for (std::size_t i = 0; i < kpa.size(); ++i) kpa[i] = cert->contact.particle_pressure[i] / 1000.0;
+            else if (p == 0 && !pressure_missing_said)
+              pressure_missing_said = true, fabric_problem = "The contact-pressure map shows a drape that has finished here (its certificate); "
+                               "this one has not, or ran on a server.";
+            render::colour_by(m, kpa, render::default_scale(map));
+          } else {
+            const render::Membrane* fabric = map == render::FitMap::stress ? &membrane_of(m.name) : nullptr;
+            render::colour_by(m, render::fit_values(m, map, fabric), render::default_scale(map));
+          }
         }
         if (!m.triangles.empty()) sc.meshes.push_back(std::move(m));
       }
@@ -1556,11 +1568,13 @@ struct Studio::Impl {
   void preview_panel() {
     if (!cloth.positions.empty()) {
       // The garment's colours, or a fit map (docs/studio.md).
-      static const char* const kMaps[] = {"looks", "warp strain", "weft strain", "shear", "largest stretch", "stress"};
+      static const char* const kMaps[] = {"looks",           "warp strain", "weft strain",     "shear",
+                                          "largest stretch", "stress",      "contact pressure"};
       ImGui::SetNextItemWidth(150);
       if (ImGui::BeginCombo("map", kMaps[fit_map])) {
-        for (int k = 0; k < 6; ++k) {
-          if (ImGui::Selectable(kMaps[k], k == fit_map) && k != fit_map) fit_map = k, preview_dirty = true;
+        for (int k = 0; k < 7; ++k) {
+          if (ImGui::Selectable(kMaps[k], k == fit_map) && k != fit_map)
+            fit_map = k, preview_dirty = true, pressure_missing_said = false;
           track(std::string("map:") + kMaps[k]);
         }
         ImGui::EndCombo();
@@ -1568,7 +1582,8 @@ struct Studio::Impl {
       track("map");
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Colour the garment by its strain against the flat pattern (warp, weft, shear, largest "
-                          "stretch) or by the tension its fabric carries there (stress, N/m), with a legend; "
+                          "stretch), by the tension its fabric carries there (stress, N/m) or by how hard it "
+                          "presses on the body (contact pressure, kPa, once a drape has finished), with a legend; "
                           "docs/render.md, Fit maps");
     }
     const ImVec2 avail = ImGui::GetContentRegionAvail();

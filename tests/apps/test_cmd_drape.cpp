@@ -313,6 +313,18 @@ TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
   EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
   EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
   EXPECT_GT(c["contact"]["particles"].get<int>(), 200);
+  // The contact-pressure map beside it: a pressure per particle (per vertex
+  // of garment.obj), the certificate's largest among them, nothing where the
+  // cloth does not touch the body.
+  const json p = read_json(out / "contact-pressure.json");
+  EXPECT_EQ(p["unit"], "Pa");
+  ASSERT_EQ(p["values"].size(), c["cloth"]["particles"].get<std::size_t>());
+  double largest = 0.0;
+  int pressing = 0;
+  for (const auto& v : p["values"]) largest = std::max(largest, v.get<double>()), pressing += v.get<double>() > 0.0;
+  EXPECT_DOUBLE_EQ(largest, c["contact"]["pressure_pa"]["max"].get<double>());
+  EXPECT_GT(pressing, 100);
+  EXPECT_LE(pressing, c["contact"]["particles"].get<int>());
   // The bodice hangs without being pulled apart: strain p95 under 15 %.
   for (const auto& s : c["strain"])
     if (s["piece"].get<std::string>().find("SLEEVE") == std::string::npos) {

@@ -7,6 +7,9 @@
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/certificate.hpp"
+#include "vgd/scene/build.hpp"
+#include "vgd/scene/json.hpp"
+#include "vgd/sim/system.hpp"
 
 namespace vgd::dress {
 namespace {
@@ -165,6 +168,43 @@ TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {
   ASSERT_NE(frames, std::string::npos);
   const std::string wrong = text.substr(0, frames) + "\"frames\": \"many\"," + text.substr(text.find('\n', frames) + 1);
   EXPECT_NE(error_of(wrong).find("stop.frames"), std::string::npos) << error_of(wrong);
+}
+
+// Contact pressure against its analytic value: a sheet lying flat 2 mm above
+// a cylinder's flat top, in its rest shape, carries nothing but its weight,
+// so every particle presses ρ g on the body (areal density 0.1 kg/m²:
+// 0.981 Pa), a corner with a quarter of an inner particle's cloth as much as
+// the inner one, and the body carries the sheet's weight. Particles beyond
+// the contact distance press nothing.
+TEST(Certificate, ASheetLyingFlatPressesItsWeightPerAreaEverywhere) {
+  const std::string scene_json = R"({
+    "version": 1, "name": "lying",
+    "materials": { "cloth": { "density": 0.1, "spring.warp": 100, "spring.weft": 100, "spring.shear": 20,
+                              "spring.bend_warp": 5, "spring.bend_weft": 5, "spring.damping": 0.01 } },
+    "cloth": [ { "name": "sheet", "grid": { "particles": [7, 5], "size": [0.3, 0.2] },
+                 "placement": { "origin": [-0.15, 0.802, -0.1], "u": [1, 0, 0], "v": [0, 0, 1] },
+                 "model": "mass-spring", "material": "cloth" },
+               { "name": "above", "grid": { "particles": [3, 3], "size": [0.1, 0.1] },
+                 "placement": { "origin": [-0.05, 0.9, -0.05], "u": [1, 0, 0], "v": [0, 0, 1] },
+                 "model": "mass-spring", "material": "cloth" } ],
+    "avatar": { "cylinder": { "base": [0, 0, 0], "radius": 0.4, "height": 0.8 } },
+    "effects": { "gravity": {}, "collision": {} },
+    "integrator": { "method": "euler", "step": 0.001 },
+    "frames": { "fps": 25, "duration": 0.04 }
+  })";
+  const scene::Scene s = scene::build(scene::parse_scene(scene_json, "lying.json"));
+  const auto& m = s.system->model();
+  Certificate c;
+  measure_state(s, m.x0, 0.002, 0.004, false, c);
+  const int sheet = 7 * 5;
+  ASSERT_EQ(c.contact.particle_pressure.size(), static_cast<std::size_t>(m.num_particles()));
+  EXPECT_EQ(c.contact.particles, sheet);
+  const double rho_g = 0.1 * 9.81;
+  for (int i = 0; i < sheet; ++i) EXPECT_NEAR(c.contact.particle_pressure[i], rho_g, 1e-9 * rho_g) << i;
+  for (int i = sheet; i < m.num_particles(); ++i) EXPECT_EQ(c.contact.particle_pressure[i], 0.0) << i;
+  EXPECT_NEAR(c.contact.force, 0.3 * 0.2 * rho_g, 1e-9);
+  EXPECT_NEAR(c.contact.area, 0.3 * 0.2, 1e-12);
+  EXPECT_NEAR(c.contact.pressure.p50, rho_g, 1e-9);
 }
 
 }  // namespace

@@ -134,8 +134,56 @@ TEST(CmdRender, AFitMapColoursTheGarmentByItsStrainWithALegend) {
   const auto alone = test::run_vgd({"render", dir.string(), "--map-range", "0,40", "-o", (dir / "bad").string()});
   EXPECT_EQ(alone.code, 2);
   EXPECT_NE(alone.err.find("applies to a fit map"), std::string::npos) << alone.err;
-  const auto unknown = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
-  EXPECT_NE(unknown.code, 0);
+  const auto unknown = test::run_vgd({"render", dir.string(), "--map", "tension", "-o", (dir / "bad").string()});
+  EXPECT_EQ(unknown.code, 2);
+  // A pressure map needs the drape's contact-pressure.json, which this folder lacks.
+  const auto none = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
+  EXPECT_EQ(none.code, 1);
+  EXPECT_NE(none.err.find("contact-pressure.json"), std::string::npos) << none.err;
+}
+
+// The contact-pressure map takes one value per vertex of garment.obj from
+// the drape's contact-pressure.json (Pa), drawn in kPa over 0–5 kPa: the
+// sheet's top row pressing 4 kPa comes out orange-red, its bottom row at 0
+// blue. A file of another drape (another vertex count) or not a pressure
+// map is refused naming it.
+TEST(CmdRender, APressureMapColoursEachVertexByTheDrapesPressure) {
+  const auto dir = test::scratch_dir("cmd_render_pressure_map");
+  const auto m = stretched_sheet(1.0, 1.0);
+  write_garment_obj(dir, m);
+  std::string values;
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    values += std::string(values.empty() ? "" : ",") + (i >= 15 ? "4000" : "0");
+  write_file_atomic(dir / "contact-pressure.json", "{\"unit\": \"Pa\", \"values\": [" + values + "]}");
+  const auto r = test::run_vgd({"render", dir.string(), "--map", "pressure", "--views", "front", "--size", "200x150",
+                                "--no-floor", "-o", (dir / "out").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("contact pressure, kPa of SHEET: p50 0.0, p95 4.0, max 4.0"), std::string::npos) << r.err;
+  const auto img = render::read_png(dir / "out" / "front.png");
+  // Find the sheet's rows on the image: its highest and lowest coloured pixels in the middle column.
+  int top = -1, bottom = -1;
+  const int x = img.width / 3;
+  for (int y = 0; y < img.height; ++y) {
+    const auto* p = img.pixel(x, y);
+    const bool coloured = std::abs(p[0] - p[1]) > 30 || std::abs(p[1] - p[2]) > 30;
+    if (coloured && top < 0) top = y;
+    if (coloured) bottom = y;
+  }
+  ASSERT_GT(bottom, top + 10);
+  const auto* hi = img.pixel(x, top + 2);
+  const auto* lo = img.pixel(x, bottom - 2);
+  EXPECT_GT(hi[0], hi[2] + 60) << int(hi[0]) << " " << int(hi[1]) << " " << int(hi[2]);
+  EXPECT_GT(lo[2], lo[0] + 60) << int(lo[0]) << " " << int(lo[1]) << " " << int(lo[2]);
+  write_file_atomic(dir / "contact-pressure.json", "{\"unit\": \"Pa\", \"values\": [1, 2, 3]}");
+  const auto fewer = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
+  EXPECT_EQ(fewer.code, 1);
+  EXPECT_NE(fewer.err.find("holds 3 pressures for the 20 vertices"), std::string::npos) << fewer.err;
+  write_file_atomic(dir / "contact-pressure.json", "{\"unit\": \"Pa\", \"values\": [1, -2]}");
+  const auto negative = test::run_vgd({"render", dir.string(), "--map", "pressure", "-o", (dir / "bad").string()});
+  EXPECT_EQ(negative.code, 1);
+  EXPECT_NE(negative.err.find("values[1]"), std::string::npos) << negative.err;
+  EXPECT_THROW(render::fit_values(m, render::FitMap::pressure), vgd::Error);
+  EXPECT_STREQ(render::unit_of(render::FitMap::pressure), "kPa");
 }
 
 // The stress map against plane stress by hand: a sheet stretched 2 % along

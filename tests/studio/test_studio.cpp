@@ -393,6 +393,15 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   const auto mapped = h.screenshot();
   EXPECT_GT(reds(mapped), before + 40) << "the legend's red end";
   EXPECT_LT(vgd::qa::ssim(crop(h.screenshot(), *h.studio().widget("preview")), crop(img, *r)), 0.95);
+  // The contact-pressure map: the finished drape's pressures on the body
+  // (its certificate's), a picture of its own, no word of a missing drape.
+  ASSERT_EQ(c.contact.particle_pressure.size(), static_cast<std::size_t>(c.particles));
+  h.click("map");
+  h.click("map:contact pressure");
+  h.frames(4);
+  EXPECT_EQ(h.studio().status().find("contact-pressure map shows"), std::string::npos) << h.studio().status();
+  EXPECT_LT(vgd::qa::ssim(crop(h.screenshot(), *h.studio().widget("preview")), crop(mapped, *h.studio().widget("preview"))),
+            0.99);
 }
 
 // A document with no seams (a pattern file imported as it is) drapes as vgd

@@ -49,6 +49,10 @@ struct ContactState {
   double area = 0;            // m²: their lumped cloth area
   double force = 0;           // N: total normal force on the body
   Percentiles pressure;       // Pa over the contact particles
+  // Pa per particle of the model (0 where the cloth does not touch the body):
+  // the contact-pressure map (vgd drape writes it as contact-pressure.json,
+  // vgd render --map pressure draws it). Not in the certificate's JSON.
+  std::vector<double> particle_pressure;
 };
 
 // Where a piece ended against where it was placed: its centre (the mean of
@@ -185,5 +189,13 @@ std::string to_json(const Certificate& c);
 // t that to_json wrote. `source` names the text in errors. Throws vgd::Error
 // naming the source and the field for text that is not such a certificate.
 Certificate certificate_from_json(std::string_view text, const std::string& source);
+
+// The contact-pressure map beside a drape's certificate (contact-pressure.json):
+// {"unit": "Pa", "values": [...]}, one value per particle of the model (per
+// vertex of garment.obj), 0 where the cloth does not touch the body.
+std::string contact_pressure_json(const Certificate& c);
+// Reads it back (Pa per vertex). Throws vgd::Error naming `source` and the
+// field for text that is not such a map (a value negative or not finite).
+std::vector<double> contact_pressure_from_json(std::string_view text, const std::string& source);
 
 }  // namespace vgd::dress

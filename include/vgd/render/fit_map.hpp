@@ -26,16 +26,22 @@ enum class FitMap {
   shear,    // change of the warp–weft angle, degrees (its magnitude)
   stretch,  // largest principal stretch − 1, %
   stress,   // largest principal membrane tension, N/m (needs the fabric: Membrane)
+  // Contact pressure of the cloth on the body, kPa: not from the shape but
+  // from the drape's forces (dress::ContactState::particle_pressure, a drape
+  // folder's contact-pressure.json); fit_values refuses it.
+  pressure,
 };
-std::optional<FitMap> parse_fit_map(std::string_view name);  // "warp", "weft", "shear", "stretch", "stress"
+std::optional<FitMap> parse_fit_map(std::string_view name);  // "warp", "weft", "shear", "stretch", "stress", "pressure"
 const char* to_string(FitMap map);
-const char* unit_of(FitMap map);   // "%", "deg" or "N/m"
+const char* unit_of(FitMap map);   // "%", "deg", "N/m" or "kPa"
 std::string title_of(FitMap map);  // "weft strain, %"
 
 // The values the colour ramp spans: [lo, hi] in the map's unit. Defaults:
 // 0–40 % for the strains (a woven hangs at 0–5 %, a knit worn with negative
 // ease at 20–40 %), 0–20° for shear, 0–100 N/m for stress (a woven under its
-// own weight carries under 1 N/m; a waistband gripping the waist, tens).
+// own weight carries under 1 N/m; a waistband gripping the waist, tens),
+// 0–5 kPa for pressure (a garment resting on the shoulders presses tenths of
+// a kPa; medical compression stockings, 2–5 kPa).
 // Values beyond take the end colours.
 struct FitScale {
   double lo = 0.0, hi = 40.0;
