@@ -25,8 +25,8 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
-#include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/fit_map.hpp"
+#include "vgd/render/looks.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/dress/drape.hpp"
 #include "vgd/scene/material.hpp"
@@ -233,51 +233,6 @@ StressFabrics stress_fabrics(const Options& o, const fs::path& folder, const vgd
   return out;
 }
 
-// Each piece's colour and texture from the document (io::vrml::looks_from_xvc,
-// as the VRML and glTF exports use them). A piece the document gives no colour
-// keeps the default fabric colour. A textured piece shows the image as it is
-// (the texture replaces the colour, as in VRML97). A texture file that is
-// missing or not a PNG is an error naming it (--no-texture draws flat colours).
-void apply_looks(std::vector<render::Mesh*>& pieces, const vgd::xvc::Document& doc, bool textures,
-                 vgd::Diagnostics& diags) {
-  std::vector<std::string> names;
-  for (const auto* m : pieces) names.push_back(m->name);
-  const auto looks = vgd::io::vrml::looks_from_xvc(doc, names, &diags);
-  const fs::path doc_dir = fs::path(doc.name()).parent_path();
-  std::map<std::string, std::shared_ptr<const render::Texture>> loaded;  // one upload per file and placement
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    render::Mesh& m = *pieces[i];
-    const auto& look = looks[i];
-    // looks_from_xvc marks a look the document did not colour "default".
-    if (look.source.rfind("default", 0) != 0)
-      m.colour = {static_cast<float>(look.colour.r), static_cast<float>(look.colour.g), static_cast<float>(look.colour.b)};
-    if (!textures || look.texture.empty()) continue;
-    if (m.uv.empty()) {
-      diags.warn("", m.name, "no texture coordinates (a garment.obj from an older vgd drape: drape again): flat colour");
-      continue;
-    }
-    const fs::path named = look.texture;
-    const fs::path file = named.is_absolute() || doc_dir.empty() ? named : doc_dir / named;
-    const std::string key = file.string() + "|" + vgd::format_double(look.repeat_u) + "|" +
-                            vgd::format_double(look.repeat_v) + "|" + vgd::format_double(look.rotation_deg);
-    auto& texture = loaded[key];
-    if (!texture) {
-      auto t = std::make_shared<render::Texture>();
-      try {
-        t->image = render::read_png(file);
-      } catch (const vgd::Error& e) {
-        throw vgd::Error(file.string(), "", "cannot read the texture of piece " + m.name + " (" + doc.name() +
-                                                "): " + e.diagnostic().message + "; --no-texture draws flat colours");
-      }
-      t->repeat_m = {look.repeat_u, look.repeat_v};
-      t->rotation_rad = look.rotation_deg * M_PI / 180.0;
-      texture = std::move(t);
-    }
-    m.texture = texture;
-    m.colour = {1, 1, 1};
-  }
-}
-
 // --map-range, else the map's default.
 render::FitScale fit_scale(const Options& o) {
   render::FitScale scale = render::default_scale(*render::parse_fit_map(o.map));
@@ -328,7 +283,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   if (o.colour.empty() && !o.piece_colours && o.map.empty()) {
     vgd::Diagnostics diags;
     if (const auto doc = look_document(o, folder, diags)) {
-      apply_looks(garment_meshes, *doc, !o.no_texture, diags);
+      render::apply_looks(garment_meshes, *doc, !o.no_texture, diags);
       vgd::cli::say(common, "vgd: looks from " + doc->name());
     }
     vgd::cli::print_diagnostics(diags, common);

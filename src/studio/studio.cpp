@@ -27,6 +27,7 @@
 #include "vgd/io/vrml/vrml.hpp"
 #include "vgd/mesh/surface.hpp"
 #include "vgd/render/fit_map.hpp"
+#include "vgd/render/looks.hpp"
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
@@ -170,7 +171,10 @@ struct Studio::Impl {
   // The stress map's fabric of each piece drawn, by name, resolved once per drape.
   mutable std::map<std::string, render::Membrane> membranes;
   mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
-  mutable bool pressure_missing_said = false;  // the pressure map's "no drape finished here" (said once per choice)
+  mutable bool pressure_missing_said = false;
+  mutable render::TextureCache textures;  // the document's texture images, read once for the preview
+  mutable std::string looks_problem;      // why the preview's textures were left out (said once)
+  bool looks_said = false;  // the pressure map's "no drape finished here" (said once per choice)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
   // file, MATERIAL id, short name, for a tooltip its full name and figures,
@@ -1523,9 +1527,10 @@ struct Studio::Impl {
         for (std::size_t t = 0; t < cloth.triangles.size(); ++t)
           if (cloth.triangle_piece.empty() || cloth.triangle_piece[t] == static_cast<int>(p))
             m.triangles.push_back(cloth.triangles[t]);
+        if (cloth.uv.size() == cloth.positions.size())
+          for (const auto& q : cloth.uv) m.uv.push_back({static_cast<float>(q[0]), static_cast<float>(q[1])});
         if (fit_map > 0 && cloth.uv.size() == cloth.positions.size()) {
           // A fit map: the piece coloured by its strain against its rest shape.
-          for (const auto& q : cloth.uv) m.uv.push_back({static_cast<float>(q[0]), static_cast<float>(q[1])});
           const auto map = static_cast<render::FitMap>(fit_map - 1);
           if (map == render::FitMap::pressure) {
             // The pressure on the body, from the finished drape's forces (its certificate).
@@ -1542,6 +1547,20 @@ struct Studio::Impl {
           }
         }
         if (!m.triangles.empty()) sc.meshes.push_back(std::move(m));
+      }
+      if (fit_map == 0) {
+        // The document's looks: each piece's colour and texture as the VRML
+        // export and vgd render draw them (pieces it does not colour keep theirs).
+        std::vector<render::Mesh*> garment;
+        for (auto& m : sc.meshes)
+          if (m.kind == render::MeshKind::garment) garment.push_back(&m);
+        Diagnostics diags;
+        try {
+          render::apply_looks(garment, doc, true, diags, &textures);
+        } catch (const Error& e) {
+          if (looks_problem.empty()) looks_problem = std::string("Textures left out of the preview: ") + e.what();
+          render::apply_looks(garment, doc, false, diags, &textures);
+        }
       }
     }
     return sc;
@@ -1604,6 +1623,7 @@ struct Studio::Impl {
           render::draw_legend(img, map, render::default_scale(map));
         }
         if (!fabric_problem.empty()) say(fabric_problem, true), fabric_problem.clear();
+        if (!looks_problem.empty() && !looks_said) say(looks_problem, true), looks_said = true;
         if (restore) restore();
         texture = gl::upload_texture(img, texture);
         tex_w = w, tex_h = h;

@@ -404,6 +404,52 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
             0.99);
 }
 
+// The preview draws the document's looks as vgd render and the VRML export
+// do: the skirt with data/textures/gingham.png (4 cm a repeat) associated
+// to every piece comes out red and white, none of it in the pieces' own
+// colours (the untextured skirt's blue, above).
+TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
+  omp_set_num_threads(1);
+  const fs::path dir = temp_dir("textured");
+  std::string x = vgd::read_file(kSkirt);
+  const std::string empty = "<TEXTURES id=\"textures\"/>";
+  ASSERT_NE(x.find(empty), std::string::npos);
+  x.replace(x.find(empty), empty.size(),
+            "<TEXTURES id=\"textures\">\n<TEXTURE id=\"texture1\" name=\"gingham\" file=\"gingham.png\">\n"
+            "<SCALE2D id=\"texscale1\" x=\"0.04\" y=\"0.04\"/>\n</TEXTURE>\n</TEXTURES>");
+  int n = 0;
+  for (std::size_t at = x.find("</PATTERN>"); at != std::string::npos; at = x.find("</PATTERN>", at + 20)) {
+    const std::string a = "<ASSOCIATION id=\"texassoc" + std::to_string(++n) + "\" ref=\"texture1\" role=\"texture\"/>\n";
+    x.insert(at, a);
+    at += a.size();
+  }
+  vgd::write_file_atomic(dir / "skirt.xvc", x);
+  fs::copy_file(kSource / "data/textures/gingham.png", dir / "gingham.png", fs::copy_options::overwrite_existing);
+  Harness h(1024, 700);
+  ASSERT_TRUE(h.studio().open(dir / "skirt.xvc"));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 4.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(4);
+  ASSERT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
+  const auto r = h.studio().widget("preview");
+  ASSERT_TRUE(r);
+  const auto img = h.screenshot();
+  int red = 0, blue = 0;
+  for (int y = static_cast<int>(r->y0); y < static_cast<int>(r->y1); ++y)
+    for (int c = static_cast<int>(r->x0); c < static_cast<int>(r->x1); ++c) {
+      const auto* p = img.pixel(c, y);
+      red += p[0] > p[1] + 70 && p[0] > p[2] + 60;
+      blue += p[2] > p[0] + 40 && p[2] > p[1] + 20;
+    }
+  EXPECT_GT(red, 500) << "the gingham's red";
+  EXPECT_LT(blue, 50) << "no piece in its own colour";
+  EXPECT_EQ(h.studio().status().find("Textures left out"), std::string::npos) << h.studio().status();
+}
+
 // A document with no seams (a pattern file imported as it is) drapes as vgd
 // dress drapes it (dress/prepare.hpp): seams suggested for the drape, said
 // in the status bar and in preparation(); the studio's document keeps none.
