@@ -9,6 +9,8 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 
@@ -25,6 +27,7 @@ struct Options {
   std::string file, script, screenshot;
   std::string avatar, unit = "auto", up = "auto", facing = "auto";
   std::string server, token_file;
+  std::string file_dialog;  // "" = zenity with a window, none headless; "none" = typed paths
   bool headless = false;
   int width = 1280, height = 800, threads = 1, quit_after = 0;
   double autosave_s = 120;
@@ -40,6 +43,23 @@ std::filesystem::path recent_store() {
   std::error_code ec;
   std::filesystem::create_directories(base / "vgd", ec);
   return base / "vgd" / "recent-files";
+}
+
+// The program of the desktop's file dialogs: --file-dialog (a name found on
+// PATH or a path; "none": typed paths), else zenity with a window when it is
+// installed. Empty: the studio's own dialog.
+std::filesystem::path file_dialog(const Options& o, bool window) {
+  std::string name = o.file_dialog;
+  if (name == "none" || (name.empty() && !window)) return {};
+  if (name.empty()) name = "zenity";
+  if (name.find('/') != std::string::npos) return name;
+  if (const char* path = std::getenv("PATH"))
+    for (const auto& dir : vgd::split(path, ':')) {
+      const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+      if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+  if (!o.file_dialog.empty()) std::fprintf(stderr, "vgd-studio: %s is not on PATH: typed paths instead\n", name.c_str());
+  return {};
 }
 
 // The server's token: --token-file, else $VGD_TOKEN (as vgd remote).
@@ -80,6 +100,7 @@ int run_window(const Options& o) {
       studio.set_server(o.server, token(o));
       studio.set_autosave_seconds(o.autosave_s);
       studio.set_recent_store(recent_store());
+      studio.set_file_dialog_program(file_dialog(o, /*window=*/true));
       if (!o.file.empty() && !studio.open(o.file)) std::fprintf(stderr, "vgd-studio: %s\n", studio.status().c_str());
       for (int frame = 1; !studio.quit_confirmed(); ++frame) {
         // The close button asks about unsaved changes first (Studio::request_close).
@@ -123,6 +144,7 @@ int run_headless(const Options& o) {
   if (!o.avatar.empty()) h.studio().set_body(o.avatar, o.unit, o.up, o.facing);
   h.studio().set_server(o.server, token(o));
   h.studio().set_autosave_seconds(o.autosave_s);
+  h.studio().set_file_dialog_program(file_dialog(o, /*window=*/false));
   if (!o.file.empty() && !h.studio().open(o.file)) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
     return 1;
@@ -161,6 +183,9 @@ int main(int argc, char** argv) {
                  "the studio did not close)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  app.add_option("--file-dialog", o.file_dialog,
+                 "File > Open, Save as and Export ask through this program, answering as zenity does (default with a "
+                 "window: zenity when installed; 'none': the studio's own dialog, a typed path)");
   app.add_option("--screenshot", o.screenshot, "Write the last frame to this PNG (a window: with --quit-after)");
   app.add_option("--quit-after", o.quit_after, "A window: close after this many frames (smoke tests)")
       ->check(CLI::PositiveNumber);

@@ -25,6 +25,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/obj/obj.hpp"
 #include "vgd/io/trj/trj.hpp"
+#include "vgd/io/vrml/looks.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/looks.hpp"
 #include "vgd/render/offscreen.hpp"
@@ -233,6 +234,27 @@ StressFabrics stress_fabrics(const Options& o, const fs::path& folder, const vgd
   return out;
 }
 
+// Each piece's look in the document (io::vrml::looks_from_xvc, as the VRML
+// and glTF exports read them): the colour the document gives it (none: the
+// default fabric colour stays), its texture file relative to the document.
+std::vector<render::Look> looks_of(const vgd::xvc::Document& doc, const std::vector<render::Mesh*>& pieces,
+                                   vgd::Diagnostics& diags) {
+  std::vector<std::string> names;
+  for (const auto* m : pieces) names.push_back(m->name);
+  const fs::path dir = fs::path(doc.name()).parent_path();
+  std::vector<render::Look> out;
+  for (const auto& l : vgd::io::vrml::looks_from_xvc(doc, names, &diags)) {
+    render::Look k;
+    if (l.source.rfind("default", 0) != 0)  // looks_from_xvc marks a look the document did not colour "default"
+      k.colour = render::Colour{static_cast<float>(l.colour.r), static_cast<float>(l.colour.g), static_cast<float>(l.colour.b)};
+    if (!l.texture.empty()) k.texture = fs::path(l.texture).is_absolute() || dir.empty() ? fs::path(l.texture) : dir / l.texture;
+    k.repeat_m = {l.repeat_u, l.repeat_v};
+    k.rotation_deg = l.rotation_deg;
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
 // --map-range, else the map's default.
 render::FitScale fit_scale(const Options& o) {
   render::FitScale scale = render::default_scale(*render::parse_fit_map(o.map));
@@ -283,7 +305,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   if (o.colour.empty() && !o.piece_colours && o.map.empty()) {
     vgd::Diagnostics diags;
     if (const auto doc = look_document(o, folder, diags)) {
-      render::apply_looks(garment_meshes, *doc, !o.no_texture, diags);
+      render::apply_looks(garment_meshes, looks_of(*doc, garment_meshes, diags), !o.no_texture, diags);
       vgd::cli::say(common, "vgd: looks from " + doc->name());
     }
     vgd::cli::print_diagnostics(diags, common);

@@ -106,6 +106,7 @@ void LiveJob::begin(double time_limit, const std::string& stage) {
 void LiveJob::finish(const std::string& stage, const std::string& message) {
   std::lock_guard lock(m_);
   status_.running = false;
+  status_.paused = false;
   status_.stage = stage;
   status_.message = message;
 }
@@ -122,9 +123,47 @@ DrapeJob::~DrapeJob() {
   wait();
 }
 
+void DrapeJob::request_stop() {
+  stop_ = true;
+  {
+    std::lock_guard lock(m_);  // a run held by Pause wakes and stops
+  }
+  resume_.notify_all();
+}
+
+void DrapeJob::set_paused(bool paused) {
+  {
+    std::lock_guard lock(m_);
+    if (!status_.running) return;
+    status_.paused = paused;
+    steps_ = 0;
+  }
+  resume_.notify_all();
+}
+
+void DrapeJob::step() {
+  {
+    std::lock_guard lock(m_);
+    if (!status_.paused) return;
+    ++steps_;
+  }
+  resume_.notify_all();
+}
+
+void DrapeJob::hold_if_paused() {
+  std::unique_lock lock(m_);
+  resume_.wait(lock, [&] { return stop_ || !status_.paused || steps_ > 0; });
+  if (status_.paused && steps_ > 0) --steps_;
+}
+
 void DrapeJob::start(scene::SceneDef def, int threads) {
   wait();
   stop_ = false;
+  {
+    std::lock_guard lock(m_);
+    status_.paused = false;
+    steps_ = 0;
+  }
   begin(def.run.duration, "placing");
   thread_ = std::thread([this, def = std::move(def), threads]() mutable { run(std::move(def), threads); });
 }
@@ -151,6 +190,8 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
         status_.seams_closed = p.seams_closed;
         status_.seam_pairs = p.seam_pairs;
       }
+      // After each frame (the placing call comes before the first): held here while paused.
+      if (p.stage != "placing") hold_if_paused();
       if (stop_) throw StopRequested{};
     };
     dress::DrapeResult r = dress::run_drape(def, {&sink}, progress);

@@ -4,6 +4,7 @@
 // a stop request honoured at the next frame; or on a vgd-server, its frames'
 // stream read into the same preview. Private to src/studio.
 #include <atomic>
+#include <condition_variable>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -37,6 +38,11 @@ class LiveJob {
   // Ends the run at the next frame (here) or cancels the job (server).
   virtual void request_stop() = 0;
   virtual void wait() = 0;
+  // A drape run here can be held after a frame and run on frame by frame
+  // (a server's runs on by itself: these do nothing there).
+  virtual bool pausable() const { return false; }
+  virtual void set_paused(bool) {}
+  virtual void step() {}
   bool running() const;
   DrapeStatus status() const;
 
@@ -68,14 +74,22 @@ class DrapeJob : public LiveJob {
   // Starts the drape of `def` (threads: OpenMP threads of the engine). The
   // previous run must have finished.
   void start(scene::SceneDef def, int threads);
-  void request_stop() override { stop_ = true; }
+  void request_stop() override;
   void wait() override;
+  bool pausable() const override { return true; }
+  // Held after the next frame until resumed; step() lets one more frame through.
+  void set_paused(bool paused) override;
+  void step() override;
 
  private:
   void run(scene::SceneDef def, int threads);
+  // Called after each frame on the run's thread: waits while paused.
+  void hold_if_paused();
 
   std::thread thread_;
   std::atomic<bool> stop_{false};
+  std::condition_variable resume_;
+  int steps_ = 0;  // frames let through while paused (guarded by m_)
 };
 
 // The drape as a job of a vgd-server (docs/server.md): submitted, then its

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "drape_job.hpp"
+#include "file_dialog.hpp"
 #include "gl.hpp"
 #include "vgd/core/data.hpp"
 #include "vgd/core/diagnostics.hpp"
@@ -172,6 +173,7 @@ struct Studio::Impl {
   mutable std::map<std::string, render::Membrane> membranes;
   mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
   mutable bool pressure_missing_said = false;
+  fs::path dialog_program;  // the desktop's file dialog (zenity); empty: typed paths
   mutable render::TextureCache textures;  // the document's texture images, read once for the preview
   mutable std::string looks_problem;      // why the preview's textures were left out (said once)
   bool looks_said = false;  // the pressure map's "no drape finished here" (said once per choice)
@@ -614,6 +616,11 @@ struct Studio::Impl {
       track("Simulate on server menu");
       if (ImGui::MenuItem("Stop", nullptr, false, job->running())) job->request_stop();
       track("Stop menu");
+      const bool held = job->status().paused;
+      if (ImGui::MenuItem(held ? "Resume" : "Pause", nullptr, false, job->running() && job->pausable())) toggle_pause();
+      track("Pause menu");
+      if (ImGui::MenuItem("Step", nullptr, false, held)) job->step();
+      track("Step menu");
       ImGui::EndMenu();
     }
     std::string title = file.empty() ? std::string("(no file)") : file.filename().string();
@@ -1196,8 +1203,23 @@ struct Studio::Impl {
     track("Stop");
     ImGui::EndDisabled();
     const DrapeStatus s = job->status();
+    // Pause holds a drape run here after its current frame; Step runs one
+    // frame more (1/fps s simulated); Resume lets it run on.
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!running || !job->pausable());
+    if (ImGui::Button(s.paused ? "Resume" : "Pause")) toggle_pause();
+    track(s.paused ? "Resume" : "Pause");
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(job->pausable() || !running ? "Hold the drape after its current frame (Step then runs one frame at a time)"
+                                                     : "A server's drape runs on by itself");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!s.paused);
+    if (ImGui::Button("Step")) job->step();
+    track("Step");
+    ImGui::EndDisabled();
+    ImGui::EndDisabled();
     const float f = s.time_limit > 0 ? static_cast<float>(std::min(1.0, s.t / s.time_limit)) : 0.0f;
-    std::string overlay = s.stage;
+    std::string overlay = s.stage + (s.paused ? " (paused)" : "");
     if (s.running && s.stage != "placing")
       overlay += "  " + format_fixed(s.t, 2) + " s  seams " + std::to_string(s.seams_closed) + "/" +
                  std::to_string(s.seam_pairs);
@@ -1506,6 +1528,12 @@ struct Studio::Impl {
     was_running = s.running;
   }
 
+  void toggle_pause() {
+    const bool held = job->status().paused;
+    job->set_paused(!held);
+    say(held ? "Resumed." : "Paused: the drape holds after its current frame; Step runs one frame more, Resume runs on.");
+  }
+
   render::Scene preview_scene() const {
     render::Scene sc;
     if (body) {
@@ -1555,11 +1583,25 @@ struct Studio::Impl {
         for (auto& m : sc.meshes)
           if (m.kind == render::MeshKind::garment) garment.push_back(&m);
         Diagnostics diags;
+        std::vector<std::string> names;
+        for (const auto* m : garment) names.push_back(m->name);
+        const fs::path dir = fs::path(doc.name()).parent_path();
+        std::vector<render::Look> looks;
+        for (const auto& l : io::vrml::looks_from_xvc(doc, names, &diags)) {
+          render::Look k;
+          if (l.source.rfind("default", 0) != 0)  // a look the document did not colour: the piece keeps its own
+            k.colour = render::Colour{static_cast<float>(l.colour.r), static_cast<float>(l.colour.g),
+                                      static_cast<float>(l.colour.b)};
+          if (!l.texture.empty()) k.texture = fs::path(l.texture).is_absolute() || dir.empty() ? fs::path(l.texture) : dir / l.texture;
+          k.repeat_m = {l.repeat_u, l.repeat_v};
+          k.rotation_deg = l.rotation_deg;
+          looks.push_back(std::move(k));
+        }
         try {
-          render::apply_looks(garment, doc, true, diags, &textures);
+          render::apply_looks(garment, looks, true, diags, &textures);
         } catch (const Error& e) {
           if (looks_problem.empty()) looks_problem = std::string("Textures left out of the preview: ") + e.what();
-          render::apply_looks(garment, doc, false, diags, &textures);
+          render::apply_looks(garment, looks, false, diags, &textures);
         }
       }
     }
@@ -1666,12 +1708,36 @@ struct Studio::Impl {
     const Dialog all[] = {{"Open document", "XVC document or DXF pattern file to open:", "Open", &want_open},
                           {"Save as", "Save the document as:", "Save", &want_save_as},
                           {"Export VRML", "Write the draped garment and the body as VRML97 (.wrl):", "Export", &want_export}};
+    const auto act = [&](const Dialog& d, const fs::path& path) {
+      if (d.want == &want_open) self.open(path);
+      else if (d.want == &want_save_as) self.save(path);
+      else self.export_vrml(path);
+    };
     for (const Dialog& d : all) {
       if (*d.want) {
-        ImGui::OpenPopup(d.title);
         *d.want = false;
         path_text = d.want == &want_export ? (file.empty() ? fs::path("garment.wrl") : fs::path(file).replace_extension(".wrl")).string()
                                            : file.string();
+        // The desktop's own dialog when there is one (set_file_dialog_program).
+        bool typed = true;
+        if (!dialog_program.empty()) {
+          FileDialogRequest rq;
+          rq.title = d.title;
+          rq.save = d.want != &want_open;
+          if (d.want == &want_open) {
+            rq.start = file.empty() ? fs::current_path() / "" : file.parent_path() / "";
+            rq.filters = {"Documents and patterns (XVC, DXF) | *.xvc *.XVC *.dxf *.DXF", "All files | *"};
+          } else {
+            rq.start = path_text.empty() ? fs::current_path() / "garment.xvc" : fs::path(path_text);
+            rq.filters = d.want == &want_export ? std::vector<std::string>{"VRML97 | *.wrl *.wrl.gz", "All files | *"}
+                                                : std::vector<std::string>{"XVC documents | *.xvc", "All files | *"};
+          }
+          const FileDialogAnswer a = run_file_dialog(dialog_program, rq);
+          if (a.kind == FileDialogAnswer::Kind::chosen) act(d, a.path), typed = false;
+          else if (a.kind == FileDialogAnswer::Kind::cancelled) say(std::string(d.title) + " cancelled."), typed = false;
+          else say("The desktop's file dialog could not be run (" + a.why + "): type the path.");
+        }
+        if (typed) ImGui::OpenPopup(d.title);
       }
       if (!ImGui::BeginPopupModal(d.title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) continue;
       ImGui::TextUnformatted(d.prompt);
@@ -1686,9 +1752,7 @@ struct Studio::Impl {
       track("dialog:cancel");
       if (ok) {
         ImGui::CloseCurrentPopup();
-        if (d.want == &want_open) self.open(path_text);
-        else if (d.want == &want_save_as) self.save(path_text);
-        else self.export_vrml(path_text);
+        act(d, path_text);
       }
       ImGui::EndPopup();
     }
@@ -2016,6 +2080,7 @@ const xvc::Document& Studio::document() const { return impl_->doc; }
 const fs::path& Studio::file() const { return impl_->file; }
 bool Studio::modified() const { return impl_->is_modified(); }
 const std::string& Studio::status() const { return impl_->status; }
+void Studio::set_file_dialog_program(const std::filesystem::path& program) { impl_->dialog_program = program; }
 bool Studio::status_is_error() const { return impl_->status_error; }
 dress::DrapeOptions& Studio::drape_options() { return impl_->drape; }
 void Studio::set_body(const std::filesystem::path& file, const std::string& unit, const std::string& up,

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <set>
 #include <thread>
@@ -448,6 +449,102 @@ TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
   EXPECT_GT(red, 500) << "the gingham's red";
   EXPECT_LT(blue, 50) << "no piece in its own colour";
   EXPECT_EQ(h.studio().status().find("Textures left out"), std::string::npos) << h.studio().status();
+}
+
+// A drape run here can be held and run on frame by frame: Pause holds it
+// after its current frame (the simulated time stands still, the run goes on
+// existing), Step runs exactly one frame more (1/25 s), Resume lets it run
+// to rest.
+TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
+  omp_set_num_threads(1);
+  Harness h(1024, 700);
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 4.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+  const auto wait_until = [&](const std::function<bool()>& done) {
+    for (int k = 0; k < 3000 && !done(); ++k) {
+      h.frame();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return done();
+  };
+  ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > 0.0; })) << "the drape never reached a frame";
+  h.click("Pause");
+  ASSERT_TRUE(h.studio().drape_status().paused);
+  // The run finishes the frame it is in, then holds.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  h.frames(2);
+  const double held = h.studio().drape_status().t;
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  h.frames(2);
+  EXPECT_EQ(h.studio().drape_status().t, held);
+  EXPECT_TRUE(h.studio().drape_status().running);
+  EXPECT_NE(h.studio().status().find("Paused"), std::string::npos) << h.studio().status();
+  h.click("Step");
+  ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > held; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  h.frames(2);
+  EXPECT_NEAR(h.studio().drape_status().t - held, 1.0 / 25.0, 1e-9) << "one frame, and only one";
+  EXPECT_TRUE(h.studio().drape_status().paused);
+  h.click("Resume");
+  h.studio().wait_for_drape();
+  h.frames(2);
+  EXPECT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
+  EXPECT_FALSE(h.studio().drape_status().paused);
+}
+
+// The desktop's file dialog (zenity's command line) for File > Open...,
+// Save as... and Export VRML...: a stand-in program records its arguments
+// and answers as zenity does. A chosen path is opened or saved to; exit 1
+// cancels with a word in the status bar; a program that cannot be run falls
+// back to the typed path, saying why.
+TEST(Studio, FileDialogsAskTheDesktopsDialogProgram) {
+  const fs::path dir = temp_dir("file-dialog");
+  const fs::path args = dir / "args.txt", answer = dir / "answer.txt", code = dir / "code.txt";
+  const fs::path program = dir / "fake-zenity";
+  vgd::write_file_atomic(program,
+                         "#!/bin/sh\nprintf '%s\\n' \"$@\" > '" + args.string() + "'\necho 'GTK warning' >&2\n"
+                         "cat '" + answer.string() + "'\nexit $(cat '" + code.string() + "')\n");
+  fs::permissions(program, fs::perms::owner_all);
+  fs::copy_file(kSkirt, dir / "skirt.xvc", fs::copy_options::overwrite_existing);
+  Harness h(1024, 700);
+  h.studio().set_file_dialog_program(program);
+  const auto ask = [&](const char* item, const fs::path& chosen, int exit_code) {
+    vgd::write_file_atomic(answer, chosen.empty() ? std::string() : chosen.string() + "\n");
+    vgd::write_file_atomic(code, std::to_string(exit_code) + "\n");
+    h.click("File");
+    h.click(item);
+    h.frames(2);
+  };
+  ask("Open...", dir / "skirt.xvc", 0);
+  EXPECT_EQ(h.studio().file(), dir / "skirt.xvc") << h.studio().status();
+  const std::string open_args = vgd::read_file(args);
+  EXPECT_NE(open_args.find("--file-selection"), std::string::npos) << open_args;
+  EXPECT_NE(open_args.find("--file-filter=Documents and patterns (XVC, DXF) | *.xvc *.XVC *.dxf *.DXF"),
+            std::string::npos) << open_args;
+  EXPECT_EQ(open_args.find("--save"), std::string::npos) << open_args;
+  EXPECT_FALSE(h.studio().widget("dialog:path")) << "no typed-path dialog";
+  ask("Save as...", dir / "copy.xvc", 0);
+  EXPECT_TRUE(fs::exists(dir / "copy.xvc")) << h.studio().status();
+  EXPECT_EQ(h.studio().file(), dir / "copy.xvc");
+  const std::string save_args = vgd::read_file(args);
+  EXPECT_NE(save_args.find("--save"), std::string::npos) << save_args;
+  EXPECT_NE(save_args.find("--confirm-overwrite"), std::string::npos) << save_args;
+  EXPECT_NE(save_args.find("--filename=" + (dir / "skirt.xvc").string()), std::string::npos) << "starts at the file" << save_args;
+  ask("Open...", dir / "skirt.xvc", 1);
+  EXPECT_EQ(h.studio().file(), dir / "copy.xvc") << "cancelled: nothing opened";
+  EXPECT_NE(h.studio().status().find("cancelled"), std::string::npos) << h.studio().status();
+  h.studio().set_file_dialog_program(dir / "no-such-program");
+  ask("Open...", {}, 0);
+  EXPECT_NE(h.studio().status().find("could not be run"), std::string::npos) << h.studio().status();
+  // The typed-path dialog instead.
+  h.key("ctrl+a");
+  h.type((dir / "skirt.xvc").string());
+  h.key("enter");
+  EXPECT_EQ(h.studio().file(), dir / "skirt.xvc") << h.studio().status();
 }
 
 // A document with no seams (a pattern file imported as it is) drapes as vgd

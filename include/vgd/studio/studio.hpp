@@ -81,6 +81,7 @@ struct DrapeStatus {
   double t = 0, time_limit = 0;  // s simulated
   double wall_s = 0;
   int seams_closed = 0, seam_pairs = 0;
+  bool paused = false;        // held after the frame at `t` (Pause; Step runs one frame more)
   std::string message;        // the outcome when finished
   std::vector<std::string> body_notes;  // an imported body: the importer's decisions (unit, up, facing) and what it left out
 };
@@ -139,6 +140,15 @@ class Studio {
   // close: a crash, a kill) offers to recover it (a dialog: Recover, Discard).
   void set_autosave_seconds(double seconds);
   bool recovery_offered() const;  // the dialog is waiting for an answer
+
+  // File > Open..., Save as... and Export VRML... ask through the desktop's
+  // own file dialog: `program` answering as zenity does (the chosen path on
+  // stdout and exit 0; exit 1 when cancelled), run with zenity's arguments
+  // (--file-selection, --save, --filename, --file-filter). Empty (the
+  // default), or a program that cannot be run (said in the status bar): the
+  // studio's own dialog, a typed path. vgd-studio sets zenity when it has a
+  // window on a desktop that has it.
+  void set_file_dialog_program(const std::filesystem::path& program);
 
   // Writes the last drape (garment and body) as static VRML97, through a
   // temporary file renamed into place. Shows and returns false on failure.
