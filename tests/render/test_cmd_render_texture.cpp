@@ -10,6 +10,7 @@
 
 #include "render/synthetic_scene.hpp"
 #include "support/run_vgd.hpp"
+#include "support/textured_skirt.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/render/image.hpp"
@@ -45,26 +46,6 @@ std::string body_obj(const render::Mesh& m) {
   return s;
 }
 
-// The project's skirt document with data/textures/gingham.png (4 cm a repeat)
-// associated to every pattern, written to `file` with the image beside it.
-void textured_skirt(const fs::path& file) {
-  std::string x = read_file(test::source_dir() / "data/garments/a-line-skirt.xvc");
-  const std::string empty = "<TEXTURES id=\"textures\"/>";
-  ASSERT_NE(x.find(empty), std::string::npos);
-  x.replace(x.find(empty), empty.size(),
-            "<TEXTURES id=\"textures\">\n<TEXTURE id=\"texture1\" name=\"gingham\" file=\"gingham.png\">\n"
-            "<SCALE2D id=\"texscale1\" x=\"0.04\" y=\"0.04\"/>\n</TEXTURE>\n</TEXTURES>");
-  int n = 0;
-  for (std::size_t at = x.find("</PATTERN>"); at != std::string::npos; at = x.find("</PATTERN>", at + 20)) {
-    const std::string a = "<ASSOCIATION id=\"texassoc" + std::to_string(++n) + "\" ref=\"texture1\" role=\"texture\"/>\n";
-    x.insert(at, a);
-    at += a.size();
-  }
-  write_file_atomic(file, x);
-  fs::copy_file(test::source_dir() / "data/textures/gingham.png", file.parent_path() / "gingham.png",
-                fs::copy_options::overwrite_existing);
-}
-
 // A drape folder: garment.obj (the piece FRONT_38, a tube round the body, with
 // vt), avatar.obj, and a certificate naming `document`.
 fs::path drape_folder(const std::string& name, const fs::path& document) {
@@ -80,7 +61,7 @@ fs::path drape_folder(const std::string& name, const fs::path& document) {
 
 fs::path textured_folder(const std::string& name) {
   const auto doc_dir = test::scratch_dir(name + "_doc");
-  textured_skirt(doc_dir / "skirt.xvc");
+  test::write_textured_skirt(doc_dir / "skirt.xvc");
   return drape_folder(name, doc_dir / "skirt.xvc");
 }
 
@@ -161,7 +142,7 @@ TEST(CmdRenderTexture, AnUnreadableDocumentIsAWarningAndFlatColour) {
 
 TEST(CmdRenderTexture, LookGivesTheDocumentForAnObj) {
   const auto doc_dir = test::scratch_dir("cmd_render_tex_look_doc");
-  textured_skirt(doc_dir / "skirt.xvc");
+  test::write_textured_skirt(doc_dir / "skirt.xvc");
   const auto dir = drape_folder("cmd_render_tex_look", "/nonexistent/skirt.xvc");
   const std::vector<std::string> common{"--avatar", (dir / "avatar.obj").string()};
   auto with = common, without = common;

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <fcntl.h>
 
+#include "support/textured_skirt.hpp"
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/body/sizes.hpp"
@@ -405,6 +406,16 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
             0.99);
 }
 
+// Opens `file` and starts a quick drape of it (2 cm mesh, 4 s at most).
+void start_quick_drape(Harness& h, const fs::path& file) {
+  ASSERT_TRUE(h.studio().open(file));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  o.time_limit = 4.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+}
+
 // The preview draws the document's looks as vgd render and the VRML export
 // do: the skirt with data/textures/gingham.png (4 cm a repeat) associated
 // to every piece comes out red and white, none of it in the pieces' own
@@ -412,27 +423,9 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
 TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
   omp_set_num_threads(1);
   const fs::path dir = temp_dir("textured");
-  std::string x = vgd::read_file(kSkirt);
-  const std::string empty = "<TEXTURES id=\"textures\"/>";
-  ASSERT_NE(x.find(empty), std::string::npos);
-  x.replace(x.find(empty), empty.size(),
-            "<TEXTURES id=\"textures\">\n<TEXTURE id=\"texture1\" name=\"gingham\" file=\"gingham.png\">\n"
-            "<SCALE2D id=\"texscale1\" x=\"0.04\" y=\"0.04\"/>\n</TEXTURE>\n</TEXTURES>");
-  int n = 0;
-  for (std::size_t at = x.find("</PATTERN>"); at != std::string::npos; at = x.find("</PATTERN>", at + 20)) {
-    const std::string a = "<ASSOCIATION id=\"texassoc" + std::to_string(++n) + "\" ref=\"texture1\" role=\"texture\"/>\n";
-    x.insert(at, a);
-    at += a.size();
-  }
-  vgd::write_file_atomic(dir / "skirt.xvc", x);
-  fs::copy_file(kSource / "data/textures/gingham.png", dir / "gingham.png", fs::copy_options::overwrite_existing);
+  vgd::test::write_textured_skirt(dir / "skirt.xvc");
   Harness h(1024, 700);
-  ASSERT_TRUE(h.studio().open(dir / "skirt.xvc"));
-  h.frame();
-  auto& o = h.studio().drape_options();
-  o.time_limit = 4.0;
-  o.spacing = 0.02;
-  h.click("Drape");
+  start_quick_drape(h, dir / "skirt.xvc");
   h.studio().wait_for_drape();
   h.frames(4);
   ASSERT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
@@ -458,12 +451,7 @@ TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
 TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   omp_set_num_threads(1);
   Harness h(1024, 700);
-  ASSERT_TRUE(h.studio().open(kSkirt));
-  h.frame();
-  auto& o = h.studio().drape_options();
-  o.time_limit = 4.0;
-  o.spacing = 0.02;
-  h.click("Drape");
+  start_quick_drape(h, kSkirt);
   const auto wait_until = [&](const std::function<bool()>& done) {
     for (int k = 0; k < 3000 && !done(); ++k) {
       h.frame();
@@ -559,12 +547,7 @@ TEST(Studio, ADocumentWithoutSeamsIsPreparedAsVgdDressPreparesIt) {
   const fs::path file = temp_dir("unsewn") / "skirt.xvc";
   xvc::save_file(d, file);
   Harness h(1024, 700);
-  ASSERT_TRUE(h.studio().open(file));
-  h.frame();
-  auto& o = h.studio().drape_options();
-  o.time_limit = 4.0;
-  o.spacing = 0.02;
-  h.click("Drape");
+  start_quick_drape(h, file);
   EXPECT_NE(h.studio().status().find("seams suggested (not in the document)"), std::string::npos) << h.studio().status();
   h.studio().wait_for_drape();
   h.frames(4);
