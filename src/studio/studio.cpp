@@ -129,6 +129,11 @@ struct Studio::Impl {
   float zoom = 1;   // × the scale that fits every piece
   ImVec2 pan{0, 0};  // px
   std::optional<std::pair<std::string, std::string>> hovered;
+  // The measuring tool (the pattern view's Measure): its points in layout
+  // coordinates (m; at most two, snapped to outline points) and their distance.
+  bool measuring = false;
+  std::vector<pattern::Vec2> measure_points;
+  std::optional<double> measured;
   std::vector<std::pair<std::string, std::string>> picked;
   std::size_t picked_a = 0;  // the first picked_a picks are hem A (Shift+click adds to it), the rest hem B
   std::string seam_name = "seam";
@@ -855,7 +860,7 @@ struct Studio::Impl {
       // The selected piece's outline points: hovered (before its stretches), dragged.
       const PieceView* sel_piece = piece_view(selected);
       std::optional<xvc::OutlinePoint> point_hover;
-      if (sel_piece && canvas_hovered && !dragging) {
+      if (sel_piece && canvas_hovered && !dragging && !measuring) {
         float near = kPointRadius;
         for (const auto& sv : sel_piece->stretches)
           for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
@@ -902,8 +907,11 @@ struct Studio::Impl {
       }
       draw_seam_pairing(dl);
       if (sel_piece) draw_points(dl, *sel_piece, point_hover);
+      draw_measure(dl, mouse, canvas_hovered);
       dl->PopClipRect();
-      if (hovered && ImGui::IsItemClicked()) {
+      if (measuring) {
+        if (ImGui::IsItemClicked()) measure_at(mouse);
+      } else if (hovered && ImGui::IsItemClicked()) {
         // A click picks for hem B (the first for hem A); Shift+click adds to
         // hem A; a click on a pick drops it.
         const auto it = std::find(picked.begin(), picked.end(), *hovered);
@@ -932,11 +940,14 @@ struct Studio::Impl {
         for (const auto& pv : pieces)
           for (const auto& sv : pv.stretches)
             if (pv.pattern_id == hovered->first && sv.id == hovered->second) {
-              tip = pv.name + ", stretch " + sv.id;
+              double length = 0.0;  // along the stretch, m
+              for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) length += (sv.points[k + 1] - sv.points[k]).norm();
+              tip = pv.name + ", stretch " + sv.id + ": " + format_fixed(100 * length, 1) + " cm long";
               for (const auto& id : sv.seams)
                 if (const xvc::Node* n = doc.find(id)) tip += "\nsewn by " + std::string(n->attribute("name")) + " [" + id + "]";
             }
-        ImGui::SetTooltip("%s\nclick to pick it for a new seam", tip.c_str());
+        if (measuring) ImGui::SetTooltip("%s", tip.c_str());
+        else ImGui::SetTooltip("%s\nclick to pick it for a new seam", tip.c_str());
       }
     }
     // Seam picking: hem A's picks are sewn forward to the others, reversed.
@@ -961,6 +972,61 @@ struct Studio::Impl {
     ImGui::SameLine();
     if (ImGui::Button("Suggest seams")) suggest();
     track("Suggest seams");
+    ImGui::SameLine();
+    // Lit while measuring; a second press ends it.
+    if (measuring) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    const bool toggle = ImGui::Button("Measure");
+    if (measuring) ImGui::PopStyleColor();
+    if (toggle) {
+      measuring = !measuring;
+      measure_points.clear();
+      say(measuring ? "Measure: click two points of the pattern view (outline points snap)." : "Measuring ended.");
+    }
+    track("Measure");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Distances between two points of the pieces (outline points snap), and each stretch's length "
+                        "when hovered");
+  }
+
+  // A measuring click: the outline point nearest the mouse (within the grab
+  // radius) or the point under it; the second gives the distance, a third
+  // starts again.
+  void measure_at(const ImVec2& mouse) {
+    pattern::Vec2 at = from_screen(mouse);
+    float near = kPointRadius;
+    for (const auto& pv : pieces)
+      for (const auto& sv : pv.stretches)
+        for (const auto& q : sv.points) {
+          const ImVec2 sq = to_screen(q);
+          if (const float d = std::hypot(mouse.x - sq.x, mouse.y - sq.y); d < near) near = d, at = q;
+        }
+    if (measure_points.size() == 2) measure_points.clear();
+    measure_points.push_back(at);
+    if (measure_points.size() == 2) {
+      const pattern::Vec2 d = measure_points[1] - measure_points[0];
+      measured = d.norm();
+      say("Measured " + format_fixed(100 * *measured, 2) + " cm (across " + format_fixed(100 * std::abs(d.x()), 2) +
+          " cm, up " + format_fixed(100 * std::abs(d.y()), 2) + " cm).");
+    }
+  }
+
+  // The measuring tool's points and line (to the mouse while the second is awaited), with the distance.
+  void draw_measure(ImDrawList* dl, const ImVec2& mouse, bool canvas_hovered) {
+    if (!measuring || measure_points.empty()) return;
+    const ImU32 col = rgb(200, 30, 30);
+    const ImVec2 a = to_screen(measure_points[0]);
+    const bool done = measure_points.size() == 2;
+    if (!done && !canvas_hovered) {
+      dl->AddCircleFilled(a, 4.0f, col);
+      return;
+    }
+    const ImVec2 b = done ? to_screen(measure_points[1]) : mouse;
+    const double d = done ? (measure_points[1] - measure_points[0]).norm() : (from_screen(mouse) - measure_points[0]).norm();
+    dl->AddLine(a, b, col, 2.0f);
+    dl->AddCircleFilled(a, 4.0f, col);
+    dl->AddCircleFilled(b, 4.0f, col);
+    const std::string label = format_fixed(100 * d, 1) + " cm";
+    dl->AddText({(a.x + b.x) / 2 + 6, (a.y + b.y) / 2 - 16}, col, label.c_str());
   }
 
   // The selected piece's outline points: squares at turn points, dots
@@ -2144,6 +2210,8 @@ std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
   return Rect{q.x, q.y, q.x, q.y};
 }
 float Studio::pattern_scale() const { return impl_->scale; }
+std::optional<double> Studio::measured() const { return impl_->measured; }
+
 std::optional<xvc::OutlinePoint> Studio::selected_point() const {
   if (impl_->point_sel && impl_->point_sel->pattern_id == impl_->selected) return impl_->point_sel;
   return std::nullopt;

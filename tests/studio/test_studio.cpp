@@ -20,6 +20,7 @@
 #include "support/textured_skirt.hpp"
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/core/strings.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
@@ -934,6 +935,41 @@ vgd::pattern::Vec2 outline_point(const vgd::xvc::Document& doc, const vgd::xvc::
   return {};
 }
 }  // namespace
+
+// The measuring tool: Measure, then two clicks on outline points give their
+// distance in the pattern, exactly (the points snap), said in the status bar;
+// meanwhile clicks pick no stretch and move no point.
+TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  ASSERT_FALSE(front.empty());
+  const auto stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(front));
+  ASSERT_GE(stretches.size(), 3u);
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx(), centre->cy());  // selected: its points shown
+  h.frame();
+  const vgd::xvc::OutlinePoint a{front, stretches[0].id, 0}, b{front, stretches[2].id, 0};
+  const auto sa = h.studio().point_on_screen(a), sb = h.studio().point_on_screen(b);
+  ASSERT_TRUE(sa && sb);
+  const auto original = h.studio().document();
+  h.click("Measure");
+  // Two pixels off each point: the points snap.
+  h.click_at(sa->cx() + 2, sa->cy() - 1);
+  h.click_at(sb->cx() - 1, sb->cy() + 2);
+  ASSERT_TRUE(h.studio().measured().has_value()) << h.studio().status();
+  const double expected = (outline_point(original, a) - outline_point(original, b)).norm();
+  EXPECT_NEAR(*h.studio().measured(), expected, 1e-9);
+  EXPECT_GT(expected, 0.05);
+  EXPECT_NE(h.studio().status().find("Measured " + vgd::format_fixed(100 * expected, 2) + " cm"), std::string::npos)
+      << h.studio().status();
+  EXPECT_TRUE(h.studio().document() == original) << "nothing moved";
+  EXPECT_TRUE(h.studio().picked().empty()) << "nothing picked";
+  h.click("Measure");
+  EXPECT_NE(h.studio().status().find("Measuring ended"), std::string::npos) << h.studio().status();
+}
 
 // Outline editing in the pattern view: a click inside a piece selects it and
 // shows its points; a point dragged by (30, -12) px moves by that much in the

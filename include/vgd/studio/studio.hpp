@@ -207,6 +207,9 @@ class Studio {
   float pattern_scale() const;
   // The outline point selected for editing (a click on it, the piece selected).
   std::optional<xvc::OutlinePoint> selected_point() const;
+  // The measuring tool's last distance (m) between two points of the pattern
+  // view (Measure; outline points snap).
+  std::optional<double> measured() const;
 
   // Called after the 3-D preview drew off-screen, to make the UI's GL context
   // current again (both may be OSMesa contexts in one thread).
