@@ -186,6 +186,8 @@ std::vector<Failure> Certificate::failures() const {
                                       " triangles over a hole or opening of it, up to " +
                                       format_fixed(1000 * max_body_through, 1) + " mm (" + where + ")"});
   }
+  if (body_through_cloth > 0 && max_body_through > body_through_limit)
+    out.push_back({"penetration", body_through_text() + " (limit " + format_fixed(1000 * body_through_limit, 1) + " mm)"});
   if (triangle_intersections > 0) {
     std::string where;
     for (const auto& [pieces, n] : crossings_by_pieces) where += (where.empty() ? "" : ", ") + pieces + " " + std::to_string(n);
@@ -204,15 +206,17 @@ std::vector<Failure> Certificate::failures() const {
   return out;
 }
 
+std::string Certificate::body_through_text() const {
+  std::string where;
+  for (const auto& [piece, n] : body_through_by_piece) where += (where.empty() ? "" : ", ") + piece + " " + std::to_string(n);
+  return "the body passes through " + std::to_string(body_through_cloth) + " cloth triangles, up to " +
+         format_fixed(1000 * max_body_through, 2) + " mm inside it between their particles (" + where + ")";
+}
+
 std::vector<Failure> Certificate::warnings() const {
   std::vector<Failure> out;
-  if (body_through_cloth > 0) {
-    std::string where;
-    for (const auto& [piece, n] : body_through_by_piece) where += (where.empty() ? "" : ", ") + piece + " " + std::to_string(n);
-    out.push_back({"body through cloth", "the body passes through " + std::to_string(body_through_cloth) +
-                                             " cloth triangles, up to " + format_fixed(1000 * max_body_through, 2) +
-                                             " mm inside it between their particles (" + where + ")"});
-  }
+  if (body_through_cloth > 0 && max_body_through <= body_through_limit)
+    out.push_back({"body through cloth", body_through_text()});
   return out;
 }
 
@@ -473,7 +477,8 @@ std::string to_json(const Certificate& c) {
     open.push_back({{"side", o.side}, {"top_m", o.top}, {"bottom_m", o.bottom}, {"widest_deg", o.widest_deg}});
   j["open_sides"] = open;
   j["limits"] = {{"penetration_m", c.penetration_limit}, {"strain_p95", c.strain_limit},
-                 {"displacement_m", c.displacement_limit}, {"open_side_deg", c.open_limit_deg}};
+                 {"displacement_m", c.displacement_limit}, {"open_side_deg", c.open_limit_deg},
+                 {"body_through_m", c.body_through_limit}};
   json failures = json::array();
   for (const auto& f : c.failures()) failures.push_back({{"class", f.kind}, {"detail", f.detail}});
   j["failures"] = failures;
@@ -666,6 +671,9 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
   c.strain_limit = r.number(r.at(limits, "strain_p95", "limits"), "limits.strain_p95");
   c.displacement_limit = r.number(r.at(limits, "displacement_m", "limits"), "limits.displacement_m");
   c.open_limit_deg = r.number(r.at(limits, "open_side_deg", "limits"), "limits.open_side_deg");
+  // Certificates written before the limit was a check have none: the default.
+  if (limits.contains("body_through_m"))
+    c.body_through_limit = r.number(limits["body_through_m"], "limits.body_through_m");
   const json& contact = r.at(j, "contact", "");
   c.contact.particles = r.int32(r.at(contact, "particles", "contact"), "contact.particles");
   c.contact.area = r.number(r.at(contact, "area_m2", "contact"), "contact.area_m2");

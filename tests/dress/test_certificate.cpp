@@ -84,20 +84,33 @@ TEST(Certificate, EachFailureIsNamedWithItsFigures) {
 
 // The body showing through between particles is measured and named, per
 // piece, as a warning: it does not fail the drape.
-TEST(Certificate, TheBodyThroughTheClothIsAWarning) {
+// The body through the cloth between its particles: a warning up to the
+// limit (5 mm; flat triangles over a curved body stand off it by a mm or
+// two), a penetration failure beyond it, named with its figures and pieces.
+TEST(Certificate, TheBodyThroughTheClothWarnsUpToItsLimitAndFailsBeyond) {
   Certificate c = good();
   c.body_through_cloth = 0;
   EXPECT_TRUE(c.warnings().empty());
   c.body_through_cloth = 12;
-  c.max_body_through = 0.0061;
+  c.max_body_through = 0.0041;
   c.body_through_by_piece["FRONT_38"] = 9;
   c.body_through_by_piece["LEFT_SLEEVE_38"] = 3;
   const auto w = c.warnings();
   ASSERT_EQ(w.size(), 1u);
   EXPECT_EQ(w[0].kind, "body through cloth");
-  EXPECT_NE(w[0].detail.find("12 cloth triangles, up to 6.10 mm"), std::string::npos) << w[0].detail;
+  EXPECT_NE(w[0].detail.find("12 cloth triangles, up to 4.10 mm"), std::string::npos) << w[0].detail;
   EXPECT_NE(w[0].detail.find("FRONT_38 9, LEFT_SLEEVE_38 3"), std::string::npos) << w[0].detail;
   EXPECT_TRUE(c.passed());
+  c.max_body_through = c.body_through_limit;  // inclusive
+  EXPECT_TRUE(c.passed());
+  c.max_body_through = 0.0061;
+  EXPECT_TRUE(c.warnings().empty());
+  EXPECT_EQ(classes(c), "penetration|");
+  const auto f = c.failures();
+  EXPECT_NE(f[0].detail.find("12 cloth triangles, up to 6.10 mm inside it between their particles (FRONT_38 9, "
+                             "LEFT_SLEEVE_38 3) (limit 5.0 mm)"),
+            std::string::npos)
+      << f[0].detail;
 }
 
 // The limits are the certificate's own: just within passes, just beyond fails.
