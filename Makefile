@@ -65,7 +65,7 @@ demo: build
 	@echo "== 10/10 the studio, off-screen: the skirt draped from its Drape button at the preview preset (data/studio/demo.txt)"
 	@$(STUDIO) --headless $(DEMO_OUT)/a-line-skirt.xvc --script data/studio/demo.txt --screenshot $(DEMO_OUT)/studio.png
 	@echo "outputs in $(DEMO_OUT)/: a-line-skirt.dxf a-line-skirt.xvc t-shirt.xvc skirt.svg mannequin-38.obj"
-	@echo "  drape-skirt/ drape-tshirt/ (garment.obj avatar.obj certificate.json; skirt.trj skirt.wvt) flag/ (OBJ frames)"
+	@echo "  drape-skirt/ drape-tshirt/ (garment.obj avatar.obj certificate.json contact-pressure.json; skirt.trj skirt.wvt) flag/ (OBJ frames)"
 	@echo "  previews/ previews-tshirt/ (PNG, 1024 x 1024), skirt.wrl skirt-animated.wrl skirt.glb, web/index.html, studio.png"
 
 asan:
