@@ -453,8 +453,10 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   omp_set_num_threads(1);
   Harness h(1024, 700);
   start_quick_drape(h, kSkirt);
+  // Polled for up to 5 minutes (a sanitizer build places and sews many times slower).
   const auto wait_until = [&](const std::function<bool()>& done) {
-    for (int k = 0; k < 3000 && !done(); ++k) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    while (!done() && std::chrono::steady_clock::now() < deadline) {
       h.frame();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
