@@ -938,16 +938,28 @@ vgd::pattern::Vec2 outline_point(const vgd::xvc::Document& doc, const vgd::xvc::
 }
 }  // namespace
 
+// The skirt opened in `h`: its size-38 front's pattern id ("" when the
+// skirt did not open) and outline stretches.
+struct SkirtFront {
+  std::string id;
+  std::vector<vgd::xvc::Stretch> stretches;
+};
+SkirtFront open_skirt_front(Harness& h) {
+  SkirtFront f;
+  if (!h.studio().open(kSkirt)) return f;
+  h.frame();
+  f.id = pattern_id(h.studio().document(), "FRONT", "38");
+  if (!f.id.empty()) f.stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(f.id));
+  return f;
+}
+
 // The measuring tool: Measure, then two clicks on outline points give their
 // distance in the pattern, exactly (the points snap), said in the status bar;
 // meanwhile clicks pick no stretch and move no point.
 TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
   Harness h;
-  ASSERT_TRUE(h.studio().open(kSkirt));
-  h.frame();
-  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
-  ASSERT_FALSE(front.empty());
-  const auto stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(front));
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
   ASSERT_GE(stretches.size(), 3u);
   const auto centre = h.studio().piece_on_screen(front);
   ASSERT_TRUE(centre.has_value());
@@ -980,11 +992,8 @@ TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
 // grain line kept; the saved document validates and holds the edits.
 TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
   Harness h;
-  ASSERT_TRUE(h.studio().open(kSkirt));
-  h.frame();
-  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
-  ASSERT_FALSE(front.empty());
-  const auto stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(front));
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
   ASSERT_GE(stretches.size(), 2u);
   const vgd::xvc::OutlinePoint p{front, stretches[1].id, 3};
   EXPECT_FALSE(h.studio().point_on_screen(p).has_value()) << "points show on the selected piece only";
