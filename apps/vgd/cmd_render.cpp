@@ -59,10 +59,15 @@ render::Colour parse_colour_option(const std::string& name, const std::string& t
 
 // One render mesh per group of an OBJ (its own vertices only), with the
 // file's texture coordinates (`vt`: metres of pattern in vgd's garment.obj)
-// when every face of the group has them.
-std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind kind,
-                                        std::vector<std::vector<int>>* sources = nullptr) {
+// when every face of the group has them. With `sources`: per mesh, each
+// render vertex's vertex in the file, and the file's vertex count.
+struct ObjSources {
+  std::vector<std::vector<int>> vertex;  // per mesh and render vertex
+  std::size_t file_vertices = 0;
+};
+std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind kind, ObjSources* sources = nullptr) {
   const auto obj = vgd::io::obj::read_obj(file);
+  if (sources) sources->file_vertices = obj.vertices.size();
   const int n_groups = std::max<int>(1, static_cast<int>(obj.groups.size()));
   auto group_of = [&](std::size_t f) { return static_cast<std::size_t>(std::clamp(obj.face_group[f], 0, n_groups - 1)); };
   std::vector<render::Mesh> meshes(static_cast<std::size_t>(n_groups));
@@ -101,7 +106,7 @@ std::vector<render::Mesh> meshes_of_obj(const fs::path& file, render::MeshKind k
   for (std::size_t g = 0; g < meshes.size(); ++g) {
     if (meshes[g].triangles.empty()) continue;
     kept.push_back(std::move(meshes[g]));
-    if (sources) sources->push_back(std::move(source[g]));
+    if (sources) sources->vertex.push_back(std::move(source[g]));
   }
   return kept;
 }
@@ -291,7 +296,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
   if (!trj && o.frame != -1) throw vgd::Error(input.string(), "", "--frame applies to a trajectory (.trj) only");
   const render::Colour fabric = o.colour.empty() ? render::kFabric : parse_colour_option("--colour", o.colour);
   int index = 0;
-  std::vector<std::vector<int>> sources;  // per piece and render vertex: its vertex of garment.obj
+  ObjSources sources;  // per piece and render vertex: its vertex of garment.obj
   auto pieces = trj ? meshes_of_trj(input, o.frame, common) : meshes_of_obj(garment, render::MeshKind::garment, &sources);
   std::vector<render::Mesh*> garment_meshes;
   for (auto& m : pieces) {
@@ -326,7 +331,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
         throw vgd::Error(file.string(), "", "not found: a contact-pressure map needs the drape's contact-pressure.json "
                                             "(vgd drape and vgd dress write it beside garment.obj)");
       pressure = vgd::dress::contact_pressure_from_json(vgd::read_file(file), file.string());
-      const auto obj_vertices = vgd::io::obj::read_obj(garment).vertices.size();
+      const std::size_t obj_vertices = sources.file_vertices;
       if (pressure.size() != obj_vertices)
         throw vgd::Error(file.string(), "values", "holds " + std::to_string(pressure.size()) + " pressures for the " +
                                                       std::to_string(obj_vertices) + " vertices of " + garment.string() +
@@ -349,7 +354,7 @@ render::Scene load_scene(const Options& o, const vgd::cli::Common& common) {
       }
       std::vector<double> values;
       if (map == render::FitMap::pressure)
-        for (int v : sources[k]) values.push_back(pressure[static_cast<std::size_t>(v)] / 1000.0);
+        for (int v : sources.vertex[k]) values.push_back(pressure[static_cast<std::size_t>(v)] / 1000.0);
       else
         values = render::fit_values(*m, map, membrane ? &*membrane : nullptr);
       render::colour_by(*m, values, scale);

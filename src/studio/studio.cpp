@@ -177,11 +177,11 @@ struct Studio::Impl {
   // The stress map's fabric of each piece drawn, by name, resolved once per drape.
   mutable std::map<std::string, render::Membrane> membranes;
   mutable std::string fabric_problem;  // why a piece's fabric could not be read (said once)
-  mutable bool pressure_missing_said = false;
+  mutable bool pressure_missing_said = false;  // the pressure map's "no drape finished here" (once per choice)
   fs::path dialog_program;  // the desktop's file dialog (zenity); empty: typed paths
   mutable render::TextureCache textures;  // the document's texture images, read once for the preview
-  mutable std::string looks_problem;      // why the preview's textures were left out (said once)
-  bool looks_said = false;  // the pressure map's "no drape finished here" (said once per choice)
+  mutable std::string looks_problem;      // why the preview's textures were left out
+  bool looks_said = false;                // looks_problem said (once)
 
   // The shipped fabrics (data/materials/*.xvc, the fabric lab's), read once:
   // file, MATERIAL id, short name, for a tooltip its full name and figures,
