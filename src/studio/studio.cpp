@@ -972,7 +972,10 @@ struct Studio::Impl {
     ImGui::SameLine();
     if (ImGui::Button("Suggest seams")) suggest();
     track("Suggest seams");
+    // On this row when it fits, else on the next (the canvas leaves a row for it).
+    const ImGuiStyle& style = ImGui::GetStyle();
     ImGui::SameLine();
+    if (ImGui::GetContentRegionAvail().x < ImGui::CalcTextSize("Measure").x + 2 * style.FramePadding.x) ImGui::NewLine();
     // Lit while measuring; a second press ends it.
     if (measuring) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
     const bool toggle = ImGui::Button("Measure");
