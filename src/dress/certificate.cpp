@@ -94,6 +94,23 @@ std::vector<OpenSide> open_sides(const scene::Scene& scene, const std::vector<Ve
   double top = ymax - 0.3 * (ymax - ymin);
   if (av.measurements) top = std::min(top, body::mannequin_landmarks(*av.measurements).bust);
   else if (av.landmarks && av.landmarks->bust > 0) top = std::min(top, av.landmarks->bust);
+  // Above the armholes' lowest point the trunk cloth's side is the armhole,
+  // which a sleeve closes (a loose shirt's armhole drops below the bust): the
+  // sides are read from a slice below it, on the trunk's side of the armhole seams.
+  {
+    std::vector<char> arm(points.size(), 0);
+    for (const auto& p : scene.pieces)
+      if (p.segment == "left-arm" || p.segment == "right-arm")
+        for (int i = p.first; i < p.first + p.count; ++i) arm[i] = 1;
+    double underarm = 1e300;
+    for (const auto& seam : scene.seams)
+      for (const auto& [a, b] : seam.pairs) {
+        if (a < 0 || b < 0 || a >= static_cast<int>(points.size()) || b >= static_cast<int>(points.size())) continue;
+        if (trunk[a] && arm[b]) underarm = std::min(underarm, points[a].y());
+        if (trunk[b] && arm[a]) underarm = std::min(underarm, points[b].y());
+      }
+    if (underarm < 1e300) top = std::min(top, underarm - 0.02);
+  }
   const double bottom = ymin + 0.08;
   OpenSide sides[2] = {{"left", 0, 0, 0}, {"right", 0, 0, 0}};
   for (double h = top; h >= bottom; h -= 0.02) {

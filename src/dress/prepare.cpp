@@ -98,9 +98,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     pattern::Style style = xvc::to_style(doc);
     if (xvc::from_style(style) == doc) {
       const auto joined = pattern::join_pieces_written_per_side(style);
-      if (!joined.empty()) {
+      const auto halves = pattern::unfold_top_halves(style);
+      if (!joined.empty() || !halves.unfolded.empty()) {
         doc = xvc::Document(xvc::Node(xvc::from_style(style).root()), file);
         for (const auto& j : joined) out.decisions.push_back(pattern::describe(j));
+        for (const auto& d : pattern::describe(halves)) out.decisions.push_back(d);
       }
     }
   }
@@ -584,7 +586,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // stretch 20-40 % to close round them, pressing on the body with
   // kilonewtons and never coming to rest. The shipped knit is written in the
   // document. Not for tops: a file that writes a top's front and back as
-  // halves cut once (Valentina's shirt) gives half their girth.
+  // halves cut once that vgd does not unfold gives half their girth.
   const auto* materials = doc.container("MATERIALS");
   // (A document whose only MATERIALs are pieces' own has no fabric of its own.)
   if (!options.fabric_given && xvc::garment_material(doc).empty() && lower && !legs.empty() && girth > 0) {

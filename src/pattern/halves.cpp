@@ -173,4 +173,63 @@ std::string describe(const JoinedPieces& j) {
          j.kept + " is cut twice instead";
 }
 
+TopHalves unfold_top_halves(Style& style, double tol) {
+  TopHalves out;
+  bool sleeve = false;
+  for (const auto& p : style.pieces) {
+    if (p.quantity > 1 || p.mirror_line) return out;  // the file states quantities or folds
+    const Role r = piece_role(p.name, p.category, p.annotation, style.name).role;
+    if (r == Role::leg) return out;
+    sleeve = sleeve || r == Role::sleeve;
+  }
+  if (!sleeve) return out;
+  for (auto& p : style.pieces) {
+    const RoleGuess g = piece_role(p.name, p.category, p.annotation, style.name);
+    if ((g.role != Role::front && g.role != Role::back && g.role != Role::yoke) || g.side != Side::none || !p.closed ||
+        p.boundary.size() < 3)
+      continue;
+    const Vec2 up = up_of(p), across(up.y(), -up.x());
+    const auto c = centre_edge(p.boundary, up, tol);
+    if (!c || (c->b - c->a).norm() < 0.4 * extent_along(p.boundary, up)) continue;
+    // Its own mirror image across its middle: a whole piece with straight sides.
+    double u0 = 1e300, u1 = -1e300;
+    for (const auto& q : p.boundary) u0 = std::min(u0, q.p.dot(across)), u1 = std::max(u1, q.p.dot(across));
+    const double mid = 0.5 * (u0 + u1);
+    const bool symmetric = std::all_of(p.boundary.begin(), p.boundary.end(), [&](const ContourPoint& q) {
+      return nearest_edge(p.boundary, q.p - 2.0 * (q.p.dot(across) - mid) * across).distance <= tol;
+    });
+    if (symmetric) continue;
+    Piece whole = p;
+    whole.mirror_line = *c;
+    if (!unfold_about_mirror_line(whole, tol)) continue;
+    for (auto& nt : whole.notches) nt.boundary_index = nearest_vertex(whole.boundary, nt.position).index;
+    whole.quantity = 1;
+    p = std::move(whole);
+    out.unfolded.push_back({p.size, p.block, (c->b - c->a).norm()});
+  }
+  if (out.unfolded.empty()) return out;
+  for (auto& p : style.pieces) {
+    const RoleGuess g = piece_role(p.name, p.category, p.annotation, style.name);
+    if (g.role != Role::sleeve || g.side != Side::none || g.half != Half::none) continue;
+    p.quantity = 2;
+    out.sleeves_cut_twice.push_back(p.block);
+  }
+  return out;
+}
+
+std::vector<std::string> describe(const TopHalves& h) {
+  std::vector<std::string> out;
+  for (const auto& u : h.unfolded)
+    out.push_back("block " + u.block + " is half a piece (cut once, no side or fold line in the file, a straight " +
+                  format_fixed(100 * u.centre_length, 1) + " cm centre edge): unfolded about that edge into the whole piece");
+  if (!h.sleeves_cut_twice.empty()) {
+    std::string list;
+    for (const auto& b : h.sleeves_cut_twice) list += (list.empty() ? "" : ", ") + b;
+    out.push_back(h.sleeves_cut_twice.size() == 1
+                      ? "sleeve " + list + " is cut twice, left and right: the file cuts it once and names no side"
+                      : "sleeves " + list + " are cut twice, left and right: the file cuts them once and names no side");
+  }
+  return out;
+}
+
 }  // namespace vgd::pattern

@@ -281,6 +281,8 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       return {a};
     case Role::front:
     case Role::back:
+    case Role::yoke:  // a shirt's, hung like a back; the backs sewn to it hang below it (suggest_arrangements)
+      if (role.role == Role::yoke && lower_body) return {};
       a.segment = lower_body ? "hips" : "torso";
       a.side = role.role == Role::front ? "front" : "back";
       a.height = lower_body ? opts.waist_height : opts.neck_point_height + (straps(piece, a.angle_deg) ? 0.0 : opts.bodice_lift);
@@ -346,6 +348,27 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       shift = hem_drop(doc, *fit->second, h.f.first, h.f.second) - hem_drop(doc, *bp, h.b.first, h.b.second);
     }
     for (auto& a : list) a.height += shift;
+  }
+
+  // A back under a yoke of its size (a shirt's) hangs from the yoke's lowest
+  // point, not from the neck: lowered by the yoke's height as arranged.
+  std::map<std::string, double> yoke_drop;  // size -> the yoke's height (m)
+  for (const auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::yoke) continue;
+    const pattern::Piece piece = to_piece(doc, id);
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : piece.boundary) {
+      const double y = rotate(c.p, list.front().angle_deg).y();
+      lo = std::min(lo, y), hi = std::max(hi, y);
+    }
+    if (hi > lo) yoke_drop[std::string(p->attribute("size"))] = std::max(yoke_drop[std::string(p->attribute("size"))], hi - lo);
+  }
+  for (auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (!p || piece_role(doc, *p).role != pattern::Role::back) continue;
+    if (const auto it = yoke_drop.find(std::string(p->attribute("size"))); it != yoke_drop.end())
+      for (auto& a : list) a.height -= it->second;
   }
   return out;
 }

@@ -260,7 +260,7 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, leg };
+enum class Role { other, front, back, sleeve, waistband, leg, yoke };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
@@ -269,6 +269,7 @@ Role role_of(const Outline& o) {
     case pattern::Role::waistband: return Role::waistband;
     case pattern::Role::front: return Role::front;
     case pattern::Role::back: return Role::back;
+    case pattern::Role::yoke: return Role::yoke;
     default: return Role::other;
   }
 }
@@ -309,6 +310,8 @@ void score_notches(const std::vector<Part>& parts, SeamSuggestion& s, double& fa
 }
 
 constexpr double kSewingSlack = 0.002;  // m
+// How much longer a back may be than the yoke it is pleated or gathered into.
+constexpr double kYokeGathers = 0.15;
 // Relative length tolerance of a side seam (other seams: 0.02): a 2.5 % difference
 // still scores 0.67.
 constexpr double kSideSeamTolerance = 0.04;
@@ -402,7 +405,72 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
   }
 
-  // 1. Sleeves: cap to a front armhole and a back armhole; then the underarm seam.
+  // 0b. A shirt's yoke, drawn like a back (its neckline up, the wearer's left on
+  //     -u): its lowest edge across the middle to the highest edge across the
+  //     middle of a back (the back hangs from it); on each side its highest edge
+  //     (the shoulder) to a front's shoulder on the same side of the wearer, and
+  //     its edge below that (the armhole's top, when it has one) continues the
+  //     back's armhole in the sleeve's seam (step 1).
+  std::map<int, std::pair<const Outline*, std::size_t>> yoke_armhole;  // the wearer's side -> yoke edge
+  for (const auto& yk : ps) {
+    if (yk.role != Role::yoke || yk.edges.size() < 4) continue;
+    std::optional<std::size_t> bottom;
+    for (std::size_t i = 0; i < yk.edges.size(); ++i)
+      if (yk.edges[i].side == 0 && (!bottom || yk.edges[i].v_mean < yk.edges[*bottom].v_mean)) bottom = i;
+    if (!bottom) continue;
+    std::optional<SeamSuggestion> best;
+    std::pair<const Outline*, std::size_t> top{};
+    for (const auto& bk : ps) {
+      if (bk.role != Role::back) continue;
+      std::optional<std::size_t> t;
+      for (std::size_t j = 0; j < bk.edges.size(); ++j)
+        if (bk.edges[j].side == 0 && !used.count({bk.o, j}) && (!t || bk.edges[j].v_mean > bk.edges[*t].v_mean)) t = j;
+      if (!t) continue;
+      const Edge &ye = yk.edges[*bottom], &be = bk.edges[*t];
+      // The back may be pleated or gathered into the yoke (a men's shirt's box
+      // pleat at centre back: Valentina's back is 63.5 mm longer than its yoke):
+      // up to kYokeGathers longer.
+      auto s = make("yoke seam", size, {{yk.o, ye.k0, ye.k1, false}, {bk.o, be.k0, be.k1, true}}, 1.0,
+                    "yoke seam: the lowest edge of " + yk.o->piece + " to the top of " + bk.o->piece,
+                    -kYokeGathers * be.length, 0, 0.02);
+      if (!best || s.score > best->score) best = s, top = {bk.o, *t};
+    }
+    if (!best || best->score < opts.min_score) continue;
+    used.insert({yk.o, *bottom});
+    used.insert(top);
+    found.push_back(*best);
+    for (const int sigma : {1, -1}) {  // the wearer's side: -sigma on the yoke, +sigma on a front
+      std::vector<std::size_t> mine;
+      for (std::size_t i = 0; i < yk.edges.size(); ++i)
+        if (yk.edges[i].side == -sigma && !used.count({yk.o, i})) mine.push_back(i);
+      if (mine.empty()) continue;
+      std::sort(mine.begin(), mine.end(), [&](std::size_t a, std::size_t b) { return yk.edges[a].v_mean > yk.edges[b].v_mean; });
+      const Edge& ys = yk.edges[mine[0]];
+      std::optional<SeamSuggestion> sh;
+      std::pair<const Outline*, std::size_t> fs{};
+      for (const auto& fr : ps) {
+        if (fr.role != Role::front) continue;
+        for (std::size_t i = 0; i < fr.edges.size(); ++i) {
+          const Edge& fe = fr.edges[i];
+          if (fe.side != sigma || fe.curved || fe.v_hat < 0.6 || used.count({fr.o, i})) continue;
+          const std::string side = sigma > 0 ? "left " : "right ";
+          auto s = make(side + "shoulder", size, {{fr.o, fe.k0, fe.k1, false}, {yk.o, ys.k0, ys.k1, true}}, 1.0,
+                        "shoulder of " + fr.o->piece + " and " + yk.o->piece + " on the wearer's " + side + "side", 0, 0,
+                        0.02);
+          if (!sh || s.score > sh->score) sh = s, fs = {fr.o, i};
+        }
+      }
+      if (sh && sh->score >= opts.min_score) {
+        used.insert({yk.o, mine[0]});
+        used.insert(fs);
+        found.push_back(*sh);
+        if (mine.size() >= 2) yoke_armhole[sigma] = {yk.o, mine[1]};
+      }
+    }
+  }
+
+  // 1. Sleeves: cap to a front armhole and a back armhole (and a yoke's armhole
+  //    between them); then the underarm seam.
   for (const auto& sl : ps) {
     if (sl.role != Role::sleeve || sl.edges.size() < 3 || sl.o->role.half != pattern::Half::none) continue;
     std::vector<int> sides;
@@ -432,11 +500,22 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
               // The wearer's left sleeve (sigma +1) meets the back armhole first along
               // its cap's contour; the right sleeve the front one (seams.hpp).
               std::vector<Part> parts{{sl.o, ce.k0, ce.k1, false}};
+              const auto yoke = yoke_armhole.find(sigma);
+              const auto add_yoke = [&] {
+                if (yoke == yoke_armhole.end()) return;
+                const Outline* yo = yoke->second.first;
+                const Edge* ye = nullptr;
+                for (const auto& pi : ps)
+                  if (pi.o == yo) ye = &pi.edges[yoke->second.second];
+                parts.push_back({yo, ye->k0, ye->k1, true});
+              };
               if (sigma > 0) {
                 parts.push_back({bk.o, be.k0, be.k1, true});
+                add_yoke();
                 parts.push_back({fr.o, fe.k0, fe.k1, true});
               } else {
                 parts.push_back({fr.o, fe.k0, fe.k1, true});
+                add_yoke();
                 parts.push_back({bk.o, be.k0, be.k1, true});
               }
               auto s = make(sigma > 0 ? "left armhole" : "right armhole", size, parts, shape,
@@ -455,6 +534,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       if (best && best->score >= opts.min_score) {
         used.insert(bf);
         used.insert(bb);
+        if (const auto y = yoke_armhole.find(sigma); y != yoke_armhole.end()) used.insert(y->second);
         found.push_back(*best);
       }
     }

@@ -121,6 +121,79 @@ TEST(PiecesPerSide, NamedPiecesAndOtherSizesAreLeftAlone) {
   EXPECT_TRUE(join_pieces_written_per_side(different).empty());
 }
 
+// Valentina's way: a shirt whose front and back are drawn as halves, cut
+// once, no side or fold line, and one sleeve. The halves are unfolded about
+// their centre edges (twice the area, symmetric), the sleeve is cut twice;
+// a whole piece (its own mirror image) and a sleeve naming its side are left
+// as they are.
+TEST(TopHalves, HalvesOfAShirtDrawnOnceAreUnfoldedAndItsSleeveCutTwice) {
+  Style s;
+  s.name = "shirt";
+  s.pieces = {half_front("FRONT PANEL"), half_front("BACK PANEL", 1.0), sleeve("SLEEVE", 2.0)};
+  Piece yoke;  // a whole piece with a straight edge on each side
+  yoke.block = "BACK YOKE_M";
+  yoke.name = "BACK YOKE";
+  yoke.size = "M";
+  yoke.boundary = {{Vec2(3.0, 0)}, {Vec2(3.4, 0)}, {Vec2(3.4, 0.3)}, {Vec2(3.0, 0.3)}};
+  s.pieces.push_back(yoke);
+  const double half = area_of(s.pieces[0]);
+  const auto h = unfold_top_halves(s);
+  ASSERT_EQ(h.unfolded.size(), 2u);
+  EXPECT_EQ(h.unfolded[0].block, "FRONT PANEL_M");
+  EXPECT_NEAR(h.unfolded[0].centre_length, 0.58, 1e-9);
+  EXPECT_EQ(h.unfolded[1].block, "BACK PANEL_M");
+  for (int i = 0; i < 2; ++i) {
+    const Piece& p = s.pieces[i];
+    EXPECT_NEAR(area_of(p), 2 * half, 1e-9) << p.name;
+    EXPECT_FALSE(is_self_intersecting(p.boundary));
+    const double centre = i == 0 ? 0.0 : 1.0;
+    for (const auto& c : p.boundary)
+      EXPECT_LT(nearest_vertex(p.boundary, Vec2(2 * centre - c.p.x(), c.p.y())).distance, 1e-9) << p.name;
+  }
+  EXPECT_EQ(s.pieces[2].quantity, 2);
+  EXPECT_EQ(h.sleeves_cut_twice, std::vector<std::string>{"SLEEVE_M"});
+  EXPECT_NEAR(area_of(s.pieces[3]), 0.12, 1e-12) << "a whole yoke is left whole";
+  const auto said = describe(h);
+  ASSERT_EQ(said.size(), 3u);
+  EXPECT_NE(said[0].find("a straight 58.0 cm centre edge): unfolded"), std::string::npos) << said[0];
+  EXPECT_NE(said[2].find("sleeve SLEEVE_M is cut twice"), std::string::npos) << said[2];
+}
+
+// Left alone: a file that states a quantity or a fold line anywhere, a
+// garment without a sleeve (a half of a vest is drawn for a fold the file
+// may not say) or with a leg, and a half whose side is named.
+TEST(TopHalves, AFileThatStatesQuantitiesOrFoldsOrHasNoSleeveIsLeftAlone) {
+  const auto shirt = [] {
+    Style s;
+    s.name = "shirt";
+    s.pieces = {half_front("FRONT"), half_front("BACK", 1.0), sleeve("SLEEVE", 2.0)};
+    return s;
+  };
+  Style quantity = shirt();
+  quantity.pieces[2].quantity = 2;
+  EXPECT_TRUE(unfold_top_halves(quantity).unfolded.empty());
+  EXPECT_NEAR(area_of(quantity.pieces[0]), area_of(half_front("FRONT")), 1e-12);
+
+  Style fold = shirt();
+  fold.pieces[1].mirror_line = Segment{Vec2(1.0, 0.0), Vec2(1.0, 0.58)};
+  EXPECT_TRUE(unfold_top_halves(fold).unfolded.empty());
+
+  Style vest = shirt();
+  vest.pieces.pop_back();
+  EXPECT_TRUE(unfold_top_halves(vest).unfolded.empty());
+
+  Style trousers = shirt();
+  trousers.pieces.push_back(half_front("LEG", 4.0));
+  EXPECT_TRUE(unfold_top_halves(trousers).unfolded.empty());
+
+  Style sided = shirt();
+  sided.pieces[0].name = "LEFT FRONT";
+  const auto h = unfold_top_halves(sided);
+  ASSERT_EQ(h.unfolded.size(), 1u);
+  EXPECT_EQ(h.unfolded[0].block, "BACK_M");
+  EXPECT_EQ(sided.pieces[0].boundary.size(), half_front("FRONT").boundary.size());
+}
+
 // Roles from shapes: a strip is a binding, a cap makes a sleeve, and of two
 // body pieces the deeper neckline is the front's.
 TEST(ShapeRoles, AStripACapAndTwoNecklines) {

@@ -2,6 +2,8 @@
 // valid against the schema and vgd's rules, editable and undoable.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/pattern/draft.hpp"
 #include "vgd/xvc/arrangement.hpp"
@@ -155,4 +157,44 @@ TEST(Arrangement, SleeveHalvesOnTheirSidesAndLevelAlongTheirSeam) {
   EXPECT_NEAR(arranged[1].second[1].height, top - 0.05, 1e-12);
   EXPECT_EQ(arranged[2].second[0].height, top) << "size L's front half";
   EXPECT_NEAR(arranged[3].second[0].height, top - 0.055, 1e-12) << "size L's back half, by the sample's seam";
+}
+
+// A shirt's yoke hangs on the torso's back like a back, its top at the neck
+// point's height (with the bodice lift); the back sewn below it hangs from
+// the yoke's lowest point: as much lower as the yoke is high (12 cm here).
+// In a lower-body garment a yoke is not placed by rule.
+TEST(Arrangement, ABackHangsBelowItsSizesYoke) {
+  auto style = pattern::draft_tshirt_style({pattern::TShirtMeasurements{}});
+  const std::string size = style.pieces[0].size;
+  pattern::Piece yoke;
+  yoke.block = "YOKE_" + size;
+  yoke.name = "YOKE";
+  yoke.size = size;
+  yoke.quantity = 1;
+  yoke.boundary = {{pattern::Vec2(2.0, 0)}, {pattern::Vec2(2.4, 0)}, {pattern::Vec2(2.4, 0.10)},
+                   {pattern::Vec2(2.25, 0.12)}, {pattern::Vec2(2.15, 0.12)}, {pattern::Vec2(2.0, 0.10)}};
+  const Document plain = from_style(style);
+  style.pieces.push_back(yoke);
+  const Document doc = from_style(style);
+  const auto heights = [](const Document& d) {
+    std::map<std::string, Arrangement> by_piece;
+    for (const auto& [id, list] : suggest_arrangements(d))
+      if (!list.empty()) by_piece[std::string(d.find(id)->attribute("piece"))] = list.front();
+    return by_piece;
+  };
+  const auto before = heights(plain), after = heights(doc);
+  ASSERT_TRUE(after.count("YOKE"));
+  const Arrangement& y = after.at("YOKE");
+  EXPECT_EQ(y.segment, "torso");
+  EXPECT_EQ(y.side, "back");
+  const ArrangementOptions o;
+  EXPECT_NEAR(y.height, o.neck_point_height + o.bodice_lift, 1e-12);
+  std::string back;
+  for (const auto& [name, a] : before)
+    if (a.side == "back" && a.segment == "torso") back = name;
+  ASSERT_FALSE(back.empty());
+  EXPECT_NEAR(after.at(back).height, before.at(back).height - 0.12, 1e-12);
+  for (const auto& [name, a] : before)
+    if (name != back) EXPECT_NEAR(after.at(name).height, a.height, 1e-12) << name;
+  EXPECT_TRUE(suggest_arrangement(yoke, true).empty());
 }

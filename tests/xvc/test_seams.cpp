@@ -18,6 +18,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/draft.hpp"
+#include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -536,6 +537,42 @@ TEST(SeamSuggestions, TheCentreEdgesOfHalvesWithNoFoldLineAreNotSideSeams) {
     EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
   }
   EXPECT_EQ(sides, 1);
+}
+
+// Valentina's shirt with its halves unfolded (pattern::unfold_top_halves):
+// the yoke's lowest edge takes the back's top (the back 63.5 mm longer, the
+// box pleat at its centre), the yoke's shoulders the front's, and each short
+// sleeve's cap (629.7 mm) the armhole of the back, the yoke and the front
+// (628.1 mm), in that order round the left arm and the reverse round the
+// right; the side seams stay the front's and the back's (45 cm).
+TEST(SeamSuggestions, AShirtsYokeTakesTheBackTheShouldersAndTheArmholesTop) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
+  ASSERT_EQ(vgd::pattern::unfold_top_halves(style).unfolded.size(), 3u);
+  const Document doc = vgd::xvc::from_style(style);
+  const auto piece = [&](const vgd::xvc::HemRef& h) { return std::string(doc.find(h.pattern)->attribute("piece")); };
+  std::map<std::string, std::vector<std::string>> pieces;  // seam name -> its hems' pieces (the first sleeve's)
+  std::map<std::string, double> ease;
+  for (const auto& s : at_size(doc, "base")) {
+    if (pieces.count(s.name)) continue;
+    for (const auto& h : s.hems) pieces[s.name].push_back(piece(h));
+    ease[s.name] = s.ease;
+    if (s.name.find("side seam") != std::string::npos) EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
+  }
+  using V = std::vector<std::string>;
+  EXPECT_EQ(pieces["yoke seam"], (V{"YOKE", "BACKPANEL"}));
+  EXPECT_NEAR(ease["yoke seam"], -0.0635, 0.001);
+  for (const char* side : {"left shoulder", "right shoulder"}) {
+    EXPECT_EQ(pieces[side], (V{"FRONTPANEL", "YOKE"})) << side;
+    EXPECT_NEAR(ease[side], 0.0, 0.001) << side;
+  }
+  EXPECT_EQ(pieces["left armhole"], (V{"SHORTSLEEVE", "BACKPANEL", "YOKE", "FRONTPANEL"}));
+  EXPECT_EQ(pieces["right armhole"], (V{"SHORTSLEEVE", "FRONTPANEL", "YOKE", "BACKPANEL"}));
+  EXPECT_NEAR(ease["left armhole"], 0.0015, 0.001);
+  EXPECT_EQ(pieces["left side seam"], (V{"FRONTPANEL", "BACKPANEL"}));
+  EXPECT_EQ(pieces["right side seam"], (V{"FRONTPANEL", "BACKPANEL"}));
 }
 
 // A seam flipped: hem B's HEMs in reverse order, each direction flipped; hem

@@ -135,8 +135,9 @@ struct Certificate {
   std::vector<PieceStrain> strain;
   std::vector<PieceWhere> placement;
   // Trunk garments (pieces on the torso or hips): the sides left open
-  // between the bust (or 30 % below the cloth's top) and 8 cm above its hem,
-  // sliced every 2 cm. An arc wider than open_limit_deg centred within 60° of
+  // between the bust (or 30 % below the cloth's top, or 2 cm below the lowest
+  // point of the seams joining sleeves to it: the armholes) and 8 cm above its
+  // hem, sliced every 2 cm. An arc wider than open_limit_deg centred within 60° of
   // the body's left or right fails the drape ("open side"): a front and a back that
   // hang apart instead of being sewn (an open front or back is a style, an
   // open side is not). Sewn sides leave arcs of 7–9° (the mesh's spacing

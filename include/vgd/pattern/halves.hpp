@@ -36,4 +36,28 @@ std::vector<JoinedPieces> join_pieces_written_per_side(Style& style, double tol_
 // The join in words, for the user: which blocks, what was made of them.
 std::string describe(const JoinedPieces& joined);
 
+// A top drawn in halves by a file that states no quantities (Valentina's
+// shirt: FRONTPANEL, BACKPANEL and YOKE cut once, no side, no fold line, the
+// centre front or back a straight edge along the grain with the whole piece
+// on one side of it, and one SHORTSLEEVE). In a style with a sleeve and no
+// leg, where every piece is cut at most once and none has a fold line:
+//  - each front, back or yoke whose outline is such a half (its centre edge
+//    at least 40 % of its length along the grain, the piece not its own
+//    mirror image across its middle) is unfolded about that edge into the
+//    whole piece (a front so made is closed at its centre, as buttoned);
+//  - once a half is unfolded, each sleeve cut once naming no side is cut
+//    twice (one sleeve is never a garment).
+struct UnfoldedHalf {
+  std::string size, block;
+  double centre_length = 0.0;  // m
+};
+struct TopHalves {
+  std::vector<UnfoldedHalf> unfolded;
+  std::vector<std::string> sleeves_cut_twice;  // blocks
+};
+TopHalves unfold_top_halves(Style& style, double tol_m = 0.002);
+
+// What unfold_top_halves did, a sentence per piece.
+std::vector<std::string> describe(const TopHalves& halves);
+
 }  // namespace vgd::pattern

@@ -75,7 +75,8 @@ struct ArrangementOptions {
 };
 
 // From the piece's role (pattern/roles.hpp; `style` is the garment's name): front ->
-// torso front, back -> torso back (top edge bodice_lift above the neck point), sleeve ->
+// torso front, back and a top's yoke -> torso back (top edge bodice_lift above the neck
+// point; suggest_arrangements hangs a back below its size's yoke), sleeve ->
 // the arms (a left or right sleeve one arm; a sleeve cut twice gives the right arm and the
 // left arm flipped; cap top sleeve_drop down the arm; the front or back half of a sleeve
 // cut in two on that side of the arm, its over-arm edge outside, flipped as that needs),
