@@ -274,8 +274,6 @@ double width_at(const std::vector<ContourPoint>& o, const Vec2& up, double v) {
   return hi > lo ? hi - lo : 0.0;
 }
 
-namespace {
-// Even-odd test: p inside the closed outline.
 bool point_in_outline(const std::vector<ContourPoint>& o, const Vec2& p) {
   bool in = false;
   const std::size_t n = o.size();
@@ -286,7 +284,6 @@ bool point_in_outline(const std::vector<ContourPoint>& o, const Vec2& p) {
   }
   return in;
 }
-}  // namespace
 
 std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m, double max_m) {
   const Polyline* line = nullptr;

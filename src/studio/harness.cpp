@@ -206,9 +206,15 @@ void Harness::run_script(const fs::path& script) {
         if (!r) fail("stretch " + seq + " of " + pat + " is not on screen");
         click_at(r->cx(), r->cy());
       } else if (cmd == "click-piece") {
-        auto r = studio().piece_on_screen(arg);
-        if (!r) fail("piece " + arg + " is not on screen");
-        click_at(r->cx(), r->cy());
+        // click-piece PATTERN [DX DY]: at the piece's middle, moved by (DX, DY) px.
+        std::istringstream as(arg);
+        std::string pat;
+        float dx = 0, dy = 0;
+        as >> pat;
+        if (!(as >> std::ws).eof() && !(as >> dx >> dy)) fail("expected PATTERN [DX DY], got '" + arg + "'");
+        auto r = studio().piece_on_screen(pat);
+        if (!r) fail("piece " + pat + " is not on screen");
+        click_at(r->cx() + dx, r->cy() + dy);
       } else if (cmd == "drag-point") {
         // drag-point PATTERN SEQ INDEX DX DY: the outline point dragged by (DX, DY) px.
         std::istringstream as(arg);

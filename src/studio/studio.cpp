@@ -62,6 +62,7 @@ struct PieceView {
   pattern::Vec2 centre = pattern::Vec2::Zero();
   pattern::Vec2 shift = pattern::Vec2::Zero();  // m: layout position minus the piece's own
   std::vector<pattern::Vec2> outline;           // m, laid out: every boundary point, for hit tests
+  std::vector<std::vector<pattern::Vec2>> lines;  // m, laid out: its internal lines (a closed one repeats its first point)
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
@@ -134,6 +135,13 @@ struct Studio::Impl {
   bool measuring = false;
   std::vector<pattern::Vec2> measure_points;
   std::optional<double> measured;
+  // Drawing in the pattern view: an internal line on the selected piece
+  // (draw_on), or a new piece; its points in layout coordinates (m), outline
+  // points snapping as the measuring tool's do.
+  enum class Drawing { none, line, piece };
+  Drawing drawing = Drawing::none;
+  std::string draw_on;
+  std::vector<pattern::Vec2> drawn_points;
   std::vector<std::pair<std::string, std::string>> picked;
   std::size_t picked_a = 0;  // the first picked_a picks are hem A (Shift+click adds to it), the rest hem B
   std::string seam_name = "seam";
@@ -491,6 +499,10 @@ struct Studio::Impl {
       }
       r.lo = r.hi = piece.boundary.front().p;
       for (const auto& c : piece.boundary) r.lo = r.lo.cwiseMin(c.p), r.hi = r.hi.cwiseMax(c.p);
+      for (const auto& l : piece.internal_lines) {
+        r.view.lines.push_back(l.points);
+        if (l.closed && !l.points.empty()) r.view.lines.back().push_back(l.points.front());
+      }
       raw.push_back(std::move(r));
     }
     if (raw.empty()) return;
@@ -522,6 +534,8 @@ struct Studio::Impl {
           for (auto& q : sv.points) q += shift;
           raw[i].view.outline.insert(raw[i].view.outline.end(), sv.points.begin(), sv.points.end() - 1);
         }
+        for (auto& l : raw[i].view.lines)
+          for (auto& q : l) q += shift;
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
         raw[i].view.shift = shift;
         hi.x() = std::max(hi.x(), x + raw[i].hi.x() - raw[i].lo.x());
@@ -860,7 +874,7 @@ struct Studio::Impl {
       // The selected piece's outline points: hovered (before its stretches), dragged.
       const PieceView* sel_piece = piece_view(selected);
       std::optional<xvc::OutlinePoint> point_hover;
-      if (sel_piece && canvas_hovered && !dragging && !measuring) {
+      if (sel_piece && canvas_hovered && !dragging && !measuring && drawing == Drawing::none) {
         float near = kPointRadius;
         for (const auto& sv : sel_piece->stretches)
           for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
@@ -901,6 +915,11 @@ struct Studio::Impl {
           dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, thick);
           dl->AddCircleFilled(pts.front(), 2.5f, rgb(60, 60, 60));
         }
+        for (const auto& l : pv.lines) {
+          std::vector<ImVec2> pts;
+          for (const auto& q : l) pts.push_back(to_screen(q));
+          dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), rgb(130, 130, 130), 0, 1.0f);
+        }
         const ImVec2 c = to_screen(pv.centre);
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
@@ -908,8 +927,11 @@ struct Studio::Impl {
       draw_seam_pairing(dl);
       if (sel_piece) draw_points(dl, *sel_piece, point_hover);
       draw_measure(dl, mouse, canvas_hovered);
+      draw_drawing(dl, mouse, canvas_hovered);
       dl->PopClipRect();
-      if (measuring) {
+      if (drawing != Drawing::none) {
+        if (ImGui::IsItemClicked()) draw_at(mouse);
+      } else if (measuring) {
         if (ImGui::IsItemClicked()) measure_at(mouse);
       } else if (hovered && ImGui::IsItemClicked()) {
         // A click picks for hem B (the first for hem A); Shift+click adds to
@@ -946,7 +968,7 @@ struct Studio::Impl {
               for (const auto& id : sv.seams)
                 if (const xvc::Node* n = doc.find(id)) tip += "\nsewn by " + std::string(n->attribute("name")) + " [" + id + "]";
             }
-        if (measuring) ImGui::SetTooltip("%s", tip.c_str());
+        if (measuring || drawing != Drawing::none) ImGui::SetTooltip("%s", tip.c_str());
         else ImGui::SetTooltip("%s\nclick to pick it for a new seam", tip.c_str());
       }
     }
@@ -989,6 +1011,87 @@ struct Studio::Impl {
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Distances between two points of the pieces (outline points snap), and each stretch's length "
                         "when hovered");
+    drawing_buttons();
+  }
+
+  // Draw line (on the selected piece) and Draw piece: lit while drawing; a
+  // second press, or Enter, ends the drawing; Esc drops it.
+  void drawing_buttons() {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const auto button = [&](const char* label, Drawing mode, bool enabled, const char* tip) {
+      ImGui::SameLine();
+      if (ImGui::GetContentRegionAvail().x < ImGui::CalcTextSize(label).x + 2 * style.FramePadding.x) ImGui::NewLine();
+      const bool lit = drawing == mode;
+      ImGui::BeginDisabled(!enabled && !lit);
+      if (lit) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+      const bool pressed = ImGui::Button(label);
+      if (lit) ImGui::PopStyleColor();
+      ImGui::EndDisabled();
+      track(label);
+      if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
+      if (!pressed) return;
+      if (lit) return finish_drawing();
+      drawing = mode, drawn_points.clear(), measuring = false, measure_points.clear();
+      draw_on = mode == Drawing::line ? selected : "";
+      const xvc::Node* p = doc.find(draw_on);
+      say(mode == Drawing::line
+              ? "Draw line on " + std::string(p ? p->attribute("piece") : "") +
+                    ": click its points inside the piece; Enter or Draw line again ends it, Esc drops it."
+              : "Draw piece: click its corners; a click on the first, Enter or Draw piece again closes it, Esc drops it.");
+    };
+    button("Draw line", Drawing::line, piece_view(selected) != nullptr,
+           "An internal line on the selected piece (a fold, a pocket's place), point by point");
+    button("Draw piece", Drawing::piece, true, "A new piece, corner by corner (each side a stretch to sew)");
+  }
+
+  // A drawing click: the outline point nearest the mouse (within the grab
+  // radius) or the point under it; a piece's first point again closes it.
+  void draw_at(const ImVec2& mouse) {
+    pattern::Vec2 at = from_screen(mouse);
+    float near = kPointRadius;
+    for (const auto& pv : pieces)
+      for (const auto& sv : pv.stretches)
+        for (const auto& q : sv.points) {
+          const ImVec2 sq = to_screen(q);
+          if (const float d = std::hypot(mouse.x - sq.x, mouse.y - sq.y); d < near) near = d, at = q;
+        }
+    if (drawing == Drawing::piece && drawn_points.size() >= 3) {
+      const ImVec2 first = to_screen(drawn_points.front());
+      if (std::hypot(mouse.x - first.x, mouse.y - first.y) < kPointRadius) return finish_drawing();
+    }
+    drawn_points.push_back(at);
+  }
+
+  // The drawing becomes a command (one undo step): the line in its piece's own
+  // frame, the piece where it was drawn, in the size shown.
+  void finish_drawing() {
+    const Drawing mode = std::exchange(drawing, Drawing::none);
+    std::vector<pattern::Vec2> pts = std::exchange(drawn_points, {});
+    if (mode == Drawing::none) return;
+    if (pts.size() < (mode == Drawing::line ? 2u : 3u)) {
+      say(mode == Drawing::line ? "Draw line ended: a line needs two points." : "Draw piece ended: a piece needs three corners.");
+      return;
+    }
+    std::vector<std::array<double, 2>> xy;
+    if (mode == Drawing::line) {
+      const PieceView* pv = piece_view(draw_on);
+      if (!pv) return say("Draw line ended: its piece is no longer shown.", true);
+      for (const auto& q : pts) xy.push_back({q.x() - pv->shift.x(), q.y() - pv->shift.y()});
+      run(std::make_unique<xvc::AddInternalLine>(draw_on, xy));
+    } else {
+      for (const auto& q : pts) xy.push_back({q.x(), q.y()});
+      run(std::make_unique<xvc::AddDrawnPattern>("drawn piece", drape.size, xy));
+    }
+  }
+
+  void draw_drawing(ImDrawList* dl, const ImVec2& mouse, bool canvas_hovered) {
+    if (drawing == Drawing::none || drawn_points.empty()) return;
+    const ImU32 col = rgb(120, 40, 200);
+    std::vector<ImVec2> pts;
+    for (const auto& q : drawn_points) pts.push_back(to_screen(q));
+    if (canvas_hovered) pts.push_back(mouse);
+    dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, 2.0f);
+    for (const auto& q : drawn_points) dl->AddCircleFilled(to_screen(q), 3.5f, col);
   }
 
   // A measuring click: the outline point nearest the mouse (within the grab
@@ -1935,6 +2038,9 @@ struct Studio::Impl {
       else delete_selected();
     }
     if (ImGui::IsKeyPressed(kF5Key, false)) start_drape();
+    if (drawing != Drawing::none && pressed(ImGuiKey_Enter)) finish_drawing();
+    if (drawing != Drawing::none && pressed(ImGuiKey_Escape))
+      drawing = Drawing::none, drawn_points.clear(), say("Drawing dropped.");
   }
 };
 

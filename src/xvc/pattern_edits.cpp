@@ -11,7 +11,9 @@
 #include "rules.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/xvc/commands.hpp"
+#include "vgd/xvc/style.hpp"
 
 namespace vgd::xvc {
 
@@ -525,6 +527,112 @@ std::string SetParameter::apply(Editor& edit) {
   const std::string id = doc.fresh_id("param");
   Node n{"PARAMETER", {{"id", id}, {"name", name_}, {"value", format_double(value_)}, {"unit", unit}}, {}};
   edit.insert({}, detail::canonical_index(root, "PARAMETER"), std::move(n));
+  return id;
+}
+
+}  // namespace vgd::xvc
+
+// ---- AddInternalLine, AddDrawnPattern ------------------------------------------------
+
+namespace vgd::xvc {
+
+namespace {
+std::vector<Vec2> finite_points(const Document& doc, std::string_view where, const std::vector<std::array<double, 2>>& pts) {
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!std::isfinite(pts[i][0]) || !std::isfinite(pts[i][1]))
+      throw Error(doc.name(), std::string(where), "point " + std::to_string(i + 1) + " is not a finite coordinate");
+    out.emplace_back(pts[i][0], pts[i][1]);
+  }
+  return out;
+}
+}  // namespace
+
+AddInternalLine::AddInternalLine(std::string pattern_id, std::vector<std::array<double, 2>> points, bool closed)
+    : id_(std::move(pattern_id)), points_(std::move(points)), closed_(closed) {}
+
+std::string AddInternalLine::label() const { return "Draw a line on " + id_; }
+
+std::string AddInternalLine::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  const std::size_t least = closed_ ? 3 : 2;
+  if (points_.size() < least)
+    throw Error(doc.name(), id_, "an internal line needs at least " + std::to_string(least) + " points, not " +
+                                     std::to_string(points_.size()));
+  const auto pts = finite_points(doc, id_, points_);
+  const pattern::Piece piece = to_piece(doc, id_);
+  constexpr double kOnOutline = 0.001;  // m
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (piece.boundary.size() < 3 ||
+        (!pattern::point_in_outline(piece.boundary, pts[i]) && pattern::nearest_edge(piece.boundary, pts[i]).distance > kOnOutline))
+      throw Error(doc.name(), id_, "point " + std::to_string(i + 1) + " of the line (" + format_fixed(100 * pts[i].x(), 1) +
+                                       ", " + format_fixed(100 * pts[i].y(), 1) + " cm) lies outside the piece");
+  detail::IdMaker ids(doc);
+  Node seq{"C2DSEQ", {{"id", ids.make("seq")}, {"role", "internal"}}, {}};
+  if (closed_) seq.set_attribute("closed", "true");
+  for (const auto& q : pts) seq.children.push_back(Node{"C2D", {{"x", format_double(q.x())}, {"y", format_double(q.y())}}, {}});
+  // After the boundary and the internal lines already there.
+  const Node& p = doc.at(path);
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < p.children.size(); ++i)
+    if (p.children[i].tag == "C2DSEQ" && (detail::is_boundary_sequence(p.children[i]) || p.children[i].attribute("role") == "internal"))
+      at = i + 1;
+  if (at == 0) at = detail::canonical_index(p, "C2DSEQ");
+  edit.insert(path, at, std::move(seq));
+  return id_;
+}
+
+AddDrawnPattern::AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points)
+    : name_(std::move(name)), size_(std::move(size)), points_(std::move(points)) {}
+
+std::string AddDrawnPattern::label() const { return "Draw piece " + name_; }
+
+std::string AddDrawnPattern::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const std::string where = "drawn piece " + name_;
+  if (points_.size() < 3)
+    throw Error(doc.name(), where, "a piece needs at least 3 points, not " + std::to_string(points_.size()));
+  const auto pts = finite_points(doc, where, points_);
+  pattern::Piece pc;
+  for (const auto& q : pts) pc.boundary.push_back({q, pattern::PointKind::turn});
+  if (pattern::is_self_intersecting(pc.boundary)) throw Error(doc.name(), where, "its sides cross");
+  constexpr double kLeastArea = 1e-4;  // m²
+  if (std::abs(pattern::signed_area(pc.boundary)) < kLeastArea)
+    throw Error(doc.name(), where, "its area is under 1 cm²");
+  pattern::make_counter_clockwise(pc.boundary);
+  std::set<std::string> blocks, pieces;
+  for (const Node* p : doc.patterns()) {
+    blocks.insert(std::string(p->attribute("block")));
+    pieces.insert(std::string(p->attribute("piece")));
+  }
+  const auto* grads = doc.container("GRADATIONS");
+  std::string size = size_;
+  if (size.empty() && grads) size = std::string(grads->attribute("sample_size"));
+  if (size.empty() && !doc.patterns().empty()) size = std::string(doc.patterns().front()->attribute("size"));
+  if (size.empty()) size = "base";
+  const std::string base = name_.empty() ? "drawn piece" : name_;
+  pc.name = unique_name(base, pieces, " ");
+  pc.block = unique_name(base, blocks, " ");
+  pc.size = size;
+  pc.quantity = 1;
+  pattern::Style style;
+  style.pieces.push_back(pc);
+  style.sizes = {size};
+  const Document one = from_style(style);
+  Node node = *one.patterns().front();
+  detail::IdMaker ids(doc);
+  detail::assign_ids(node, ids, true);
+  const std::string id(node.id());
+  const Node* list = doc.container("PATTERNS");
+  if (!list) throw Error(doc.name(), where, "the document has no PATTERNS to add it to");
+  edit.insert(*doc.path_of(list->id()), list->children.size(), std::move(node));
+  if (grads) {
+    Node size_node{"SIZE", {{"id", ids.make("size")}, {"name", size}, {"pattern", id}}, {}};
+    if (grads->has_attribute("sample_size") && grads->attribute("sample_size") == size) size_node.set_attribute("sample", "true");
+    Node grad{"GRADATION", {{"id", ids.make("grad")}, {"piece", pc.name}}, {std::move(size_node)}};
+    edit.insert(*doc.path_of(grads->id()), grads->children.size(), std::move(grad));
+  }
   return id;
 }
 

@@ -25,6 +25,7 @@
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
 #include "vgd/dress/drape.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/studio/harness.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
@@ -987,6 +988,72 @@ TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
   EXPECT_TRUE(h.studio().picked().empty()) << "nothing picked";
   h.click("Measure");
   EXPECT_NE(h.studio().status().find("Measuring ended"), std::string::npos) << h.studio().status();
+}
+
+// Drawing in the pattern view. A line on the selected skirt front: two clicks
+// 40 px apart, then Enter: the front gains an internal line 40 px / scale
+// long, level, in the piece's own frame (inside it), as one undo step. A
+// piece: three corners clicked beside the pieces, then the first again: a new
+// pattern of the size shown with three stretches, undone in one step. A
+// drawing dropped with Esc changes nothing.
+TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
+  Harness h;
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx(), centre->cy());
+  h.frame();
+  ASSERT_EQ(h.studio().selected(), front);
+  const auto original = h.studio().document();
+  const std::size_t lines = vgd::xvc::to_piece(original, front).internal_lines.size();
+  const float scale = h.studio().pattern_scale();
+  ASSERT_GT(scale, 0.0f);
+
+  h.click("Draw line");
+  h.click_at(centre->cx() - 20, centre->cy());
+  h.click_at(centre->cx() + 20, centre->cy());
+  h.key("enter");
+  h.frame();
+  const auto piece = vgd::xvc::to_piece(h.studio().document(), front);
+  ASSERT_EQ(piece.internal_lines.size(), lines + 1) << h.studio().status();
+  const auto& line = piece.internal_lines.back().points;
+  ASSERT_EQ(line.size(), 2u);
+  EXPECT_NEAR((line[1] - line[0]).norm(), 40.0 / scale, 1.5 / scale);
+  EXPECT_NEAR(line[1].y(), line[0].y(), 1e-9) << "level";
+  EXPECT_TRUE(vgd::pattern::point_in_outline(piece.boundary, 0.5 * (line[0] + line[1]))) << "in the piece's own frame";
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+
+  // Escape drops a drawing.
+  h.click("Draw line");
+  h.click_at(centre->cx(), centre->cy());
+  h.key("escape");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+  EXPECT_NE(h.studio().status().find("Drawing dropped"), std::string::npos) << "[" << h.studio().status() << "]";
+
+  // A piece: corners to the right of the front, closed on the first.
+  const std::size_t patterns = original.patterns().size();
+  const float x = centre->x1 + 6, y = centre->cy();
+  h.click("Draw piece");
+  h.click_at(x, y);
+  h.click_at(x + 30, y);
+  h.click_at(x + 15, y - 30);
+  h.click_at(x + 1, y);
+  h.frame();
+  const auto& drawn = h.studio().document();
+  ASSERT_EQ(drawn.patterns().size(), patterns + 1) << h.studio().status();
+  const vgd::xvc::Node* added = drawn.patterns().back();
+  EXPECT_EQ(added->attribute("piece"), "drawn piece");
+  EXPECT_EQ(added->attribute("size"), "38");
+  EXPECT_EQ(vgd::xvc::boundary_stretches(*added).size(), 3u);
+  const double area = std::abs(vgd::pattern::signed_area(vgd::xvc::to_piece(drawn, std::string(added->id())).boundary));
+  EXPECT_NEAR(area, 0.5 * 30 * 30 / (scale * scale), 0.2 * 30 * 30 / (scale * scale));
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
 }
 
 // Outline editing in the pattern view: a click inside a piece selects it and

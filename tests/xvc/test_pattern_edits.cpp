@@ -1,8 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "fixtures.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/pattern/contour.hpp"
+#include "vgd/xvc/io.hpp"
+#include "vgd/xvc/validate.hpp"
 
 using namespace vgd::xvc;
 using namespace vgd::xvc::test;
@@ -456,4 +461,93 @@ TEST(SetPieceMaterial, CopiesTheFabricOnceAndDropsItWhenNoPieceNamesIt) {
   EXPECT_EQ(doc.root(), before.root());
   SetPieceMaterial notes("pattern1", Node{"PARAMETER", {{"id", "x"}}, {}});
   EXPECT_THROW(execute(doc, notes), vgd::Error);
+}
+
+// An internal line drawn on a piece: read back as the piece's internal line,
+// point for point; the document still checks and validates; undo removes it.
+// Refused: one point, a point 2 mm outside the outline, a NaN, a pattern
+// that is not one.
+TEST(AddInternalLine, DrawsALineInsideAPieceAndRefusesOneOutside) {
+  Document doc = full_document();
+  const Piece before = to_piece(doc, "pattern1");
+  Vec2 lo = before.boundary[0].p, hi = lo;
+  for (const auto& c : before.boundary) lo = lo.cwiseMin(c.p), hi = hi.cwiseMax(c.p);
+  const Vec2 m = 0.5 * (lo + hi);
+  const std::vector<std::array<double, 2>> pts = {{m.x() - 0.02, m.y()}, {m.x() + 0.02, m.y() + 0.01}, {m.x(), m.y() - 0.03}};
+  UndoStack stack(doc);
+  const std::string id = stack.execute(std::make_unique<AddInternalLine>("pattern1", pts));
+  const Piece after = to_piece(doc, "pattern1");
+  ASSERT_EQ(after.internal_lines.size(), before.internal_lines.size() + 1);
+  const auto& line = after.internal_lines.back();
+  EXPECT_FALSE(line.closed);
+  ASSERT_EQ(line.points.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(line.points[i], Vec2(pts[i][0], pts[i][1])) << i;
+  EXPECT_EQ(id, "pattern1");
+  const Node* seq = nullptr;
+  for (const auto& c : doc.find(id)->children)
+    if (c.tag == "C2DSEQ" && c.attribute("role") == "internal") seq = &c;
+  ASSERT_NE(seq, nullptr);
+  EXPECT_EQ(seq->children.size(), 3u);
+  EXPECT_EQ(after.boundary.size(), before.boundary.size());
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  EXPECT_EQ(vgd::xvc::validate_string(save_string(doc), "t.xvc", vgd::xvc::default_schema_path()).count(vgd::Severity::error), 0u);
+  stack.undo();
+  EXPECT_EQ(to_piece(doc, "pattern1").internal_lines.size(), before.internal_lines.size());
+
+  Document d = full_document();
+  EXPECT_THROW(execute(d, *std::make_unique<AddInternalLine>("pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}})),
+               vgd::Error);
+  const Vec2 out = Vec2(hi.x() + 0.002, m.y());
+  try {
+    execute(d, *std::make_unique<AddInternalLine>("pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {out.x(), out.y()}}));
+    ADD_FAILURE() << "a point outside was drawn";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("point 2 of the line"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("lies outside the piece"), std::string::npos) << e.what();
+  }
+  const Vec2 edge = Vec2(hi.x() + 0.0005, m.y());  // within 1 mm of the outline: on it
+  if (vgd::pattern::nearest_edge(before.boundary, edge).distance <= 0.001)
+    EXPECT_NO_THROW(execute(d, *std::make_unique<AddInternalLine>(
+                                   "pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {edge.x(), edge.y()}})));
+  EXPECT_THROW(execute(d, *std::make_unique<AddInternalLine>(
+                              "pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {std::nan(""), m.y()}})),
+               vgd::Error);
+  EXPECT_THROW(execute(d, *std::make_unique<AddInternalLine>("seam1", pts)), vgd::Error);
+}
+
+// A piece drawn as a polygon (clockwise here): a new PATTERN of the sample
+// size, counter-clockwise, one stretch per side, cut once, with a GRADATION
+// naming it; a second one of the same name is numbered; the document checks
+// and validates. Refused: two points, crossing sides, a sliver under 1 cm².
+TEST(AddDrawnPattern, AddsAPolygonAsAPieceWithAStretchPerSide) {
+  Document doc = full_document();
+  const std::size_t n = doc.patterns().size();
+  const std::vector<std::array<double, 2>> square = {{2.0, 0.0}, {2.0, 0.1}, {2.2, 0.1}, {2.2, 0.0}};
+  const std::string id = execute(doc, *std::make_unique<AddDrawnPattern>("PATCH", "", square));
+  ASSERT_EQ(doc.patterns().size(), n + 1);
+  const Node* p = doc.find(id);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->attribute("piece"), "PATCH");
+  EXPECT_EQ(p->attribute("quantity"), "1");
+  const auto* grads = doc.container("GRADATIONS");
+  ASSERT_NE(grads, nullptr);
+  EXPECT_EQ(p->attribute("size"), grads->attribute("sample_size"));
+  bool graded = false;
+  for (const auto& g : grads->children)
+    for (const auto& s : g.children) graded = graded || s.attribute("pattern") == id;
+  EXPECT_TRUE(graded);
+  const Piece pc = to_piece(doc, id);
+  EXPECT_NEAR(vgd::pattern::signed_area(pc.boundary), 0.02, 1e-12);  // counter-clockwise
+  EXPECT_EQ(boundary_stretches(*p).size(), 4u);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  EXPECT_EQ(vgd::xvc::validate_string(save_string(doc), "t.xvc", vgd::xvc::default_schema_path()).count(vgd::Severity::error), 0u);
+  const std::string again = execute(doc, *std::make_unique<AddDrawnPattern>("PATCH", "", square));
+  EXPECT_EQ(doc.find(again)->attribute("piece"), "PATCH 2");
+
+  using Pts = std::vector<std::array<double, 2>>;
+  EXPECT_THROW(execute(doc, *std::make_unique<AddDrawnPattern>("X", "", Pts{{0, 0}, {1, 0}})), vgd::Error);
+  EXPECT_THROW(execute(doc, *std::make_unique<AddDrawnPattern>("X", "", Pts{{0, 0}, {0.1, 0.1}, {0.1, 0}, {0, 0.1}})),
+               vgd::Error);
+  EXPECT_THROW(execute(doc, *std::make_unique<AddDrawnPattern>("X", "", Pts{{0, 0}, {0.5, 0}, {0.5, 0.0001}})), vgd::Error);
+  EXPECT_EQ(doc.patterns().size(), n + 2);
 }

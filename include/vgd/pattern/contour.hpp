@@ -55,6 +55,9 @@ int mark_corners(std::vector<ContourPoint>& outline, double min_angle_deg = 30.0
 // Reverses the outline if it winds clockwise. Returns true when it reversed.
 bool make_counter_clockwise(std::vector<ContourPoint>& outline);
 
+// Even-odd test: whether `p` lies inside the closed outline.
+bool point_in_outline(const std::vector<ContourPoint>& outline, const Vec2& p);
+
 // Index of the vertex nearest to p, and its distance; {-1, inf} for an empty outline.
 struct Nearest {
   int index = -1;

@@ -59,7 +59,7 @@ class Harness {
 
   // Runs a script, one command per line ('#' starts a comment):
   //   open FILE | save [FILE] | export-vrml FILE.wrl | click WIDGET | click-stretch PATTERN SEQ
-  //   click-piece PATTERN | drag-point PATTERN SEQ INDEX DX DY (px)
+  //   click-piece PATTERN [DX DY] | drag-point PATTERN SEQ INDEX DX DY (px)
   //   key CHORD | type TEXT | frames N | wait-drape | screenshot FILE.png
   //   expect-status TEXT (fails unless the status bar contains TEXT)
   // Paths are relative to the script's folder. Throws vgd::Error naming the

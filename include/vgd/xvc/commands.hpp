@@ -311,6 +311,40 @@ class RotatePattern : public Command {
   double degrees_;
 };
 
+// Draws an internal line on a PATTERN (a fold, a pocket's place, a dart's legs):
+// a C2DSEQ role="internal" of `points` (m, in the pattern's frame; closed: a loop),
+// after the pattern's boundary and internal lines. Refused for fewer than two
+// points (three when closed), a non-finite coordinate, or a point outside the
+// outline by more than 1 mm. Returns the pattern's id.
+class AddInternalLine : public Command {
+ public:
+  AddInternalLine(std::string pattern_id, std::vector<std::array<double, 2>> points, bool closed = false);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  std::vector<std::array<double, 2>> points_;
+  bool closed_;
+};
+
+// Adds a piece drawn as a polygon (m): a PATTERN of `size` (empty: the sample
+// size, else the first pattern's) cut once, each vertex a turn point (every side
+// a stretch of its own, to be sewn), counter-clockwise, with its own GRADATION.
+// Its piece and block names are `name`, numbered when taken. Refused for fewer
+// than three points, a non-finite coordinate, sides that cross, or an area under
+// 1 cm². Returns the new PATTERN's id.
+class AddDrawnPattern : public Command {
+ public:
+  AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string name_, size_;
+  std::vector<std::array<double, 2>> points_;
+};
+
 // Cuts a PATTERN from a fabric of its own: `material` (a MATERIAL element, e.g.
 // from a shipped fabric's document) is added to MATERIALS with fresh ids and scope
 // "piece" (never the garment's fabric: xvc::garment_material), unless a piece
