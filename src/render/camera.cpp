@@ -79,4 +79,38 @@ Camera frame_camera(const ViewPreset& view, const Box& box, double aspect, doubl
   return cam;
 }
 
+namespace {
+// The camera's frame: forward, right and up unit vectors, as the renderer's look-at builds it.
+struct ViewFrame {
+  D3 f, r, u;
+  double ty, tx;  // tan of the half field of view, vertically and across
+};
+ViewFrame view_frame(const Camera& c, int width, int height) {
+  ViewFrame v;
+  v.f = normalized({c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]});
+  v.r = normalized(cross(v.f, c.up));
+  v.u = cross(v.r, v.f);
+  v.ty = std::tan(radians(c.fov_y_deg) / 2);
+  v.tx = v.ty * static_cast<double>(width) / height;
+  return v;
+}
+}  // namespace
+
+std::optional<ScreenPoint> project(const Camera& c, int width, int height, const std::array<double, 3>& p) {
+  const ViewFrame v = view_frame(c, width, height);
+  const D3 d{p[0] - c.eye[0], p[1] - c.eye[1], p[2] - c.eye[2]};
+  const double z = dot(d, v.f);
+  if (!(z > 0)) return std::nullopt;
+  const double nx = dot(d, v.r) / (z * v.tx), ny = dot(d, v.u) / (z * v.ty);
+  return ScreenPoint{(nx + 1) / 2 * width, (1 - ny) / 2 * height, z};
+}
+
+std::array<double, 3> unproject(const Camera& c, int width, int height, double x, double y, double depth) {
+  const ViewFrame v = view_frame(c, width, height);
+  const double nx = 2 * x / width - 1, ny = 1 - 2 * y / height;
+  D3 p;
+  for (int k = 0; k < 3; ++k) p[k] = c.eye[k] + depth * (v.f[k] + nx * v.tx * v.r[k] + ny * v.ty * v.u[k]);
+  return p;
+}
+
 }  // namespace vgd::render

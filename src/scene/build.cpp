@@ -469,6 +469,7 @@ std::vector<std::string> effect_names(const SceneDef& def) {
   if (e.collision) names.push_back("body-collision");
   if (e.self_collision) names.push_back("self-collision");
   if (e.contact) names.push_back("contact");
+  if (e.hand) names.push_back("hand");
   return names;
 }
 
@@ -553,6 +554,7 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
     if (e.viscosity) effects.push_back(sim::make_viscosity(*e.viscosity));
     if (e.damping) effects.push_back(sim::make_damping(model, *e.damping));
     if (e.wind) effects.push_back(sim::make_wind(*e.wind));
+    if (e.hand) effects.push_back(sim::make_hand(*e.hand));
     for (std::size_t i = 0; i < pin_groups.size(); ++i)
       effects.push_back(sim::make_pins(model, {pin_groups[i], e.pins[i].velocity}));
     // The speed limit before the contacts, so their tests see limited motion.

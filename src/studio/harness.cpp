@@ -130,6 +130,31 @@ void Harness::drag(float x0, float y0, float x1, float y1, int steps) {
   frame();
 }
 
+void Harness::press(float x, float y, bool ctrl) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = {x, y};
+  io.KeyCtrl = ctrl;
+  frame();
+  io.MouseDown[0] = true;
+  frame();
+}
+
+void Harness::move_mouse(float x, float y) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGui::GetIO().MousePos = {x, y};
+  frame();
+}
+
+void Harness::release() {
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MouseDown[0] = false;
+  frame();
+  io.KeyCtrl = false;
+  frame();
+}
+
 void Harness::scroll(float x, float y, float notches) {
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();

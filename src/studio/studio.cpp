@@ -32,6 +32,7 @@
 #include "vgd/render/offscreen.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
+#include "vgd/sim/effects/hand.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -176,6 +177,16 @@ struct Studio::Impl {
 
   // Preview.
   std::unique_ptr<render::OffscreenRenderer> renderer;
+  // The camera of the last preview drawn and its size (px): where the live
+  // cloth's particles are on screen, for pulling them.
+  std::optional<render::Camera> preview_camera;
+  int preview_w = 0, preview_h = 0;
+  // Pulling the cloth by hand (Ctrl+drag in the 3-D view while a drape runs
+  // here): the hand effect every local drape carries (sim/effects/hand.hpp),
+  // the particle held and its depth in the view (m).
+  std::shared_ptr<sim::HandControl> hand = std::make_shared<sim::HandControl>();
+  std::optional<int> pulling;
+  double pull_depth = 0;
   unsigned texture = 0;
   int tex_w = 0, tex_h = 0;
   bool preview_dirty = false;
@@ -1675,6 +1686,9 @@ struct Studio::Impl {
       cert.reset();
       cloth = {};
       job = &here;
+      release_hand();
+      def.effects.hand = sim::HandDef{};
+      def.effects.hand->control = hand;  // Ctrl+drag in the 3-D view pulls the cloth
       here.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
       was_running = true;
       say("Draping size " + prep.size + " at quality " + quality + made + "...");
@@ -1698,6 +1712,38 @@ struct Studio::Impl {
       say("Body: " + all);
     }
     was_running = s.running;
+  }
+
+  // Where a live particle is in the last preview (px from its top-left), if shown.
+  std::optional<render::ScreenPoint> particle_screen(int i) const {
+    if (!preview_camera || i < 0 || static_cast<std::size_t>(i) >= cloth.positions.size()) return std::nullopt;
+    const auto& q = cloth.positions[static_cast<std::size_t>(i)];
+    return render::project(*preview_camera, preview_w, preview_h, {q[0], q[1], q[2]});
+  }
+
+  // Ctrl+press on the 3-D view: of the particles drawn within 12 px of the
+  // press, the nearest the eye is held, pulled to the mouse at its depth
+  // until the button is let go.
+  void grab_cloth(const ImVec2& at) {
+    constexpr double kReach = 12;  // px
+    std::optional<int> best;
+    double depth = 0;
+    for (std::size_t i = 0; i < cloth.positions.size(); ++i) {
+      const auto q = particle_screen(static_cast<int>(i));
+      if (!q || std::hypot(q->x - at.x, q->y - at.y) > kReach || (best && q->depth >= depth)) continue;
+      best = static_cast<int>(i), depth = q->depth;
+    }
+    if (!best) return say("Nothing of the cloth under the mouse to pull (Ctrl+drag on the garment).");
+    const auto& q = cloth.positions[static_cast<std::size_t>(*best)];
+    hand->grab(*best, sim::Vec3(q[0], q[1], q[2]));
+    pulling = best, pull_depth = depth;
+    say("Pulling the cloth at particle " + std::to_string(*best) + ": drag it, let go to release it.");
+  }
+
+  void release_hand() {
+    hand->release();
+    if (pulling) say("Let go of the cloth.");
+    pulling.reset();
   }
 
   void toggle_pause() {
@@ -1831,7 +1877,10 @@ struct Studio::Impl {
         renderer->set_scene(preview_scene());
         render::OffscreenOptions o;
         o.supersample = running ? 1 : 2;
-        render::Image img = renderer->render(render::ViewPreset{"studio", azimuth, elevation, 30}, w, h, o);
+        const render::Camera cam = render::frame_camera(render::ViewPreset{"studio", azimuth, elevation, 30},
+                                                        renderer->framing_box(o), static_cast<double>(w) / h, o.margin);
+        render::Image img = renderer->render(cam, w, h, o);
+        preview_camera = cam, preview_w = w, preview_h = h;
         if (fit_map > 0 && !cloth.positions.empty()) {
           const auto map = static_cast<render::FitMap>(fit_map - 1);
           render::draw_legend(img, map, render::default_scale(map));
@@ -1858,12 +1907,28 @@ struct Studio::Impl {
       const ImVec2 a = ImGui::GetItemRectMin();
       ImGui::GetWindowDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture)), a,
                                            {a.x + size.x, a.y + size.y});
-      if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+      const ImVec2 mouse = ImGui::GetIO().MousePos;
+      const bool pullable = job == &here && running && !cloth.positions.empty() && preview_camera;
+      if (ImGui::IsItemActivated() && ImGui::GetIO().KeyCtrl && pullable) grab_cloth({mouse.x - a.x, mouse.y - a.y});
+      if (pulling && (!ImGui::IsItemActive() || !pullable)) release_hand();
+      if (pulling) {
+        // The held particle is pulled to the point under the mouse at its depth.
+        const auto p = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - a.x, mouse.y - a.y, pull_depth);
+        hand->move(sim::Vec3(p[0], p[1], p[2]));
+        if (const auto q = particle_screen(*pulling)) {
+          ImDrawList* dl = ImGui::GetWindowDrawList();
+          const ImVec2 from{a.x + static_cast<float>(q->x), a.y + static_cast<float>(q->y)};
+          dl->AddLine(from, mouse, rgb(230, 60, 20), 2.0f);
+          dl->AddCircleFilled(from, 4.0f, rgb(230, 60, 20));
+        }
+      } else if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
         const ImVec2 d = ImGui::GetIO().MouseDelta;
         azimuth -= 0.4 * d.x;
         elevation = std::clamp(elevation + 0.3 * d.y, -60.0, 80.0);
         preview_dirty = true;
       }
+      if (ImGui::IsItemHovered() && pullable && !pulling)
+        ImGui::SetTooltip("Drag to turn the view; Ctrl+drag pulls the cloth while it drapes");
     } else {
       ImGui::TextDisabled("Drape the garment to see it on the body.");
       ImGui::TextDisabled("Drag the picture to turn it.");
@@ -2320,6 +2385,15 @@ std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
 }
 float Studio::pattern_scale() const { return impl_->scale; }
 std::optional<double> Studio::measured() const { return impl_->measured; }
+std::optional<int> Studio::held_particle() const { return impl_->pulling; }
+std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
+std::optional<Rect> Studio::particle_on_screen(int particle) const {
+  const auto q = impl_->particle_screen(particle);
+  const auto r = widget("preview");
+  if (!q || !r) return std::nullopt;
+  const float x = r->x0 + static_cast<float>(q->x), y = r->y0 + static_cast<float>(q->y);
+  return Rect{x, y, x, y};
+}
 
 std::optional<xvc::OutlinePoint> Studio::selected_point() const {
   if (impl_->point_sel && impl_->point_sel->pattern_id == impl_->selected) return impl_->point_sel;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/synthetic_scene.hpp"
 #include "vgd/core/diagnostics.hpp"
@@ -100,4 +101,43 @@ TEST(Offscreen, TheContextIsOpenGl33CoreOrNewer) {
   render::OffscreenRenderer r;
   const std::string d = r.gl_description();
   EXPECT_NE(d.find("Core Profile"), std::string::npos) << d;
+}
+
+// project() puts a world point where the renderer draws it: the red tube's
+// top and bottom edges at its front (y = 1.0 and 0.6 m, z = 0.2 m) project to
+// the first and last red rows of the picture's middle column, within a pixel;
+// unproject() takes a pixel and depth back to the point; a point behind the
+// camera projects nowhere.
+TEST(Offscreen, ProjectGivesThePixelWhereAPointIsDrawn) {
+  const auto scene = test::dressed_cylinder();
+  render::OffscreenRenderer r;
+  r.set_scene(scene);
+  const int w = 160, h = 120;
+  const auto view = *render::find_view("three-quarter");
+  const render::Camera cam = render::frame_camera(view, r.framing_box({}), static_cast<double>(w) / h);
+  const auto im = r.render(view, w, h);
+  const auto front_of = [&](double y) {
+    const double a = view.azimuth_deg * M_PI / 180.0;  // the tube's point facing the camera
+    return std::array<double, 3>{0.2 * std::sin(a), y, 0.2 * std::cos(a)};
+  };
+  const auto top = render::project(cam, w, h, front_of(1.0)), bottom = render::project(cam, w, h, front_of(0.6));
+  ASSERT_TRUE(top && bottom);
+  const int col = static_cast<int>(std::lround(top->x));
+  ASSERT_NEAR(top->x, bottom->x, 1.0);
+  int first = -1, last = -1;
+  for (int y = 0; y < h; ++y) {
+    const auto* p = im.pixel(col, y);
+    if (p[0] > p[1] + 60 && p[0] > p[2] + 60) {
+      if (first < 0) first = y;
+      last = y;
+    }
+  }
+  ASSERT_GE(first, 0) << "the red tube is drawn";
+  EXPECT_NEAR(first + 0.5, top->y, 1.0);
+  EXPECT_NEAR(last + 0.5, bottom->y, 1.0);
+  const auto back = render::unproject(cam, w, h, top->x, top->y, top->depth);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], front_of(1.0)[k], 1e-9);
+  const std::array<double, 3> behind{2 * cam.eye[0] - cam.target[0], 2 * cam.eye[1] - cam.target[1],
+                                     2 * cam.eye[2] - cam.target[2]};
+  EXPECT_FALSE(render::project(cam, w, h, behind).has_value());
 }

@@ -488,6 +488,82 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   EXPECT_FALSE(h.studio().drape_status().paused);
 }
 
+// Pulling the cloth by hand: Ctrl+press on the skirt's front hem in the 3-D
+// view while it drapes takes hold of a particle there; the mouse moved 60 px
+// to the right and held for half a second of simulated time drags that
+// particle more than 5 cm and more than twice as far as the hem's particle
+// farthest from it moves meanwhile, towards the mouse on screen (right, more
+// than it goes up or down); let go, nothing is held.
+TEST(Studio, TheClothIsPulledByHandDuringADrape) {
+  omp_set_num_threads(1);
+  Harness h(1024, 700);
+  auto& o = h.studio().drape_options();
+  ASSERT_TRUE(h.studio().open(kSkirt));
+  h.frame();
+  o.time_limit = 6.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+  const auto wait_until = [&](const std::function<bool()>& done) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    while (!done() && std::chrono::steady_clock::now() < deadline) {
+      h.frame();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return done();
+  };
+  ASSERT_TRUE(wait_until([&] {
+    return h.studio().drape_status().t > 1.5 && h.studio().particle_on_screen(0).has_value();
+  })) << "the drape never showed its cloth";
+  // The front hem: of the particles within 5 cm of the lowest, the one facing the view (35° round).
+  const auto x = h.studio().cloth_positions();
+  float low = 1e9f;
+  for (const auto& q : x) low = std::min(low, q[1]);
+  int pick = -1;
+  double facing = -1e9;
+  const double az = 35.0 * M_PI / 180.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i][1] < low + 0.05 && x[i][0] * std::sin(az) + x[i][2] * std::cos(az) > facing)
+      facing = x[i][0] * std::sin(az) + x[i][2] * std::cos(az), pick = static_cast<int>(i);
+  ASSERT_GE(pick, 0);
+  const auto at = h.studio().particle_on_screen(pick);
+  ASSERT_TRUE(at.has_value());
+  h.press(at->cx(), at->cy(), true);
+  const auto held = h.studio().held_particle();
+  ASSERT_TRUE(held.has_value()) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("Pulling the cloth"), std::string::npos) << h.studio().status();
+  const auto start = h.studio().cloth_positions();
+  const auto before = start[static_cast<std::size_t>(*held)];
+  std::size_t far = 0;  // the hem's particle farthest from the one held
+  double farthest = -1;
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    const double d = std::hypot(start[i][0] - before[0], start[i][2] - before[2]);
+    if (start[i][1] < low + 0.05 && d > farthest) farthest = d, far = i;
+  }
+  const auto seen = *h.studio().particle_on_screen(*held);
+  for (int k = 1; k <= 6; ++k) h.move_mouse(at->cx() + 10.0f * k, at->cy());
+  const double t0 = h.studio().drape_status().t;
+  ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > t0 + 0.5; }));
+  h.frames(20);  // the preview redrawn with the newest frame
+  const auto end = h.studio().cloth_positions();
+  const auto distance = [&](std::size_t i) {
+    return std::hypot(end[i][0] - start[i][0], end[i][1] - start[i][1], end[i][2] - start[i][2]);
+  };
+  const double moved = distance(static_cast<std::size_t>(*held)), other = distance(far);
+  EXPECT_GT(moved, 0.05) << "pulled " << moved << " m";
+  EXPECT_GT(moved, 2 * other) << "pulled " << moved << " m; the far side of the hem moved " << other << " m";
+  const auto now = h.studio().particle_on_screen(*held);
+  ASSERT_TRUE(now.has_value());
+  const float dx = now->cx() - seen.cx(), dy = now->cy() - seen.cy();
+  EXPECT_GT(dx, 10.0f) << "to the right on screen";
+  EXPECT_LT(std::abs(dy), dx) << "more across than up or down: " << dx << ", " << dy << " px";
+  EXPECT_EQ(h.studio().held_particle(), held);
+  h.release();
+  EXPECT_FALSE(h.studio().held_particle().has_value());
+  EXPECT_NE(h.studio().status().find("Let go of the cloth"), std::string::npos) << h.studio().status();
+  h.click("Stop");
+  h.studio().wait_for_drape();
+}
+
 // The desktop's file dialog (zenity's command line) for File > Open...,
 // Save as... and Export VRML...: a stand-in program records its arguments
 // and answers as zenity does. A chosen path is opened or saved to; exit 1

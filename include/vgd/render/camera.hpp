@@ -40,4 +40,14 @@ struct Camera {
 // free on each side, looking at the box centre.
 Camera frame_camera(const ViewPreset& view, const Box& box, double aspect, double margin = 0.05);
 
+// Where a world point (m) appears in a width × height picture the camera
+// draws: pixels from the top-left corner, x right and y down, and its depth
+// along the view direction (m); nothing when it is not in front of the camera.
+struct ScreenPoint {
+  double x = 0, y = 0, depth = 0;
+};
+std::optional<ScreenPoint> project(const Camera& camera, int width, int height, const std::array<double, 3>& p);
+// The world point (m) seen at pixel (x, y) at that depth: project's inverse.
+std::array<double, 3> unproject(const Camera& camera, int width, int height, double x, double y, double depth);
+
 }  // namespace vgd::render

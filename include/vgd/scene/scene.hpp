@@ -22,6 +22,7 @@
 #include "vgd/sim/effects/basic.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
 #include "vgd/sim/effects/contact.hpp"
+#include "vgd/sim/effects/hand.hpp"
 #include "vgd/sim/effects/seam.hpp"
 #include "vgd/sim/effects/self_collision.hpp"
 #include "vgd/sim/integrator.hpp"
@@ -189,6 +190,10 @@ struct EffectsDef {
   // body, seam pairs and pins are filled by build().
   std::optional<sim::ContactDef> contact;
   std::optional<SeamsDef> seams;
+  // A hand pulling the cloth (sim/effects/hand.hpp): set by a program that
+  // lets its user grab the cloth during a run (the studio), never read from
+  // or written to a scene file.
+  std::optional<sim::HandDef> hand;
 };
 
 // ---- integration, frames, output --------------------------------------------------

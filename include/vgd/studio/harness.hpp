@@ -47,6 +47,11 @@ class Harness {
   void click(std::string_view widget, bool shift = false);
   // Drags with the left button from (x0, y0) to (x1, y1) in `steps` moves.
   void drag(float x0, float y0, float x1, float y1, int steps = 8);
+  // The left button held down at (x, y) (with Ctrl when asked), the mouse
+  // moved while it is held, and let go: for drags that must last.
+  void press(float x, float y, bool ctrl = false);
+  void move_mouse(float x, float y);
+  void release();
   // Turns the mouse wheel by `notches` (positive: away from the user) at (x, y).
   void scroll(float x, float y, float notches);
   // Presses a key with modifiers: "ctrl+z", "ctrl+shift+z", "ctrl+s", "delete",

@@ -28,6 +28,7 @@
 // Studio::draw(), ImGui::Render() and render_gl(). Two hosts exist: the GLFW
 // window of apps/vgd-studio, and the Harness (harness.hpp), an OSMesa
 // off-screen host that scripts and tests drive with synthetic mouse and keys.
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -210,6 +211,12 @@ class Studio {
   // The measuring tool's last distance (m) between two points of the pattern
   // view (Measure; outline points snap).
   std::optional<double> measured() const;
+  // Pulling the cloth by hand (Ctrl+drag in the 3-D view during a drape run
+  // here): the particle held, the live cloth's particles (m) as the preview
+  // last drew them, and where one is on screen in that preview.
+  std::optional<int> held_particle() const;
+  std::vector<std::array<float, 3>> cloth_positions() const;
+  std::optional<Rect> particle_on_screen(int particle) const;
 
   // Called after the 3-D preview drew off-screen, to make the UI's GL context
   // current again (both may be OSMesa contexts in one thread).
