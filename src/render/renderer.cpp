@@ -234,6 +234,8 @@ struct Renderer::Impl {
   GLuint floor_vao = 0, floor_vbo = 0;
   GLuint shadow_fbo = 0, shadow_texture = 0;
   int shadow_size = 0;
+  GLuint view_fbo = 0, view_texture = 0, view_depth = 0;  // draw_to_texture's target
+  int view_w = 0, view_h = 0;
   Box scene_box, body_box;
 
   GLuint compile(GLenum kind, const char* source) {
@@ -384,6 +386,9 @@ Renderer::~Renderer() {
   I.gl.DeleteBuffers(1, &I.floor_vbo);
   if (I.shadow_fbo) I.gl.DeleteFramebuffers(1, &I.shadow_fbo);
   if (I.shadow_texture) I.gl.DeleteTextures(1, &I.shadow_texture);
+  if (I.view_fbo) I.gl.DeleteFramebuffers(1, &I.view_fbo);
+  if (I.view_texture) I.gl.DeleteTextures(1, &I.view_texture);
+  if (I.view_depth) I.gl.DeleteRenderbuffers(1, &I.view_depth);
   I.gl.DeleteProgram(I.mesh_program);
   I.gl.DeleteProgram(I.textured_program);
   I.gl.DeleteProgram(I.floor_program);
@@ -574,6 +579,39 @@ std::string Renderer::gl_description() const {
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
   };
   return "OpenGL " + str(GL_VERSION) + ", " + str(GL_RENDERER);
+}
+
+unsigned Renderer::draw_to_texture(const Camera& camera, int width, int height, const RenderOptions& options) {
+  VGD_ASSERT(width > 0 && height > 0, "the texture must have a positive size");
+  auto& I = *impl_;
+  auto& gl = I.gl;
+  GLint bound = 0;
+  gl.GetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
+  if (!I.view_fbo || I.view_w != width || I.view_h != height) {
+    if (!I.view_texture) gl.GenTextures(1, &I.view_texture);
+    gl.BindTexture(GL_TEXTURE_2D, I.view_texture);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (!I.view_depth) gl.GenRenderbuffers(1, &I.view_depth);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, I.view_depth);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    if (!I.view_fbo) gl.GenFramebuffers(1, &I.view_fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, I.view_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, I.view_texture, 0);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, I.view_depth);
+    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("", "OpenGL", "cannot make a " + std::to_string(width) + " x " + std::to_string(height) +
+                                    " framebuffer to draw the view in");
+    I.view_w = width, I.view_h = height;
+  }
+  draw(camera, {I.view_fbo, width, height}, options);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
+  return I.view_texture;
 }
 
 }  // namespace vgd::render

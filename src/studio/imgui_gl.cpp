@@ -17,9 +17,11 @@ namespace vgd::studio {
 
 namespace {
 bool g_ready = false;
+GlLoader g_loader = nullptr;
 }
 
 void init_gl(GlLoader loader) {
+  g_loader = loader;
   // Not imgl3wInit2(): in ImGui 1.86 its table's ptr[] holds 53 entries for
   // 54 names (the union's struct has all 54, so the write stays inside the
   // table, but UBSan rightly reports the index). Fill the same table through
@@ -65,6 +67,8 @@ render::Image read_framebuffer(int width, int height) {
 namespace gl {
 
 bool ready() { return g_ready; }
+
+GlLoader loader() { return g_loader; }
 
 unsigned upload_texture(const render::Image& image, unsigned reuse) {
   GLuint tex = reuse;

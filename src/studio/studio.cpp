@@ -30,6 +30,7 @@
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/looks.hpp"
 #include "vgd/render/offscreen.hpp"
+#include "vgd/render/renderer.hpp"
 #include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/sim/effects/hand.hpp"
@@ -189,6 +190,14 @@ struct Studio::Impl {
   double pull_depth = 0;
   unsigned texture = 0;
   int tex_w = 0, tex_h = 0;
+  // The 3-D view drawn in the window's own GL context (render::Renderer into
+  // a texture of its own, shown flipped: its rows go up); the OSMesa renderer
+  // and an uploaded picture only if that cannot start. A fit map's legend is
+  // an overlay texture, transparent but for the legend.
+  std::unique_ptr<render::Renderer> view;
+  bool view_failed = false;
+  unsigned view_texture = 0, legend_texture = 0;
+  bool legend_shown = false;
   bool preview_dirty = false;
   double last_preview = -1e9;
   double azimuth = 35, elevation = 8;
@@ -286,7 +295,10 @@ struct Studio::Impl {
       j->request_stop();
       j->wait();
     }
+    if (restore) restore();  // the view's GL objects go with the UI's context current
+    view.reset();
     gl::delete_texture(texture);
+    gl::delete_texture(legend_texture);
     if (!work_dir.empty()) {
       std::error_code ec;
       fs::remove_all(work_dir, ec);
@@ -1873,22 +1885,50 @@ struct Studio::Impl {
     if ((body || !cloth.positions.empty()) && gl::ready() &&
         ((preview_dirty && (!running || now - last_preview >= kPreviewInterval)) || (resized && texture))) {
       try {
-        if (!renderer) renderer = std::make_unique<render::OffscreenRenderer>();
-        renderer->set_scene(preview_scene());
-        render::OffscreenOptions o;
-        o.supersample = running ? 1 : 2;
-        const render::Camera cam = render::frame_camera(render::ViewPreset{"studio", azimuth, elevation, 30},
-                                                        renderer->framing_box(o), static_cast<double>(w) / h, o.margin);
-        render::Image img = renderer->render(cam, w, h, o);
-        preview_camera = cam, preview_w = w, preview_h = h;
-        if (fit_map > 0 && !cloth.positions.empty()) {
-          const auto map = static_cast<render::FitMap>(fit_map - 1);
-          render::draw_legend(img, map, render::default_scale(map));
+        const render::ViewPreset preset{"studio", azimuth, elevation, 30};
+        const bool map = fit_map > 0 && !cloth.positions.empty();
+        if (!view && !view_failed) {
+          try {
+            view = std::make_unique<render::Renderer>(reinterpret_cast<render::Renderer::ProcLoader>(gl::loader()));
+          } catch (const std::exception& e) {
+            view_failed = true;
+            say(std::string("The 3-D view is drawn off-screen: ") + e.what(), true);
+          }
+        }
+        if (view) {
+          // In the window's context: drawn at twice the size when still, shown
+          // halved (a 2 x 2 box filter by the texture's linear filtering).
+          view->set_scene(preview_scene());
+          const render::Box& box = view->body_bounds().empty() ? view->scene_bounds() : view->body_bounds();
+          const render::Camera cam = render::frame_camera(preset, box, static_cast<double>(w) / h);
+          const int s = running ? 1 : 2;
+          view_texture = view->draw_to_texture(cam, w * s, h * s);
+          preview_camera = cam, preview_w = w, preview_h = h;
+          legend_shown = map;
+          if (map) {
+            render::Image overlay(w, h, {0, 0, 0, 0});  // transparent
+            const auto m = static_cast<render::FitMap>(fit_map - 1);
+            render::draw_legend(overlay, m, render::default_scale(m));
+            legend_texture = gl::upload_texture(overlay, legend_texture);
+          }
+        } else {
+          if (!renderer) renderer = std::make_unique<render::OffscreenRenderer>();
+          renderer->set_scene(preview_scene());
+          render::OffscreenOptions o;
+          o.supersample = running ? 1 : 2;
+          const render::Camera cam =
+              render::frame_camera(preset, renderer->framing_box(o), static_cast<double>(w) / h, o.margin);
+          render::Image img = renderer->render(cam, w, h, o);
+          preview_camera = cam, preview_w = w, preview_h = h;
+          if (map) {
+            const auto m = static_cast<render::FitMap>(fit_map - 1);
+            render::draw_legend(img, m, render::default_scale(m));
+          }
+          if (restore) restore();
+          texture = gl::upload_texture(img, texture);
         }
         if (!fabric_problem.empty()) say(fabric_problem, true), fabric_problem.clear();
         if (!looks_problem.empty() && !looks_said) say(looks_problem, true), looks_said = true;
-        if (restore) restore();
-        texture = gl::upload_texture(img, texture);
         tex_w = w, tex_h = h;
       } catch (const std::exception& e) {
         if (restore) restore();
@@ -1899,14 +1939,19 @@ struct Studio::Impl {
       preview_dirty = false;
       last_preview = now;
     }
-    if (texture && (body || !cloth.positions.empty())) {
+    if ((view ? view_texture : texture) && (body || !cloth.positions.empty())) {
       // An invisible button under the picture: ImGui::Image takes no input.
       const ImVec2 size{static_cast<float>(tex_w), static_cast<float>(tex_h)};
       ImGui::InvisibleButton("preview", size);
       track("preview");
-      const ImVec2 a = ImGui::GetItemRectMin();
-      ImGui::GetWindowDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture)), a,
-                                           {a.x + size.x, a.y + size.y});
+      const ImVec2 a = ImGui::GetItemRectMin(), b{a.x + size.x, a.y + size.y};
+      const auto id = [](unsigned t) { return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t)); };
+      if (view) {
+        ImGui::GetWindowDrawList()->AddImage(id(view_texture), a, b, {0, 1}, {1, 0});  // its rows go up
+        if (legend_shown) ImGui::GetWindowDrawList()->AddImage(id(legend_texture), a, b);
+      } else {
+        ImGui::GetWindowDrawList()->AddImage(id(texture), a, b);
+      }
       const ImVec2 mouse = ImGui::GetIO().MousePos;
       const bool pullable = job == &here && running && !cloth.positions.empty() && preview_camera;
       if (ImGui::IsItemActivated() && ImGui::GetIO().KeyCtrl && pullable) grab_cloth({mouse.x - a.x, mouse.y - a.y});
@@ -2386,6 +2431,7 @@ std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
 float Studio::pattern_scale() const { return impl_->scale; }
 std::optional<double> Studio::measured() const { return impl_->measured; }
 std::optional<int> Studio::held_particle() const { return impl_->pulling; }
+bool Studio::view_in_window_context() const { return impl_->view != nullptr; }
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
 std::optional<Rect> Studio::particle_on_screen(int particle) const {
   const auto q = impl_->particle_screen(particle);

@@ -441,6 +441,7 @@ TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
       red += p[0] > p[1] + 70 && p[0] > p[2] + 60;
       blue += p[2] > p[0] + 40 && p[2] > p[1] + 20;
     }
+  EXPECT_TRUE(h.studio().view_in_window_context()) << "drawn in the UI's context, not through OSMesa";
   EXPECT_GT(red, 500) << "the gingham's red";
   EXPECT_LT(blue, 50) << "no piece in its own colour";
   EXPECT_EQ(h.studio().status().find("Textures left out"), std::string::npos) << h.studio().status();

@@ -3,8 +3,8 @@
 //
 // One drawing path, two backends (docs/render.md): `vgd render` makes an OSMesa
 // off-screen context (offscreen.hpp) and draws into a supersampled framebuffer;
-// the studio will make a window context and draw into its own framebuffer with
-// the same Renderer. The Renderer reaches OpenGL only through the function
+// the studio draws in its window's context with the same Renderer, into a
+// texture it shows (draw_to_texture). The Renderer reaches OpenGL only through the function
 // loader it is given (OSMesaGetProcAddress, glfwGetProcAddress, ...), so this
 // header and its users need no GL headers.
 //
@@ -59,6 +59,14 @@ class Renderer {
 
   // Draws one frame into the target: clear, floor with its shadow, meshes.
   void draw(const Camera& camera, const Target& target, const RenderOptions& options = {});
+
+  // Draws one frame as draw() does into a colour texture the renderer keeps
+  // (RGBA8, width × height, rows bottom first as OpenGL stores them) and
+  // returns the texture's name, valid in the current context until the next
+  // call or the renderer's end; the framebuffer bound before is bound again.
+  // For a window that shows the frame among its widgets (the studio's 3-D
+  // view) with no copy through the CPU.
+  unsigned draw_to_texture(const Camera& camera, int width, int height, const RenderOptions& options = {});
 
   // "OpenGL 4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string gl_description() const;

@@ -217,6 +217,9 @@ class Studio {
   std::optional<int> held_particle() const;
   std::vector<std::array<float, 3>> cloth_positions() const;
   std::optional<Rect> particle_on_screen(int particle) const;
+  // Whether the 3-D view is drawn in the UI's own GL context (render::Renderer
+  // into a texture) rather than off-screen through OSMesa and uploaded.
+  bool view_in_window_context() const;
 
   // Called after the 3-D preview drew off-screen, to make the UI's GL context
   // current again (both may be OSMesa contexts in one thread).
