@@ -1067,9 +1067,9 @@ struct Studio::Impl {
     button("Draw piece", Drawing::piece, true, "A new piece, corner by corner (each side a stretch to sew)");
   }
 
-  // A drawing click: the outline point nearest the mouse (within the grab
-  // radius) or the point under it; a piece's first point again closes it.
-  void draw_at(const ImVec2& mouse) {
+  // The outline point nearest the mouse within the grab radius, else the
+  // point under the mouse (layout coordinates, m).
+  pattern::Vec2 snapped(const ImVec2& mouse) const {
     pattern::Vec2 at = from_screen(mouse);
     float near = kPointRadius;
     for (const auto& pv : pieces)
@@ -1078,6 +1078,13 @@ struct Studio::Impl {
           const ImVec2 sq = to_screen(q);
           if (const float d = std::hypot(mouse.x - sq.x, mouse.y - sq.y); d < near) near = d, at = q;
         }
+    return at;
+  }
+
+  // A drawing click: the outline point nearest the mouse (within the grab
+  // radius) or the point under it; a piece's first point again closes it.
+  void draw_at(const ImVec2& mouse) {
+    const pattern::Vec2 at = snapped(mouse);
     if (drawing == Drawing::piece && drawn_points.size() >= 3) {
       const ImVec2 first = to_screen(drawn_points.front());
       if (std::hypot(mouse.x - first.x, mouse.y - first.y) < kPointRadius) return finish_drawing();
@@ -1121,14 +1128,7 @@ struct Studio::Impl {
   // radius) or the point under it; the second gives the distance, a third
   // starts again.
   void measure_at(const ImVec2& mouse) {
-    pattern::Vec2 at = from_screen(mouse);
-    float near = kPointRadius;
-    for (const auto& pv : pieces)
-      for (const auto& sv : pv.stretches)
-        for (const auto& q : sv.points) {
-          const ImVec2 sq = to_screen(q);
-          if (const float d = std::hypot(mouse.x - sq.x, mouse.y - sq.y); d < near) near = d, at = q;
-        }
+    const pattern::Vec2 at = snapped(mouse);
     if (measure_points.size() == 2) measure_points.clear();
     measure_points.push_back(at);
     if (measure_points.size() == 2) {

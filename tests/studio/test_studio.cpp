@@ -408,6 +408,17 @@ TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
             0.99);
 }
 
+// Frames drawn until `done` (a drape's progress), polled for up to 5 minutes
+// of wall time (a sanitizer build places and sews many times slower).
+bool frames_until(Harness& h, const std::function<bool()>& done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!done() && std::chrono::steady_clock::now() < deadline) {
+    h.frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return done();
+}
+
 // Opens `file` and starts a quick drape of it (2 cm mesh, 4 s at most).
 void start_quick_drape(Harness& h, const fs::path& file) {
   ASSERT_TRUE(h.studio().open(file));
@@ -455,15 +466,7 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   omp_set_num_threads(1);
   Harness h(1024, 700);
   start_quick_drape(h, kSkirt);
-  // Polled for up to 5 minutes (a sanitizer build places and sews many times slower).
-  const auto wait_until = [&](const std::function<bool()>& done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-    while (!done() && std::chrono::steady_clock::now() < deadline) {
-      h.frame();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return done();
-  };
+  const auto wait_until = [&](const std::function<bool()>& done) { return frames_until(h, done); };
   ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > 0.0; })) << "the drape never reached a frame";
   h.click("Pause");
   ASSERT_TRUE(h.studio().drape_status().paused);
@@ -504,14 +507,7 @@ TEST(Studio, TheClothIsPulledByHandDuringADrape) {
   o.time_limit = 6.0;
   o.spacing = 0.02;
   h.click("Drape");
-  const auto wait_until = [&](const std::function<bool()>& done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-    while (!done() && std::chrono::steady_clock::now() < deadline) {
-      h.frame();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return done();
-  };
+  const auto wait_until = [&](const std::function<bool()>& done) { return frames_until(h, done); };
   ASSERT_TRUE(wait_until([&] {
     return h.studio().drape_status().t > 1.5 && h.studio().particle_on_screen(0).has_value();
   })) << "the drape never showed its cloth";
