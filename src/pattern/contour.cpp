@@ -285,6 +285,16 @@ bool point_in_outline(const std::vector<ContourPoint>& o, const Vec2& p) {
   return in;
 }
 
+bool mirror_symmetric(const std::vector<ContourPoint>& o, const Vec2& up, double tol) {
+  const Vec2 across(up.y(), -up.x());
+  double u0 = 1e300, u1 = -1e300;
+  for (const auto& q : o) u0 = std::min(u0, q.p.dot(across)), u1 = std::max(u1, q.p.dot(across));
+  const double mid = 0.5 * (u0 + u1);
+  return std::all_of(o.begin(), o.end(), [&](const ContourPoint& q) {
+    return nearest_edge(o, q.p - 2.0 * (q.p.dot(across) - mid) * across).distance <= tol;
+  });
+}
+
 std::optional<Allowance> sew_on_sew_line(Piece& piece, double min_m, double max_m) {
   const Polyline* line = nullptr;
   for (const auto& l : piece.sew_lines)

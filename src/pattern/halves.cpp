@@ -188,17 +188,10 @@ TopHalves unfold_top_halves(Style& style, double tol) {
     if ((g.role != Role::front && g.role != Role::back && g.role != Role::yoke) || g.side != Side::none || !p.closed ||
         p.boundary.size() < 3)
       continue;
-    const Vec2 up = up_of(p), across(up.y(), -up.x());
+    const Vec2 up = up_of(p);
     const auto c = centre_edge(p.boundary, up, tol);
     if (!c || (c->b - c->a).norm() < 0.4 * extent_along(p.boundary, up)) continue;
-    // Its own mirror image across its middle: a whole piece with straight sides.
-    double u0 = 1e300, u1 = -1e300;
-    for (const auto& q : p.boundary) u0 = std::min(u0, q.p.dot(across)), u1 = std::max(u1, q.p.dot(across));
-    const double mid = 0.5 * (u0 + u1);
-    const bool symmetric = std::all_of(p.boundary.begin(), p.boundary.end(), [&](const ContourPoint& q) {
-      return nearest_edge(p.boundary, q.p - 2.0 * (q.p.dot(across) - mid) * across).distance <= tol;
-    });
-    if (symmetric) continue;
+    if (mirror_symmetric(p.boundary, up, tol)) continue;  // a whole piece with straight sides
     Piece whole = p;
     whole.mirror_line = *c;
     if (!unfold_about_mirror_line(whole, tol)) continue;

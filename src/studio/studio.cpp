@@ -1883,7 +1883,8 @@ struct Studio::Impl {
     const double now = ImGui::GetTime();
     const bool resized = w != tex_w || h != tex_h;
     if ((body || !cloth.positions.empty()) && gl::ready() &&
-        ((preview_dirty && (!running || now - last_preview >= kPreviewInterval)) || (resized && texture))) {
+        ((preview_dirty && (!running || now - last_preview >= kPreviewInterval)) ||
+         (resized && (view ? view_texture : texture)))) {
       try {
         const render::ViewPreset preset{"studio", azimuth, elevation, 30};
         const bool map = fit_map > 0 && !cloth.positions.empty();

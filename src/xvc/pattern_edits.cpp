@@ -530,11 +530,8 @@ std::string SetParameter::apply(Editor& edit) {
   return id;
 }
 
-}  // namespace vgd::xvc
 
 // ---- AddInternalLine, AddDrawnPattern ------------------------------------------------
-
-namespace vgd::xvc {
 
 namespace {
 std::vector<Vec2> finite_points(const Document& doc, std::string_view where, const std::vector<std::array<double, 2>>& pts) {

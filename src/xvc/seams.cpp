@@ -215,17 +215,7 @@ std::optional<std::size_t> centre_edge_of_half(const Outline& o, const Frame& f,
   const auto& b = o.shape.boundary;
   double umin = 1e300, umax = -1e300;
   for (const auto& c : b) umin = std::min(umin, c.p.dot(f.right)), umax = std::max(umax, c.p.dot(f.right));
-  // Its own mirror image: every vertex reflected across the middle lies on the outline.
-  bool symmetric = true;
-  const double mid = 0.5 * (umin + umax);
-  for (const auto& c : b) {
-    const Vec2 r = c.p - 2.0 * (c.p.dot(f.right) - mid) * f.right;
-    if (pattern::nearest_edge(b, r).distance > 0.002) {
-      symmetric = false;
-      break;
-    }
-  }
-  if (symmetric) return std::nullopt;
+  if (pattern::mirror_symmetric(b, f.up, 0.002)) return std::nullopt;
   std::optional<std::size_t> best;
   double best_len = 0;
   for (std::size_t i = 0; i < es.size(); ++i) {

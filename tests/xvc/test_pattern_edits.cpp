@@ -505,10 +505,13 @@ TEST(AddInternalLine, DrawsALineInsideAPieceAndRefusesOneOutside) {
     EXPECT_NE(std::string(e.what()).find("point 2 of the line"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("lies outside the piece"), std::string::npos) << e.what();
   }
-  const Vec2 edge = Vec2(hi.x() + 0.0005, m.y());  // within 1 mm of the outline: on it
-  if (vgd::pattern::nearest_edge(before.boundary, edge).distance <= 0.001)
-    EXPECT_NO_THROW(execute(d, *std::make_unique<AddInternalLine>(
-                                   "pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {edge.x(), edge.y()}})));
+  // An outline vertex, and a point 0.5 mm outside the outline beyond it: on the outline, drawn.
+  const Vec2 corner = before.boundary.front().p;
+  const Vec2 beyond = corner + 0.0005 * (corner - m).normalized();
+  ASSERT_LE(vgd::pattern::nearest_edge(before.boundary, beyond).distance, 0.001);
+  EXPECT_NO_THROW(execute(d, *std::make_unique<AddInternalLine>(
+                                 "pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {corner.x(), corner.y()},
+                                                                                {beyond.x(), beyond.y()}})));
   EXPECT_THROW(execute(d, *std::make_unique<AddInternalLine>(
                               "pattern1", std::vector<std::array<double, 2>>{{m.x(), m.y()}, {std::nan(""), m.y()}})),
                vgd::Error);

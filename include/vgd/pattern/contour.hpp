@@ -58,6 +58,11 @@ bool make_counter_clockwise(std::vector<ContourPoint>& outline);
 // Even-odd test: whether `p` lies inside the closed outline.
 bool point_in_outline(const std::vector<ContourPoint>& outline, const Vec2& p);
 
+// Whether the outline is its own mirror image across the line along `up`
+// through the middle of its extent across `up`: every vertex reflected lies
+// within `tol_m` of the outline (a whole piece with straight sides, not a half).
+bool mirror_symmetric(const std::vector<ContourPoint>& outline, const Vec2& up, double tol_m);
+
 // Index of the vertex nearest to p, and its distance; {-1, inf} for an empty outline.
 struct Nearest {
   int index = -1;
