@@ -8,6 +8,7 @@
 #include "vgd/body/mannequin.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/dress/arrange.hpp"
 #include "vgd/dress/placement.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
@@ -19,26 +20,7 @@ using body::BodySegment;
 
 std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
                                                                          const Avatar& avatar) {
-  // Heights for the suggestions: the mannequin's landmarks, else those measured
-  // on an imported body, else the torso's top (neck) and a waist at the usual
-  // 62 % of the height.
-  xvc::ArrangementOptions ao;
-  if (avatar.measurements) {
-    const body::MannequinLandmarks l = body::mannequin_landmarks(*avatar.measurements);
-    ao.neck_point_height = l.neck_base;
-    ao.waist_height = l.waist;
-  } else if (const auto& l = avatar.landmarks; l && l->shoulder > 0 && l->waist > 0) {
-    // Measured on the body: the neck's base sits 3 % of the height above the
-    // shoulders' top, as on the mannequin.
-    ao.neck_point_height = l->shoulder + 0.03 * l->height;
-    ao.waist_height = l->waist;
-  } else if (const BodySegment* torso = avatar.segment("torso")) {
-    ao.neck_point_height = (torso->start + torso->length * torso->axis).y();
-    ao.waist_height = 0.62 * (ao.neck_point_height / 0.845);
-  }
-  // Legs: the piece's top at the waist, above the hip joint.
-  if (const BodySegment* leg = avatar.segment("right-leg"); leg && ao.waist_height > 0 && leg->axis.y() < -0.5)
-    ao.leg_top = (ao.waist_height - leg->start.y()) / leg->axis.y();  // < 0: the waist is above the joint
+  const xvc::ArrangementOptions ao = arrangement_options(avatar);
   std::map<std::string, std::vector<xvc::Arrangement>> out;
   const auto suggested = xvc::suggest_arrangements(doc, ao);
   for (const auto* p : doc.patterns()) {
@@ -183,7 +165,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
       mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
       out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment,
-                            xvc::piece_material(doc, *doc.find(gp.pattern_id))});
+                            xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.pattern_id, gp.copy});
       first[k] = count;
       count += n;
     }

@@ -240,6 +240,17 @@ void Harness::run_script(const fs::path& script) {
         auto r = studio().piece_on_screen(pat);
         if (!r) fail("piece " + pat + " is not on screen");
         click_at(r->cx() + dx, r->cy() + dy);
+      } else if (cmd == "drop-piece") {
+        // drop-piece PATTERN POINT: the piece dragged from the pattern view onto
+        // an arrangement point of the 3-D view (Arrange on), e.g. "torso back".
+        const auto sp = arg.find(' ');
+        if (sp == std::string::npos) fail("expected PATTERN POINT, e.g. drop-piece pattern1 torso back");
+        const std::string pat = arg.substr(0, sp), point = arg.substr(sp + 1);
+        const auto from = studio().piece_on_screen(pat);
+        if (!from) fail("piece " + pat + " is not on screen");
+        const auto to = studio().arrangement_point_on_screen(point);
+        if (!to) fail("no arrangement point '" + point + "' on screen (Arrange shows them)");
+        drag(from->cx(), from->cy(), to->cx(), to->cy());
       } else if (cmd == "drag-point") {
         // drag-point PATTERN SEQ INDEX DX DY: the outline point dragged by (DX, DY) px.
         std::istringstream as(arg);
@@ -266,7 +277,7 @@ void Harness::run_script(const fs::path& script) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drag-point, key, type, frames, "
+        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, key, type, frames, "
              "wait-drape, screenshot, expect-status)");
       }
     } catch (const Error& e) {

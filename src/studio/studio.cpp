@@ -21,6 +21,8 @@
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/dress/arrange.hpp"
+#include "vgd/dress/dress.hpp"
 #include "vgd/dress/prepare.hpp"
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/core/units.hpp"
@@ -34,6 +36,7 @@
 #include "vgd/scene/material.hpp"
 #include "vgd/scene/quality.hpp"
 #include "vgd/sim/effects/hand.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -47,6 +50,7 @@ namespace {
 
 constexpr float kPickRadius = 8.0f;  // px: how near the mouse a stretch must be to pick it
 constexpr float kPointRadius = 6.0f;  // px: how near an outline point must be to grab it
+constexpr float kDropRadius = 18.0f;  // px: how near an arrangement point a piece must be let go to drop on it
 constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview renders
 
 // One stretch of a piece's outline as the pattern view draws it.
@@ -250,6 +254,32 @@ struct Studio::Impl {
   std::optional<mesh::SurfaceMesh> body;
   LiveCloth cloth;
   std::function<void()> restore;
+
+  // Arranging (the Arrange button): the preview shows where a drape would
+  // start, the body and every piece placed round it, with the body's
+  // arrangement points (dress/arrange.hpp). A piece dragged from the pattern
+  // view onto a point is put there; a piece dragged in 3-D moves along its
+  // segment. Each is one SetArrangements command.
+  bool arranging = false;
+  int arranged_rev = -1;        // the revision the arrangement shows
+  std::string arranged_for;     // the size and body it was made for
+  std::optional<body::Avatar> arrange_body;
+  std::string arrange_body_key;
+  xvc::Document arrange_doc;    // the document as the drape reads it (dress/prepare.hpp)
+  std::map<std::string, std::vector<xvc::Arrangement>> arrange_current;  // by PATTERN id, as the drape uses them
+  std::vector<dress::ArrangementPoint> arrange_points;
+  std::vector<std::pair<std::string, int>> arranged_pieces;  // per cloth piece: its PATTERN and copy
+  std::vector<int> particle_piece;                           // per cloth particle: its piece
+  std::optional<std::string> piece_drag;  // a piece dragged from the pattern view
+  std::optional<std::size_t> drop_target;  // the arrangement point under it
+  struct Lift {
+    int piece = 0;
+    ImVec2 from;
+    double depth = 0;
+    std::vector<std::array<float, 3>> start;  // the cloth's positions when it was taken
+    body::Vec3 along = body::Vec3::Zero();    // the move so far, along the segment (m)
+  };
+  std::optional<Lift> lifting;  // a piece dragged in 3-D
 
   // Dialogs.
   bool want_open = false, want_save_as = false, want_export = false;
@@ -979,6 +1009,7 @@ struct Studio::Impl {
           if (pv.outline.size() >= 3 && mesh::point_in_polygon(pv.outline, m)) inside = pv.pattern_id;
         if (!inside.empty() && inside != selected) select(inside);
         if (inside.empty()) point_sel.reset();
+        if (!inside.empty()) piece_drag = inside;  // dragged onto the 3-D view's arrangement points while arranging
       }
       if (hovered) {
         std::string tip;
@@ -1413,6 +1444,18 @@ struct Studio::Impl {
     track("Step");
     ImGui::EndDisabled();
     ImGui::EndDisabled();
+    // Lit while arranging; a second press ends it.
+    ImGui::SameLine();
+    ImGui::BeginDisabled(running || pieces.empty());
+    if (arranging) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    const bool arrange_pressed = ImGui::Button("Arrange");
+    if (arranging) ImGui::PopStyleColor();
+    if (arrange_pressed) toggle_arrange();
+    track("Arrange");
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("Show where the drape starts: the pieces round the body and the body's arrangement points. "
+                        "Drag a piece from the pattern view onto a point, or a piece in 3-D along its place");
+    ImGui::EndDisabled();
     const float f = s.time_limit > 0 ? static_cast<float>(std::min(1.0, s.t / s.time_limit)) : 0.0f;
     std::string overlay = s.stage + (s.paused ? " (paused)" : "");
     if (s.running && s.stage != "placing")
@@ -1595,6 +1638,44 @@ struct Studio::Impl {
     return out.empty() || out.size() > 100 ? fallback : out;
   }
 
+  dress::PrepareOptions prepare_options() const {
+    dress::PrepareOptions po;
+    po.size = drape.size;
+    if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) po.avatar = drape.avatar->file.string();
+    po.fabric_given = !drape.material_xvc.empty();
+    return po;
+  }
+
+  // The drape's settings for the document as it is now, unsaved edits
+  // included, made ready as vgd dress makes it (dress/prepare.hpp): seams
+  // suggested when it has none, the pieces no seam sews left out, the body's
+  // table and size. The prepared copy is written to the studio's work folder.
+  dress::DrapeOptions prepared_drape(dress::Preparation& prep, fs::path& copy) {
+    if (work_dir.empty()) {
+      work_dir = fs::temp_directory_path() / ("vgd-studio-" + std::to_string(::getpid()) + "-" +
+                                              std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+      fs::create_directories(work_dir);
+    }
+    copy = work_dir / (file.empty() ? fs::path("garment.xvc") : file.filename());
+    xvc::Document prepared = doc;
+    prep = dress::prepare_garment(prepared, prepare_options());
+    xvc::save_file(prepared, copy);
+    dress::DrapeOptions d = drape;
+    d.garment = copy;
+    if (d.pieces.empty()) d.pieces = prep.pieces;
+    if (!d.avatar && d.mannequin_table.empty()) {
+      d.mannequin_table = prep.body_table;
+      if (prep.body_size != prep.size) {
+        scene::AvatarDef a;
+        a.kind = scene::AvatarDef::Kind::mannequin;
+        a.size = prep.body_size;
+        a.table = prep.body_table;
+        d.avatar = a;
+      }
+    }
+    return d;
+  }
+
   void start_drape(bool remote = false) {
     if (job->running()) return;
     autosave(true);  // a drape is where a crash is likeliest
@@ -1602,36 +1683,11 @@ struct Studio::Impl {
       say("Nothing to drape: the document has no pieces in this size.", true);
       return;
     }
+    arranging = false;  // the preview follows the drape
     try {
-      if (work_dir.empty()) {
-        work_dir = fs::temp_directory_path() / ("vgd-studio-" + std::to_string(::getpid()) + "-" +
-                                                std::to_string(reinterpret_cast<std::uintptr_t>(this)));
-        fs::create_directories(work_dir);
-      }
-      // The drape reads the document as it is now, unsaved edits included, made
-      // ready as vgd dress makes it (dress/prepare.hpp): seams suggested when it
-      // has none, the pieces no seam sews left out, the body's table and size.
-      const fs::path copy = work_dir / (file.empty() ? fs::path("garment.xvc") : file.filename());
-      xvc::Document prepared = doc;
-      dress::PrepareOptions po;
-      po.size = drape.size;
-      if (drape.avatar && drape.avatar->kind == scene::AvatarDef::Kind::file) po.avatar = drape.avatar->file.string();
-      po.fabric_given = !drape.material_xvc.empty();
-      const dress::Preparation prep = dress::prepare_garment(prepared, po);
-      xvc::save_file(prepared, copy);
-      dress::DrapeOptions d = drape;
-      d.garment = copy;
-      if (d.pieces.empty()) d.pieces = prep.pieces;
-      if (!d.avatar && d.mannequin_table.empty()) {
-        d.mannequin_table = prep.body_table;
-        if (prep.body_size != prep.size) {
-          scene::AvatarDef a;
-          a.kind = scene::AvatarDef::Kind::mannequin;
-          a.size = prep.body_size;
-          a.table = prep.body_table;
-          d.avatar = a;
-        }
-      }
+      dress::Preparation prep;
+      fs::path copy;
+      dress::DrapeOptions d = prepared_drape(prep, copy);
       preparation = prep.decisions;
       membranes.clear();  // fabrics may have changed
       std::string made;
@@ -1647,7 +1703,7 @@ struct Studio::Impl {
         std::vector<fs::path> order;
         auto ready = [&](const fs::path& f, std::size_t k) {
           xvc::Document other = xvc::load_file(f);
-          const dress::Preparation lp = dress::prepare_garment(other, po);
+          const dress::Preparation lp = dress::prepare_garment(other, prepare_options());
           for (const auto& dd : lp.decisions) preparation.push_back(f.filename().string() + ": " + dd);
           const fs::path c = work_dir / ("layer" + std::to_string(k)) / f.filename();  // pieces named after its stem
           fs::create_directories(c.parent_path());
@@ -1737,25 +1793,174 @@ struct Studio::Impl {
   // press, the nearest the eye is held, pulled to the mouse at its depth
   // until the button is let go.
   void grab_cloth(const ImVec2& at) {
-    constexpr double kReach = 12;  // px
-    std::optional<int> best;
-    double depth = 0;
-    for (std::size_t i = 0; i < cloth.positions.size(); ++i) {
-      const auto q = particle_screen(static_cast<int>(i));
-      if (!q || std::hypot(q->x - at.x, q->y - at.y) > kReach || (best && q->depth >= depth)) continue;
-      best = static_cast<int>(i), depth = q->depth;
-    }
-    if (!best) return say("Nothing of the cloth under the mouse to pull (Ctrl+drag on the garment).");
-    const auto& q = cloth.positions[static_cast<std::size_t>(*best)];
-    hand->grab(*best, sim::Vec3(q[0], q[1], q[2]));
-    pulling = best, pull_depth = depth;
-    say("Pulling the cloth at particle " + std::to_string(*best) + ": drag it, let go to release it.");
+    const auto hit = particle_under(at, 12);
+    if (!hit) return say("Nothing of the cloth under the mouse to pull (Ctrl+drag on the garment).");
+    const auto& q = cloth.positions[static_cast<std::size_t>(hit->first)];
+    hand->grab(hit->first, sim::Vec3(q[0], q[1], q[2]));
+    pulling = hit->first, pull_depth = hit->second;
+    say("Pulling the cloth at particle " + std::to_string(hit->first) + ": drag it, let go to release it.");
   }
 
   void release_hand() {
     hand->release();
     if (pulling) say("Let go of the cloth.");
     pulling.reset();
+  }
+
+  std::string arrangement_settings() const {
+    std::string k = drape.size + "|" + format_fixed(drape.spacing, 4) + "|" + body_text;
+    if (drape.avatar) k += "|" + drape.avatar->unit + "|" + drape.avatar->up + "|" + drape.avatar->facing;
+    return k;
+  }
+
+  // The preview shows the drape's start: the body of the size (or the body
+  // file) and the pieces placed round it, as `vgd drape` would place them.
+  void arrange() {
+    arranged_rev = revision;
+    arranged_for = arrangement_settings();
+    lifting.reset();
+    try {
+      dress::Preparation prep;
+      fs::path copy;
+      const scene::SceneDef def = dress::drape_scene(prepared_drape(prep, copy));
+      if (!def.avatar) throw Error("", "", "the drape has no body");
+      const scene::AvatarDef& a = *def.avatar;
+      const std::string key = std::to_string(static_cast<int>(a.kind)) + "|" + a.size + "|" + a.table + "|" +
+                              a.file.string() + "|" + a.unit + "|" + a.up + "|" + a.facing;
+      if (!arrange_body || key != arrange_body_key) arrange_body = scene::build_avatar(def), arrange_body_key = key;
+      const scene::MadeCloths made = dress::dress_garments(def, *arrange_body);
+      arrange_doc = xvc::load_file(copy);
+      arrange_current = dress::garment_arrangements(arrange_doc, *arrange_body);
+      arrange_points = dress::arrangement_points(*arrange_body);
+      LiveCloth c;
+      arranged_pieces.clear();
+      particle_piece.clear();
+      for (const auto& [index, mc] : made)
+        for (const auto& mp : mc.pieces) {
+          const int first = static_cast<int>(c.positions.size()), k = static_cast<int>(c.pieces.size());
+          c.pieces.push_back(mp.name);
+          arranged_pieces.emplace_back(mp.pattern, mp.copy);
+          for (Eigen::Index i = 0; i + 2 < mp.model.x0.size(); i += 3) {
+            c.positions.push_back({static_cast<float>(mp.model.x0[i]), static_cast<float>(mp.model.x0[i + 1]),
+                                   static_cast<float>(mp.model.x0[i + 2])});
+            particle_piece.push_back(k);
+          }
+          for (const auto& q : mp.model.uv) c.uv.push_back({q.x(), q.y()});
+          for (const auto& t : mp.model.triangles) {
+            c.triangles.push_back({t[0] + first, t[1] + first, t[2] + first});
+            c.triangle_piece.push_back(k);
+          }
+        }
+      cloth = std::move(c);
+      body = arrange_body->surface;
+      cert.reset();
+      preview_dirty = true;
+    } catch (const std::exception& e) {
+      say(std::string("The pieces cannot be arranged: ") + e.what(), true);
+      arranging = false;
+    }
+  }
+
+  void toggle_arrange() {
+    arranging = !arranging;
+    if (!arranging) {
+      lifting.reset();
+      cloth = {};
+      body.reset();
+      preview_dirty = true;
+      return say("Arranging ended.");
+    }
+    arrange();
+    if (arranging)
+      say("Arranging size " + drape.size + ": drag a piece from the pattern view onto a point on the body, or a "
+          "piece in 3-D along its place (up and down the trunk, along a limb).");
+  }
+
+  // The pattern's arrangements as the drape uses them (stored, else suggested).
+  std::vector<xvc::Arrangement> current_arrangements(const std::string& pattern_id) const {
+    const auto it = arrange_current.find(pattern_id);
+    return it == arrange_current.end() ? std::vector<xvc::Arrangement>{} : it->second;
+  }
+
+  // A piece from the pattern view dropped on an arrangement point.
+  void put_piece(const std::string& pattern_id, const dress::ArrangementPoint& point) {
+    const xvc::Node* node = doc.find(pattern_id);
+    if (!node) return;
+    const std::string name(node->attribute("piece"));
+    try {
+      const xvc::Document& from = arrange_doc.find(pattern_id) ? arrange_doc : doc;
+      const auto list = dress::put_on(current_arrangements(pattern_id), point, xvc::to_piece(from, pattern_id));
+      run(std::make_unique<xvc::SetArrangements>(pattern_id, list));
+      say(name + " put on the " + point.label + " (" + format_fixed(point.arrangement.height, 3) + " m)" +
+          (list.size() > 1 ? ", its copies with it" : "") + ".");
+    } catch (const std::exception& e) {
+      say("Cannot put " + name + " there: " + e.what(), true);
+    }
+  }
+
+  // Of the cloth's particles drawn within `reach` px of `at` (view pixels),
+  // the one nearest the eye, and its depth.
+  std::optional<std::pair<int, double>> particle_under(const ImVec2& at, double reach) const {
+    std::optional<std::pair<int, double>> best;
+    for (std::size_t i = 0; i < cloth.positions.size(); ++i) {
+      const auto q = particle_screen(static_cast<int>(i));
+      if (!q || std::hypot(q->x - at.x, q->y - at.y) > reach || (best && q->depth >= best->second)) continue;
+      best = std::make_pair(static_cast<int>(i), q->depth);
+    }
+    return best;
+  }
+
+  // A press on an arranged piece in the 3-D view takes it; the move along its
+  // segment is shown while it is held and made its arrangement's when let go.
+  void lift_piece(const ImVec2& at, const ImVec2& mouse) {
+    const auto hit = particle_under(at, 12);
+    if (!hit || static_cast<std::size_t>(hit->first) >= particle_piece.size()) return;
+    Lift l;
+    l.piece = particle_piece[static_cast<std::size_t>(hit->first)];
+    l.from = mouse;
+    l.depth = hit->second;
+    l.start = cloth.positions;
+    lifting = std::move(l);
+  }
+
+  void follow_lift(const ImVec2& mouse, const ImVec2& origin) {
+    Lift& l = *lifting;
+    const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
+    const auto list = current_arrangements(pattern_id);
+    if (static_cast<std::size_t>(copy) >= list.size() || !arrange_body) return;
+    const auto p0 = render::unproject(*preview_camera, preview_w, preview_h, l.from.x - origin.x, l.from.y - origin.y, l.depth);
+    const auto p1 = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - origin.x, mouse.y - origin.y, l.depth);
+    const body::Vec3 delta(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
+    const xvc::Arrangement& a = list[static_cast<std::size_t>(copy)];
+    const body::BodySegment* seg = arrange_body->segment(a.segment);
+    if (!seg) return;
+    // Along the segment: the height it will take, clamped as the library clamps it.
+    const double dh = dress::moved(a, *arrange_body, delta).height - a.height;
+    const body::Vec3 dir = a.segment.find("-arm") != std::string::npos || a.segment.find("-leg") != std::string::npos
+                               ? seg->axis : body::Vec3::UnitY();
+    l.along = dh * dir;
+    for (std::size_t i = 0; i < cloth.positions.size(); ++i)
+      if (particle_piece[i] == l.piece)
+        for (int k = 0; k < 3; ++k) cloth.positions[i][k] = l.start[i][k] + static_cast<float>(l.along[k]);
+    preview_dirty = true;
+  }
+
+  void drop_lift() {
+    const Lift l = *lifting;
+    lifting.reset();
+    const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
+    auto list = current_arrangements(pattern_id);
+    if (l.along.norm() < 1e-3 || static_cast<std::size_t>(copy) >= list.size() || !doc.find(pattern_id)) {
+      cloth.positions = l.start;
+      preview_dirty = true;
+      return;
+    }
+    auto& a = list[static_cast<std::size_t>(copy)];
+    const double before = a.height;
+    a = dress::moved(a, *arrange_body, l.along);
+    run(std::make_unique<xvc::SetArrangements>(pattern_id, list));
+    say(std::string(doc.find(pattern_id)->attribute("piece")) + " moved along the " + a.segment + " from " +
+        format_fixed(before, 3) + " to " + format_fixed(a.height, 3) + " m.");
   }
 
   void toggle_pause() {
@@ -1856,7 +2061,44 @@ struct Studio::Impl {
     return membranes[piece] = render::Membrane{o.E_warp, o.E_weft, o.G, o.nu_warp_weft};
   }
 
+  // The arrangement points over the 3-D view: hovered, named; the one under
+  // a piece dragged from the pattern view is where it drops.
+  void arrange_overlay(const ImVec2& origin, const ImVec2& mouse, bool hovered) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    std::optional<std::size_t> near;
+    float best = kDropRadius;
+    std::vector<std::optional<render::ScreenPoint>> at;
+    for (std::size_t k = 0; k < arrange_points.size(); ++k) {
+      const auto& p = arrange_points[k].at;
+      at.push_back(render::project(*preview_camera, preview_w, preview_h, {p.x(), p.y(), p.z()}));
+      if (!at.back() || !hovered) continue;
+      const float d = std::hypot(mouse.x - origin.x - static_cast<float>(at.back()->x), mouse.y - origin.y - static_cast<float>(at.back()->y));
+      if (d < best) best = d, near = k;
+    }
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      if (!at[k]) continue;
+      const ImVec2 c{origin.x + static_cast<float>(at[k]->x), origin.y + static_cast<float>(at[k]->y)};
+      const bool hot = near && *near == k;
+      dl->AddCircleFilled(c, hot ? 8.0f : 5.0f, hot ? rgb(240, 150, 20) : rgb(30, 160, 150));
+      dl->AddCircle(c, hot ? 8.0f : 5.0f, rgb(20, 60, 60), 0, 1.5f);
+    }
+    if (piece_drag) drop_target = near;
+    if (near) {
+      const xvc::Node* dragged = piece_drag ? doc.find(*piece_drag) : nullptr;
+      ImGui::SetTooltip("%s", (arrange_points[*near].label +
+                               (dragged ? ": let go to put " + std::string(dragged->attribute("piece")) + " here"
+                                        : ": drag a piece from the pattern view here"))
+                                  .c_str());
+    } else if (piece_drag && hovered) {
+      ImGui::SetTooltip("Drop %s on a point of the body", std::string(doc.find(*piece_drag) ? doc.find(*piece_drag)->attribute("piece") : "").c_str());
+    }
+  }
+
   void preview_panel() {
+    drop_target.reset();
+    if (arranging && !job->running() && !lifting &&
+        (arranged_rev != revision || arranged_for != arrangement_settings()))
+      arrange();  // the document, the size or the body changed
     if (!cloth.positions.empty()) {
       // The garment's colours, or a fit map (docs/studio.md).
       static const char* const kMaps[] = {"looks",           "warp strain", "weft strain",     "shear",
@@ -1955,6 +2197,16 @@ struct Studio::Impl {
       }
       const ImVec2 mouse = ImGui::GetIO().MousePos;
       const bool pullable = job == &here && running && !cloth.positions.empty() && preview_camera;
+      if (arranging && !running && preview_camera) {
+        arrange_overlay(a, mouse, ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenBlockedByActiveItem));
+        if (ImGui::IsItemActivated() && !ImGui::GetIO().KeyCtrl) lift_piece({mouse.x - a.x, mouse.y - a.y}, mouse);
+        if (lifting) {
+          if (ImGui::IsItemActive())
+            follow_lift(mouse, a);
+          else
+            drop_lift();
+        }
+      }
       if (ImGui::IsItemActivated() && ImGui::GetIO().KeyCtrl && pullable) grab_cloth({mouse.x - a.x, mouse.y - a.y});
       if (pulling && (!ImGui::IsItemActive() || !pullable)) release_hand();
       if (pulling) {
@@ -1967,7 +2219,7 @@ struct Studio::Impl {
           dl->AddLine(from, mouse, rgb(230, 60, 20), 2.0f);
           dl->AddCircleFilled(from, 4.0f, rgb(230, 60, 20));
         }
-      } else if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+      } else if (ImGui::IsItemActive() && !lifting && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
         const ImVec2 d = ImGui::GetIO().MouseDelta;
         azimuth -= 0.4 * d.x;
         elevation = std::clamp(elevation + 0.3 * d.y, -60.0, 80.0);
@@ -1976,8 +2228,13 @@ struct Studio::Impl {
       if (ImGui::IsItemHovered() && pullable && !pulling)
         ImGui::SetTooltip("Drag to turn the view; Ctrl+drag pulls the cloth while it drapes");
     } else {
-      ImGui::TextDisabled("Drape the garment to see it on the body.");
+      ImGui::TextDisabled("Drape the garment to see it on the body, or Arrange to place its pieces.");
       ImGui::TextDisabled("Drag the picture to turn it.");
+    }
+    // A piece dragged from the pattern view is let go: put on the point under it.
+    if (piece_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      if (drop_target && *drop_target < arrange_points.size()) put_piece(*piece_drag, arrange_points[*drop_target]);
+      piece_drag.reset();
     }
   }
 
@@ -2433,6 +2690,49 @@ float Studio::pattern_scale() const { return impl_->scale; }
 std::optional<double> Studio::measured() const { return impl_->measured; }
 std::optional<int> Studio::held_particle() const { return impl_->pulling; }
 bool Studio::view_in_window_context() const { return impl_->view != nullptr; }
+bool Studio::arranging() const { return impl_->arranging; }
+std::optional<Rect> Studio::arrangement_point_on_screen(std::string_view label) const {
+  const auto r = widget("preview");
+  if (!impl_->preview_camera || !r) return std::nullopt;
+  for (const auto& p : impl_->arrange_points)
+    if (p.label == label)
+      if (const auto q = render::project(*impl_->preview_camera, impl_->preview_w, impl_->preview_h, {p.at.x(), p.at.y(), p.at.z()})) {
+        const float x = r->x0 + static_cast<float>(q->x), y = r->y0 + static_cast<float>(q->y);
+        return Rect{x, y, x, y};
+      }
+  return std::nullopt;
+}
+std::vector<std::array<float, 3>> Studio::arranged_piece(std::string_view pattern_id, int copy) const {
+  const auto& I = *impl_;
+  std::vector<std::array<float, 3>> out;
+  for (std::size_t k = 0; k < I.arranged_pieces.size(); ++k)
+    if (I.arranged_pieces[k].first == pattern_id && I.arranged_pieces[k].second == copy)
+      for (std::size_t i = 0; i < I.particle_piece.size() && i < I.cloth.positions.size(); ++i)
+        if (I.particle_piece[i] == static_cast<int>(k)) out.push_back(I.cloth.positions[i]);
+  return out;
+}
+std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id, int copy) const {
+  const auto& I = *impl_;
+  std::optional<std::size_t> piece;
+  for (std::size_t k = 0; k < I.arranged_pieces.size(); ++k)
+    if (I.arranged_pieces[k].first == pattern_id && I.arranged_pieces[k].second == copy) piece = k;
+  if (!piece) return std::nullopt;
+  std::array<double, 3> mean{0, 0, 0};
+  int n = 0;
+  for (std::size_t i = 0; i < I.particle_piece.size() && i < I.cloth.positions.size(); ++i)
+    if (I.particle_piece[i] == static_cast<int>(*piece))
+      for (int c = 0; c < 3; ++c) mean[c] += I.cloth.positions[i][c] / 1.0, n += c == 0;
+  if (n == 0) return std::nullopt;
+  std::optional<int> best;
+  double d2 = 1e300;
+  for (std::size_t i = 0; i < I.particle_piece.size() && i < I.cloth.positions.size(); ++i) {
+    if (I.particle_piece[i] != static_cast<int>(*piece)) continue;
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d += std::pow(I.cloth.positions[i][c] - mean[c] / n, 2);
+    if (d < d2) d2 = d, best = static_cast<int>(i);
+  }
+  return best ? particle_on_screen(*best) : std::nullopt;
+}
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
 std::optional<Rect> Studio::particle_on_screen(int particle) const {
   const auto q = impl_->particle_screen(particle);

@@ -24,9 +24,11 @@
 #include "vgd/body/sizes.hpp"
 #include "vgd/qa/compare.hpp"
 #include "vgd/render/image.hpp"
+#include "vgd/dress/arrange.hpp"
 #include "vgd/dress/drape.hpp"
 #include "vgd/pattern/contour.hpp"
 #include "vgd/studio/harness.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -506,6 +508,69 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   h.frames(2);
   EXPECT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
   EXPECT_FALSE(h.studio().drape_status().paused);
+}
+
+// Arranging in 3-D: Arrange shows where the drape starts, with the body's
+// arrangement points. The T-shirt's front dragged from the pattern view onto
+// "hips front" hangs from the waist (its POSITION says so, its top at the
+// waist in the view); dragged up 30 px in the 3-D view it follows the mouse
+// up the hips by 30 px on screen; each one undo step; a drape ends arranging.
+TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  ASSERT_FALSE(front.empty());
+  const auto original = h.studio().document();
+  h.click("Arrange");
+  h.frames(2);
+  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+  const auto top_of = [](const std::vector<std::array<float, 3>>& ps) {
+    float y = -1e30f;
+    for (const auto& p : ps) y = std::max(y, p[1]);
+    return y;
+  };
+  const auto on_torso = h.studio().arranged_piece(front);
+  ASSERT_FALSE(on_torso.empty());
+  const double waist = vgd::dress::arrangement_options(vgd::body::make_mannequin(vgd::body::find_size("38"))).waist_height;
+  EXPECT_GT(top_of(on_torso), waist + 0.3) << "the front starts on the torso";
+
+  const auto from = h.studio().piece_on_screen(front);
+  const auto to = h.studio().arrangement_point_on_screen("hips front");
+  ASSERT_TRUE(from && to);
+  h.drag(from->cx(), from->cy(), to->cx(), to->cy());
+  h.frames(2);
+  const auto placed = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(placed.size(), 1u) << h.studio().status();
+  EXPECT_EQ(placed[0].segment, "hips");
+  EXPECT_EQ(placed[0].side, "front");
+  EXPECT_NEAR(placed[0].height, waist, 1e-9);
+  const auto on_hips = h.studio().arranged_piece(front);
+  ASSERT_EQ(on_hips.size(), on_torso.size());
+  EXPECT_NEAR(top_of(on_hips), waist, 0.01) << "its top hangs at the waist";
+  EXPECT_NE(h.studio().status().find("FRONT put on the hips front"), std::string::npos) << h.studio().status();
+
+  const auto at = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(at.has_value());
+  h.drag(at->cx(), at->cy(), at->cx(), at->cy() - 30);
+  h.frames(2);
+  const auto lifted = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(lifted.size(), 1u);
+  EXPECT_GT(lifted[0].height, waist + 0.02) << h.studio().status();
+  const auto now = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(now.has_value());
+  EXPECT_NEAR(now->cy(), at->cy() - 30, 3) << "the piece follows the mouse up";
+  EXPECT_NEAR(now->cx(), at->cx(), 3);
+  EXPECT_NEAR(top_of(h.studio().arranged_piece(front)) - top_of(on_hips), lifted[0].height - waist, 0.005);
+
+  h.key("ctrl+z");
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+  h.click("Drape");
+  EXPECT_FALSE(h.studio().arranging());
+  h.click("Stop");
+  h.studio().wait_for_drape();
 }
 
 // Pulling the cloth by hand: Ctrl+press on the skirt's front hem in the 3-D

@@ -67,6 +67,8 @@ struct MadePiece {
   // The MATERIAL id, in the cloth's garment document, the piece is cut from
   // when it names its own (xvc::piece_material); "" = the cloth's material.
   std::string material;
+  std::string pattern;  // the PATTERN it was cut from, in its garment document
+  int copy = 0;         // which copy of that pattern (its arrangement's index)
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;

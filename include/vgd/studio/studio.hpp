@@ -220,6 +220,14 @@ class Studio {
   // Whether the 3-D view is drawn in the UI's own GL context (render::Renderer
   // into a texture) rather than off-screen through OSMesa and uploaded.
   bool view_in_window_context() const;
+  // Arranging (the Arrange button): whether the 3-D view shows the drape's
+  // start, where an arrangement point ("torso front", "left arm", ...) is on
+  // screen, and a point of an arranged piece (the particle nearest its
+  // middle) on screen; the particles of that piece as drawn (m).
+  bool arranging() const;
+  std::optional<Rect> arrangement_point_on_screen(std::string_view label) const;
+  std::optional<Rect> arranged_piece_on_screen(std::string_view pattern_id, int copy = 0) const;
+  std::vector<std::array<float, 3>> arranged_piece(std::string_view pattern_id, int copy = 0) const;
 
   // Called after the 3-D preview drew off-screen, to make the UI's GL context
   // current again (both may be OSMesa contexts in one thread).

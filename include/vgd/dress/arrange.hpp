@@ -1,0 +1,56 @@
+#pragma once
+// Arranging pieces round the body by hand (the studio's 3-D view): the
+// points on the body a piece can be put on, the arrangements putting a piece
+// there gives, and an arrangement moved along its segment by a drag.
+// Units: metres (world frame: +Y up, the body facing +Z) and degrees.
+#include <string>
+#include <vector>
+
+#include "vgd/body/avatar.hpp"
+#include "vgd/pattern/piece.hpp"
+#include "vgd/xvc/arrangement.hpp"
+
+namespace vgd::dress {
+
+// The heights arrangement suggestions use on `avatar`: a mannequin's
+// landmarks, else those measured on an imported body, else its torso's top
+// (the neck) and a waist at 62 % of the height; legs' tops at the waist.
+xvc::ArrangementOptions arrangement_options(const body::Avatar& avatar);
+
+// A place on the body a piece can be put on: the arrangement it gives a
+// piece (segment, side, height, clearance; the reference point and angle are
+// the piece's own) and where, in the world, the piece's reference point (the
+// top middle of its box) then goes.
+struct ArrangementPoint {
+  std::string label;            // "torso front", "left arm", ...
+  xvc::Arrangement arrangement;
+  body::Vec3 at = body::Vec3::Zero();  // m, world frame
+};
+
+// The arrangement points of the body's segments, at the heights the
+// suggestions use (arrangement_options): the neck's front at the neck point;
+// the torso's front and back at a bodice's top (bodice_lift above the neck
+// point) and its sides 15 cm below the neck point; the hips' four sides at
+// the waist; each arm's outside a sleeve's cap down from the shoulder; each
+// leg's outside at the waist. Points on segments the body lacks are left out.
+std::vector<ArrangementPoint> arrangement_points(const body::Avatar& avatar);
+
+// A pattern's arrangements (one per copy of the piece) after the piece is
+// put on `point`. When a copy is already on the point's segment (and side, on
+// the trunk) only its height changes. Otherwise the first copy takes the
+// point's segment, side, height and clearance, keeps its angle, and its
+// reference point is the piece's (xvc::reference_point); on a left arm or leg
+// it is mirrored (a piece laid face up wraps a right limb as it is). On a
+// limb, a second copy goes on the other limb, mirrored the other way.
+std::vector<xvc::Arrangement> put_on(std::vector<xvc::Arrangement> current, const ArrangementPoint& point,
+                                     const pattern::Piece& piece);
+
+// `a` moved by the world displacement `delta` (m) along its segment: on the
+// neck, torso and hips its height changes by delta's vertical part, on an arm
+// or a leg by delta's part along the limb's axis (down the limb). Heights
+// are kept on the body: the trunk's between the floor and the body's top, a
+// limb's between 30 cm above its joint and its length. Throws vgd::Error
+// when the avatar lacks the segment.
+xvc::Arrangement moved(xvc::Arrangement a, const body::Avatar& avatar, const body::Vec3& delta);
+
+}  // namespace vgd::dress

@@ -1,0 +1,130 @@
+#include "vgd/dress/arrange.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vgd/body/mannequin.hpp"
+#include "vgd/core/diagnostics.hpp"
+#include "vgd/dress/placement.hpp"
+
+namespace vgd::dress {
+
+using body::Avatar;
+using body::BodySegment;
+
+namespace {
+
+bool on_limb(const std::string& segment) { return segment.find("-arm") != std::string::npos || segment.find("-leg") != std::string::npos; }
+bool on_left(const std::string& segment) { return segment.rfind("left-", 0) == 0; }
+
+// The same limb on the body's other side.
+std::string other_limb(const std::string& segment) {
+  if (segment.rfind("left-", 0) == 0) return "right-" + segment.substr(5);
+  if (segment.rfind("right-", 0) == 0) return "left-" + segment.substr(6);
+  return segment;
+}
+
+std::string other_side(const std::string& side) {
+  return side == "left" ? "right" : side == "right" ? "left" : side;
+}
+
+}  // namespace
+
+xvc::ArrangementOptions arrangement_options(const Avatar& avatar) {
+  xvc::ArrangementOptions ao;
+  if (avatar.measurements) {
+    const body::MannequinLandmarks l = body::mannequin_landmarks(*avatar.measurements);
+    ao.neck_point_height = l.neck_base;
+    ao.waist_height = l.waist;
+  } else if (const auto& l = avatar.landmarks; l && l->shoulder > 0 && l->waist > 0) {
+    // Measured on the body: the neck's base sits 3 % of the height above the
+    // shoulders' top, as on the mannequin.
+    ao.neck_point_height = l->shoulder + 0.03 * l->height;
+    ao.waist_height = l->waist;
+  } else if (const BodySegment* torso = avatar.segment("torso")) {
+    ao.neck_point_height = (torso->start + torso->length * torso->axis).y();
+    ao.waist_height = 0.62 * (ao.neck_point_height / 0.845);
+  }
+  // Legs: the piece's top at the waist, above the hip joint.
+  if (const BodySegment* leg = avatar.segment("right-leg"); leg && ao.waist_height > 0 && leg->axis.y() < -0.5)
+    ao.leg_top = (ao.waist_height - leg->start.y()) / leg->axis.y();  // < 0: the waist is above the joint
+  return ao;
+}
+
+std::vector<ArrangementPoint> arrangement_points(const Avatar& avatar) {
+  const xvc::ArrangementOptions o = arrangement_options(avatar);
+  std::vector<ArrangementPoint> out;
+  auto add = [&](std::string label, const char* segment, const char* side, double height, double clearance) {
+    if (!avatar.segment(segment)) return;
+    ArrangementPoint p;
+    p.label = std::move(label);
+    p.arrangement.segment = segment;
+    p.arrangement.side = side;
+    p.arrangement.height = height;
+    p.arrangement.clearance = clearance;
+    // Where a reference point goes: a small piece hanging from it, placed.
+    const std::vector<pattern::Vec2> probe = {{0, 0}, {-0.01, -0.01}, {0.01, -0.01}};
+    try {
+      p.at = place_piece(probe, p.arrangement, avatar).points.front();
+    } catch (const Error&) {
+      return;  // a segment without rings, or tilted: nothing to put a piece on
+    }
+    out.push_back(std::move(p));
+  };
+  add("neck front", "neck", "front", o.neck_point_height, o.clearance);
+  for (const char* side : {"front", "back"})
+    add(std::string("torso ") + side, "torso", side, o.neck_point_height + o.bodice_lift, o.clearance);
+  for (const char* side : {"left", "right"})
+    add(std::string("torso ") + side, "torso", side, o.neck_point_height - 0.15, o.clearance);
+  for (const char* side : {"front", "back", "left", "right"})
+    add(std::string("hips ") + side, "hips", side, o.waist_height, o.clearance);
+  add("left arm", "left-arm", "left", o.sleeve_drop, o.sleeve_clearance);
+  add("right arm", "right-arm", "right", o.sleeve_drop, o.sleeve_clearance);
+  add("left leg", "left-leg", "left", o.leg_top, o.sleeve_clearance);
+  add("right leg", "right-leg", "right", o.leg_top, o.sleeve_clearance);
+  return out;
+}
+
+std::vector<xvc::Arrangement> put_on(std::vector<xvc::Arrangement> current, const ArrangementPoint& point,
+                                     const pattern::Piece& piece) {
+  const xvc::Arrangement& p = point.arrangement;
+  const bool limb = on_limb(p.segment);
+  for (auto& a : current)
+    if (a.segment == p.segment && (limb || a.side == p.side)) {
+      a.height = p.height;  // already there: only its height
+      return current;
+    }
+  xvc::Arrangement a = p;
+  a.angle_deg = current.empty() ? 0.0 : current.front().angle_deg;
+  const pattern::Vec2 ref = xvc::reference_point(piece, a.angle_deg);
+  a.x = ref.x();
+  a.y = ref.y();
+  a.flip = limb && on_left(p.segment);
+  if (current.empty())
+    current.push_back(a);
+  else
+    current.front() = a;
+  if (limb && current.size() >= 2) {
+    xvc::Arrangement b = a;
+    b.segment = other_limb(a.segment);
+    b.side = other_side(a.side);
+    b.flip = !a.flip;
+    current[1] = b;
+  }
+  return current;
+}
+
+xvc::Arrangement moved(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& delta) {
+  const BodySegment* s = avatar.segment(a.segment);
+  if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to move a piece along");
+  if (on_limb(a.segment)) {
+    a.height = std::clamp(a.height + delta.dot(s->axis), -0.3, s->length);
+  } else {
+    double top = 0.0;
+    for (const auto& v : avatar.surface.vertices) top = std::max(top, v.y());
+    a.height = std::clamp(a.height + delta.y(), 0.0, top);
+  }
+  return a;
+}
+
+}  // namespace vgd::dress
