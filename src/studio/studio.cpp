@@ -129,6 +129,11 @@ struct Studio::Impl {
   std::vector<std::string> sizes;
   int layout_rev = -1;
   std::string layout_size;
+  // The view's frame (lo, hi) is fitted to the pieces when they are first
+  // shown, when another set of pieces is shown and on a right double click;
+  // edits that move a piece or its points keep it, so nothing jumps.
+  std::string layout_ids;
+  bool refit = true;
   std::vector<PieceView> pieces;
   pattern::Vec2 lo{0, 0}, hi{1, 1};  // layout bounds, m
   ImVec2 origin{0, 0};
@@ -270,7 +275,9 @@ struct Studio::Impl {
   std::vector<dress::ArrangementPoint> arrange_points;
   std::vector<std::pair<std::string, int>> arranged_pieces;  // per cloth piece: its PATTERN and copy
   std::vector<int> particle_piece;                           // per cloth particle: its piece
-  std::optional<std::string> piece_drag;  // a piece dragged from the pattern view
+  std::optional<std::string> piece_drag;  // a piece dragged from the pattern view (moved on it, or dropped on the body)
+  ImVec2 piece_drag_from;                 // where the drag started
+  ImVec2 canvas_lo, canvas_hi;            // the pattern view on screen
   std::optional<std::size_t> drop_target;  // the arrangement point under it
   struct Lift {
     int piece = 0;
@@ -451,6 +458,7 @@ struct Studio::Impl {
     recovered.reset();
     undo.reset();
     doc = std::move(d);
+    refit = true;  // the new document's pieces fitted to the view
     undo = std::make_unique<xvc::UndoStack>(doc);
     saved = std::move(as_saved);
     file = std::move(f);
@@ -577,12 +585,15 @@ struct Studio::Impl {
     }
     const std::size_t per = (raw.size() + best_rows - 1) / best_rows;
     double y = 0;
-    lo = {0, 0}, hi = {0, 0};
     for (std::size_t r0 = 0; r0 < raw.size(); r0 += per) {
       double x = 0, h = 0;
       for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) h = std::max(h, raw[i].hi.y() - raw[i].lo.y());
       for (std::size_t i = r0; i < std::min(raw.size(), r0 + per); ++i) {
-        const pattern::Vec2 shift(x - raw[i].lo.x(), y - h - raw[i].lo.y());
+        pattern::Vec2 shift(x - raw[i].lo.x(), y - h - raw[i].lo.y());
+        // A piece moved on the sheet lies where it was put (its row keeps its
+        // slot, so the others stay where they were).
+        if (const xvc::Node* pn = doc.find(raw[i].view.pattern_id))
+          if (const auto at = xvc::sheet_position(*pn)) shift = pattern::Vec2((*at)[0], (*at)[1]);
         for (auto& sv : raw[i].view.stretches) {
           for (auto& q : sv.points) q += shift;
           raw[i].view.outline.insert(raw[i].view.outline.end(), sv.points.begin(), sv.points.end() - 1);
@@ -591,13 +602,19 @@ struct Studio::Impl {
           for (auto& q : l) q += shift;
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
         raw[i].view.shift = shift;
-        hi.x() = std::max(hi.x(), x + raw[i].hi.x() - raw[i].lo.x());
         x += raw[i].hi.x() - raw[i].lo.x() + gap;
         pieces.push_back(std::move(raw[i].view));
       }
       y -= h + gap;
     }
-    lo.y() = y + gap;
+    // The sheet: every piece where it lies.
+    pattern::Vec2 blo = pieces.front().outline.front(), bhi = blo;
+    std::string ids;
+    for (const auto& pv : pieces) {
+      ids += pv.pattern_id + " ";
+      for (const auto& q : pv.outline) blo = blo.cwiseMin(q), bhi = bhi.cwiseMax(q);
+    }
+    if (refit || ids != layout_ids) lo = blo, hi = bhi, layout_ids = ids, refit = false;
   }
 
   ImVec2 to_screen(const pattern::Vec2& p) const {
@@ -880,6 +897,7 @@ struct Studio::Impl {
     ImGui::InvisibleButton("pattern canvas", size);
     const bool canvas_hovered = ImGui::IsItemHovered();
     const ImVec2 p0 = ImGui::GetItemRectMin();
+    canvas_lo = p0, canvas_hi = {p0.x + size.x, p0.y + size.y};
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(p0, {p0.x + size.x, p0.y + size.y}, rgb(252, 251, 248));
     stretch_rects.clear();
@@ -905,7 +923,7 @@ struct Studio::Impl {
         }
         for (const ImGuiMouseButton b : {ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
           if (ImGui::IsMouseDragging(b, 0)) pan.x += ImGui::GetIO().MouseDelta.x, pan.y += ImGui::GetIO().MouseDelta.y;
-        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) zoom = 1, pan = {0, 0};
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) zoom = 1, pan = {0, 0}, refit = true, layout_rev = -1;
       }
       scale = fit * zoom;
       origin = {fit_origin.x + pan.x, fit_origin.y + pan.y};
@@ -981,6 +999,15 @@ struct Studio::Impl {
       if (sel_piece) draw_points(dl, *sel_piece, point_hover);
       draw_measure(dl, mouse, canvas_hovered);
       draw_drawing(dl, mouse, canvas_hovered);
+      if (const auto d = piece_drag_offset(mouse))
+        if (const PieceView* pv = piece_view(*piece_drag)) {
+          // Where the piece goes when let go here.
+          for (const auto& sv : pv->stretches) {
+            std::vector<ImVec2> pts;
+            for (const auto& q : sv.points) pts.push_back({to_screen(q).x + d->x, to_screen(q).y + d->y});
+            dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), rgb(20, 160, 90, 170), 0, 2.0f);
+          }
+        }
       dl->PopClipRect();
       if (drawing != Drawing::none) {
         if (ImGui::IsItemClicked()) draw_at(mouse);
@@ -1009,7 +1036,7 @@ struct Studio::Impl {
           if (pv.outline.size() >= 3 && mesh::point_in_polygon(pv.outline, m)) inside = pv.pattern_id;
         if (!inside.empty() && inside != selected) select(inside);
         if (inside.empty()) point_sel.reset();
-        if (!inside.empty()) piece_drag = inside;  // dragged onto the 3-D view's arrangement points while arranging
+        if (!inside.empty()) piece_drag = inside, piece_drag_from = mouse;  // moved on the sheet, or onto the body
       }
       if (hovered) {
         std::string tip;
@@ -2231,11 +2258,37 @@ struct Studio::Impl {
       ImGui::TextDisabled("Drape the garment to see it on the body, or Arrange to place its pieces.");
       ImGui::TextDisabled("Drag the picture to turn it.");
     }
-    // A piece dragged from the pattern view is let go: put on the point under it.
-    if (piece_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-      if (drop_target && *drop_target < arrange_points.size()) put_piece(*piece_drag, arrange_points[*drop_target]);
-      piece_drag.reset();
+  }
+
+  // A piece dragged in the pattern view: how far it has gone (px) while the
+  // mouse is still over the view and more than 3 px from where it started.
+  std::optional<ImVec2> piece_drag_offset(const ImVec2& mouse) const {
+    if (!piece_drag) return std::nullopt;
+    const ImVec2 d{mouse.x - piece_drag_from.x, mouse.y - piece_drag_from.y};
+    const bool over = mouse.x >= canvas_lo.x && mouse.x < canvas_hi.x && mouse.y >= canvas_lo.y && mouse.y < canvas_hi.y;
+    if (!over || std::hypot(d.x, d.y) <= 3.0f) return std::nullopt;
+    return d;
+  }
+
+  // A piece dragged from the pattern view is let go: on an arrangement point
+  // of the 3-D view it is put there; in the pattern view it is moved on the
+  // sheet (one SetSheetPosition command).
+  void end_piece_drag() {
+    if (!piece_drag || ImGui::IsMouseDown(ImGuiMouseButton_Left)) return;
+    const std::string id = *piece_drag;
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    if (drop_target && *drop_target < arrange_points.size()) {
+      put_piece(id, arrange_points[*drop_target]);
+    } else if (const auto d = piece_drag_offset(mouse); d && scale > 0) {
+      if (const PieceView* pv = piece_view(id)) {
+        const pattern::Vec2 at = pv->shift + pattern::Vec2(d->x, -d->y) / scale;
+        const std::string name = pv->name;
+        run(std::make_unique<xvc::SetSheetPosition>(id, std::array<double, 2>{at.x(), at.y()}));
+        say(name + " moved on the sheet by " + format_fixed(100 * d->x / scale, 1) + " cm across and " +
+            format_fixed(-100 * d->y / scale, 1) + " cm up.");
+      }
     }
+    piece_drag.reset();
   }
 
   void dialogs(Studio& self) {
@@ -2611,6 +2664,7 @@ void Studio::draw() {
   I.preview_panel();
   ImGui::EndChild();
   ImGui::EndChild();
+  I.end_piece_drag();
 
   if (I.status_error) ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(190, 30, 30, 255));
   ImGui::TextUnformatted(I.status.c_str());

@@ -241,6 +241,14 @@ class Checker {
     const Node& n = *it.node;
     // Arrangements (arrangement.hpp) belong to a PATTERN and say where it goes.
     const bool arrangement = n.attribute("type") == "arrangement";
+    if (n.attribute("type") == "sheet") {
+      if (!it.pattern || (it.parent && it.parent->tag != "PATTERN")) error(it, "a sheet position belongs inside a PATTERN");
+      if (it.parent) {
+        int sheets = 0;
+        for (const auto& c : it.parent->children) sheets += c.tag == "POSITION" && c.attribute("type") == "sheet";
+        if (sheets > 1) error(it, "a PATTERN has one sheet position, not " + std::to_string(sheets));
+      }
+    }
     if (arrangement) {
       if (!it.pattern || (it.parent && it.parent->tag != "PATTERN")) error(it, "an arrangement belongs inside a PATTERN");
       for (const char* a : {"segment", "side", "height"})

@@ -50,6 +50,8 @@ std::string CopyPattern::apply(Editor& edit) {
   const Document& doc = edit.document();
   const NodePath path = require(doc, id_, "PATTERN");
   Node copy = doc.at(path);
+  // The view lays the copy out beside the original, not over it.
+  std::erase_if(copy.children, [](const Node& c) { return c.tag == "POSITION" && c.attribute("type") == "sheet"; });
   detail::IdMaker ids(doc);
   detail::assign_ids(copy, ids, true);
 
@@ -178,7 +180,7 @@ std::string MirrorPattern::apply(Editor& edit) {
       // A closed loop other than the outline keeps its winding sense, like the outline.
       if (!detail::is_boundary_sequence(c) && detail::parse_bool(c.attribute("closed")).value_or(false))
         std::reverse(c.children.begin(), c.children.end());
-    } else if (c.tag == "POSITION") {
+    } else if (c.tag == "POSITION" && c.attribute("type") != "sheet") {
       set_point(c, m(point_of(c)));
       if (const auto ang = parse_double(c.attribute("angle")); ang && c.has_attribute("angle"))
         c.set_attribute("angle", format_double(m.angle(*ang)));
@@ -402,13 +404,51 @@ std::string RotatePattern::apply(Editor& edit) {
     if (c.tag == "C2DSEQ" && c.attribute("role") != "grain") {
       for (auto& q : c.children)
         if (q.tag == "C2D") set_point(q, turn(point_of(q)));
-    } else if (c.tag == "POSITION") {
+    } else if (c.tag == "POSITION" && c.attribute("type") != "sheet") {
       // Its point turns with the piece (an arrangement's reference point too); a
       // notch's direction with it (an arrangement's angle is round the body: kept).
       set_point(c, turn(point_of(c)));
       if (const auto ang = parse_double(c.attribute("angle")); ang && c.attribute("type") == "notch")
         c.set_attribute("angle", format_double(normalise_deg(*ang + degrees_)));
     }
+  }
+  edit.replace(path, std::move(p));
+  return id_;
+}
+
+// ---- SetSheetPosition -----------------------------------------------------------------
+
+std::optional<std::array<double, 2>> sheet_position(const Node& pattern) {
+  for (const auto& c : pattern.children)
+    if (c.tag == "POSITION" && c.attribute("type") == "sheet") {
+      const auto x = parse_double(c.attribute("x")), y = parse_double(c.attribute("y"));
+      if (x && y) return std::array<double, 2>{*x, *y};
+    }
+  return std::nullopt;
+}
+
+SetSheetPosition::SetSheetPosition(std::string pattern_id, std::optional<std::array<double, 2>> at)
+    : id_(std::move(pattern_id)), at_(at) {}
+
+std::string SetSheetPosition::label() const { return "Move pattern " + id_ + " on the sheet"; }
+
+std::string SetSheetPosition::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  if (at_ && !(std::isfinite((*at_)[0]) && std::isfinite((*at_)[1])))
+    throw Error(doc.name(), id_, "a sheet position must be finite");
+  Node p = doc.at(path);
+  std::erase_if(p.children, [](const Node& c) { return c.tag == "POSITION" && c.attribute("type") == "sheet"; });
+  if (at_) {
+    detail::IdMaker ids(doc);
+    Node pos{"POSITION",
+             {{"id", ids.make("pos")}, {"type", "sheet"}, {"x", format_double((*at_)[0])}, {"y", format_double((*at_)[1])}},
+             {}};
+    // After the pattern's other POSITIONs (the schema's order: C2DSEQ, POSITION, ASSOCIATION).
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < p.children.size(); ++i)
+      if (p.children[i].tag == "C2DSEQ" || p.children[i].tag == "POSITION" || p.children[i].tag == "ANNOTATION") at = i + 1;
+    p.children.insert(p.children.begin() + static_cast<std::ptrdiff_t>(at), std::move(pos));
   }
   edit.replace(path, std::move(p));
   return id_;

@@ -1199,6 +1199,52 @@ TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
   EXPECT_TRUE(h.studio().document() == original);
 }
 
+// Moving a piece in the pattern view: the skirt's front dragged by (40, 25) px
+// from inside it is drawn 40 px right and 25 px lower, the others where they
+// were; the document holds its sheet position (checked, validated, saved);
+// undo puts it back; let go off the pattern view (nothing arranged there) it
+// stays.
+TEST(Studio, APieceIsMovedInThePatternView) {
+  Harness h;
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const std::string back = pattern_id(h.studio().document(), "BACK", "38");
+  const auto original = h.studio().document();
+  const auto at = h.studio().piece_on_screen(front), back_at = h.studio().piece_on_screen(back);
+  ASSERT_TRUE(at && back_at);
+  h.drag(at->cx(), at->cy(), at->cx() + 40, at->cy() + 25);
+  h.frame();
+  const auto moved = h.studio().piece_on_screen(front), back_now = h.studio().piece_on_screen(back);
+  ASSERT_TRUE(moved && back_now);
+  EXPECT_NEAR(moved->cx(), at->cx() + 40, 0.5);
+  EXPECT_NEAR(moved->cy(), at->cy() + 25, 0.5);
+  EXPECT_NEAR(back_now->cx(), back_at->cx(), 0.5) << "the others stay";
+  EXPECT_NEAR(back_now->cy(), back_at->cy(), 0.5);
+  const auto sheet = vgd::xvc::sheet_position(*h.studio().document().find(front));
+  ASSERT_TRUE(sheet.has_value()) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("FRONT moved on the sheet"), std::string::npos) << h.studio().status();
+  {
+    const auto a = vgd::xvc::to_piece(h.studio().document(), front).boundary, b = vgd::xvc::to_piece(original, front).boundary;
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].p, b[k].p) << "the piece itself is unchanged";
+  }
+  const fs::path dir = temp_dir("sheet");
+  vgd::xvc::save_file(h.studio().document(), dir / "moved.xvc");
+  EXPECT_EQ(vgd::xvc::validate_file(dir / "moved.xvc", vgd::xvc::default_schema_path()).count(vgd::Severity::error), 0u);
+  EXPECT_EQ(vgd::xvc::sheet_position(*vgd::xvc::load_file(dir / "moved.xvc").find(front)), sheet);
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+  const auto back_home = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(back_home.has_value());
+  EXPECT_NEAR(back_home->cx(), at->cx(), 0.5);
+  // Let go over the 3-D view (not arranging): nothing moves.
+  const auto preview = h.studio().widget("preview").value_or(vgd::studio::Rect{1000, 400, 1000, 400});
+  h.drag(at->cx(), at->cy(), preview.cx(), preview.cy());
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+}
+
 // Outline editing in the pattern view: a click inside a piece selects it and
 // shows its points; a point dragged by (30, -12) px moves by that much in the
 // piece's frame (y up), as one undo step; a point clicked, a point inserted

@@ -554,3 +554,55 @@ TEST(AddDrawnPattern, AddsAPolygonAsAPieceWithAStretchPerSide) {
   EXPECT_THROW(execute(doc, *std::make_unique<AddDrawnPattern>("X", "", Pts{{0, 0}, {0.5, 0}, {0.5, 0.0001}})), vgd::Error);
   EXPECT_EQ(doc.patterns().size(), n + 2);
 }
+
+// A piece's place on the sheet: set (one POSITION type="sheet", the document
+// checks and validates), set again (still one, the new place), kept by a
+// rotation and a mirroring (the piece is not moved on the sheet by them),
+// absent from a copy, refused when not finite, removed; undo restores; two in
+// one PATTERN are an error of the check.
+TEST(SetSheetPosition, PlacesThePieceOnTheSheetOnceAndRotationKeepsIt) {
+  Document doc = full_document();
+  const Document before = doc;
+  UndoStack stack(doc);
+  EXPECT_FALSE(sheet_position(*doc.find("pattern1")).has_value());
+  stack.execute(std::make_unique<SetSheetPosition>("pattern1", std::array<double, 2>{0.25, -0.5}));
+  ASSERT_TRUE(sheet_position(*doc.find("pattern1")).has_value());
+  EXPECT_EQ(*sheet_position(*doc.find("pattern1")), (std::array<double, 2>{0.25, -0.5}));
+  stack.execute(std::make_unique<SetSheetPosition>("pattern1", std::array<double, 2>{-0.125, 0.75}));
+  int sheets = 0;
+  for (const auto& c : doc.find("pattern1")->children) sheets += c.tag == "POSITION" && c.attribute("type") == "sheet";
+  EXPECT_EQ(sheets, 1);
+  EXPECT_EQ(*sheet_position(*doc.find("pattern1")), (std::array<double, 2>{-0.125, 0.75}));
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  const auto valid = validate_string(save_string(doc), "sheet.xvc", schema());
+  EXPECT_FALSE(valid.has_errors()) << dump(valid);
+  stack.execute(std::make_unique<RotatePattern>("pattern1", 30));
+  stack.execute(std::make_unique<MirrorPattern>("pattern1"));
+  EXPECT_EQ(*sheet_position(*doc.find("pattern1")), (std::array<double, 2>{-0.125, 0.75}));
+  const std::string copy = stack.execute(std::make_unique<CopyPattern>("pattern1"));
+  EXPECT_FALSE(sheet_position(*doc.find(copy)).has_value()) << "a copy is laid out by the view";
+  EXPECT_THROW(stack.execute(std::make_unique<SetSheetPosition>("pattern1", std::array<double, 2>{NAN, 0.0})), vgd::Error);
+  EXPECT_THROW(stack.execute(std::make_unique<SetSheetPosition>("seq3", std::array<double, 2>{0.0, 0.0})), vgd::Error);
+  stack.execute(std::make_unique<SetSheetPosition>("pattern1", std::nullopt));
+  EXPECT_FALSE(sheet_position(*doc.find("pattern1")).has_value());
+  while (stack.can_undo()) stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+  // A second sheet position in one PATTERN: refused by the check, said so.
+  stack.execute(std::make_unique<SetSheetPosition>("pattern1", std::array<double, 2>{0.0, 0.0}));
+  try {
+    stack.execute(std::make_unique<AddNode>("pattern1", Node{"POSITION", {{"type", "sheet"}, {"x", "1"}, {"y", "1"}}, {}}));
+    ADD_FAILURE() << "a second sheet position was added";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("one sheet position, not 2"), std::string::npos) << e.what();
+  }
+  // In an ACCESSORY (which holds POSITIONs): refused too.
+  std::string accessory;
+  for (const auto& c : doc.container("ACCESSORIES")->children) accessory = std::string(c.id());
+  ASSERT_FALSE(accessory.empty());
+  try {
+    stack.execute(std::make_unique<AddNode>(accessory, Node{"POSITION", {{"type", "sheet"}, {"x", "1"}, {"y", "1"}}, {}}));
+    ADD_FAILURE() << "a sheet position was added outside a PATTERN";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("belongs inside a PATTERN"), std::string::npos) << e.what();
+  }
+}

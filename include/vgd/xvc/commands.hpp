@@ -363,6 +363,26 @@ class SetPieceMaterial : public Command {
   std::optional<Node> material_;
 };
 
+// Where a PATTERN lies on the flat sheet the studio's pattern view shows:
+// POSITION type="sheet" in the PATTERN, x and y (m) the sheet point its own
+// origin lies on (the sheet shows the piece translated by them, never turned).
+// A pattern without one is laid out by the view. It has no bearing on cutting
+// or draping; rotating or mirroring the pattern keeps it, a copy has none.
+std::optional<std::array<double, 2>> sheet_position(const Node& pattern);
+
+// Undoable: sets the PATTERN's sheet position, or removes it (nullopt).
+// Refused for a non-finite coordinate. Returns the pattern id.
+class SetSheetPosition : public Command {
+ public:
+  SetSheetPosition(std::string pattern_id, std::optional<std::array<double, 2>> at);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  std::optional<std::array<double, 2>> at_;
+};
+
 // Sets (or adds) a GARMENT-level PARAMETER. An empty unit means the known parameter's
 // unit; unknown parameters need one. Returns the PARAMETER's id.
 class SetParameter : public Command {
