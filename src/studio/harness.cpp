@@ -90,17 +90,19 @@ void Harness::frames(int n) {
   for (int i = 0; i < n; ++i) frame();
 }
 
-void Harness::click_at(float x, float y, bool shift) {
+void Harness::click_at(float x, float y, bool shift, bool alt) {
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = {x, y};
   io.KeyShift = shift;
+  io.KeyAlt = alt;
   frame();
   io.MouseDown[0] = true;
   frame();
   io.MouseDown[0] = false;
   frame();
   io.KeyShift = false;
+  io.KeyAlt = false;
   frame();
 }
 

@@ -1782,6 +1782,7 @@ struct Studio::Impl {
       cloth = {};
       job = &here;
       release_hand();
+      hand->unpin_all();  // pins hold for the run they were set in
       def.effects.hand = sim::HandDef{};
       def.effects.hand->control = hand;  // Ctrl+drag in the 3-D view pulls the cloth
       here.start(std::move(def), omp_get_max_threads());  // the UI thread's setting (--threads)
@@ -1826,6 +1827,67 @@ struct Studio::Impl {
     hand->grab(hit->first, sim::Vec3(q[0], q[1], q[2]));
     pulling = hit->first, pull_depth = hit->second;
     say("Pulling the cloth at particle " + std::to_string(hit->first) + ": drag it, let go to release it.");
+  }
+
+  // Alt+click on the cloth while it drapes here: the particle under the mouse
+  // pinned where it is (pinned already: unpinned); with Shift, every particle
+  // of its piece (the piece frozen; frozen already: freed).
+  void pin_at(const ImVec2& at, bool piece) {
+    if (!piece) {
+      // On a pin's square: that pin let go.
+      std::optional<int> near;
+      double best = 12;  // px, as far as a click reaches to pin
+      for (const auto& p : hand->pins())
+        if (const auto q = render::project(*preview_camera, preview_w, preview_h, {p.at.x(), p.at.y(), p.at.z()}))
+          if (const double d = std::hypot(q->x - at.x, q->y - at.y); d < best) best = d, near = p.particle;
+      if (near) {
+        hand->unpin({*near});
+        return say("particle " + std::to_string(*near) + " unpinned (" + std::to_string(hand->pin_count()) + " pins left).");
+      }
+    }
+    const auto hit = particle_under(at, 12);
+    if (!hit) return say("Nothing of the cloth under the mouse to pin (Alt+click on the garment).");
+    std::vector<int> which{hit->first};
+    std::string what = "particle " + std::to_string(hit->first);
+    if (piece && !cloth.triangle_piece.empty()) {
+      // The piece: of the triangles using the particle, the first one's.
+      int k = -1;
+      for (std::size_t t = 0; t < cloth.triangles.size() && k < 0; ++t)
+        for (const int i : cloth.triangles[t])
+          if (i == hit->first) k = cloth.triangle_piece[t];
+      std::set<int> in;
+      for (std::size_t t = 0; t < cloth.triangles.size(); ++t)
+        if (cloth.triangle_piece[t] == k) in.insert(cloth.triangles[t].begin(), cloth.triangles[t].end());
+      which.assign(in.begin(), in.end());
+      what = k >= 0 && static_cast<std::size_t>(k) < cloth.pieces.size() ? cloth.pieces[static_cast<std::size_t>(k)] : "the piece";
+    }
+    const auto pins = hand->pins();
+    std::set<int> pinned;
+    for (const auto& p : pins) pinned.insert(p.particle);
+    const bool all = std::all_of(which.begin(), which.end(), [&](int i) { return pinned.count(i) > 0; });
+    if (all) {
+      hand->unpin(which);
+      say((piece ? what + " freed" : what + " unpinned") + " (" + std::to_string(hand->pin_count()) + " pins left).");
+      return;
+    }
+    std::vector<sim::HandControl::Pin> add;
+    for (const int i : which) {
+      const auto& q = cloth.positions[static_cast<std::size_t>(i)];
+      add.push_back({i, sim::Vec3(q[0], q[1], q[2])});
+    }
+    hand->pin(add);
+    say((piece ? what + " frozen where it is (" + std::to_string(which.size()) + " particles pinned)" : what + " pinned where it is") +
+        "; Alt+click it again to let go.");
+  }
+
+  // The pins as small dark red squares where they hold.
+  void draw_pins(const ImVec2& origin) const {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (const auto& p : hand->pins())
+      if (const auto q = render::project(*preview_camera, preview_w, preview_h, {p.at.x(), p.at.y(), p.at.z()})) {
+        const ImVec2 c{origin.x + static_cast<float>(q->x), origin.y + static_cast<float>(q->y)};
+        dl->AddRectFilled({c.x - 2, c.y - 2}, {c.x + 2, c.y + 2}, rgb(170, 20, 30));
+      }
   }
 
   void release_hand() {
@@ -2123,6 +2185,13 @@ struct Studio::Impl {
 
   void preview_panel() {
     drop_target.reset();
+    if (const std::size_t n = hand->pin_count(); n > 0) {
+      ImGui::Text("%zu pinned", n);
+      ImGui::SameLine();
+      if (ImGui::SmallButton("Unpin all")) hand->unpin_all(), say("Every pin let go.");
+      track("Unpin all");
+      ImGui::SameLine();
+    }
     if (arranging && !job->running() && !lifting &&
         (arranged_rev != revision || arranged_for != arrangement_settings()))
       arrange();  // the document, the size or the body changed
@@ -2235,6 +2304,9 @@ struct Studio::Impl {
         }
       }
       if (ImGui::IsItemActivated() && ImGui::GetIO().KeyCtrl && pullable) grab_cloth({mouse.x - a.x, mouse.y - a.y});
+      if (ImGui::IsItemActivated() && ImGui::GetIO().KeyAlt && !ImGui::GetIO().KeyCtrl && pullable)
+        pin_at({mouse.x - a.x, mouse.y - a.y}, ImGui::GetIO().KeyShift);
+      if (pullable) draw_pins(a);
       if (pulling && (!ImGui::IsItemActive() || !pullable)) release_hand();
       if (pulling) {
         // The held particle is pulled to the point under the mouse at its depth.
@@ -2246,14 +2318,15 @@ struct Studio::Impl {
           dl->AddLine(from, mouse, rgb(230, 60, 20), 2.0f);
           dl->AddCircleFilled(from, 4.0f, rgb(230, 60, 20));
         }
-      } else if (ImGui::IsItemActive() && !lifting && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+      } else if (ImGui::IsItemActive() && !lifting && !ImGui::GetIO().KeyAlt && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
         const ImVec2 d = ImGui::GetIO().MouseDelta;
         azimuth -= 0.4 * d.x;
         elevation = std::clamp(elevation + 0.3 * d.y, -60.0, 80.0);
         preview_dirty = true;
       }
       if (ImGui::IsItemHovered() && pullable && !pulling)
-        ImGui::SetTooltip("Drag to turn the view; Ctrl+drag pulls the cloth while it drapes");
+        ImGui::SetTooltip("Drag to turn the view; while it drapes, Ctrl+drag pulls the cloth, Alt+click pins it "
+                          "there (again: unpins), Alt+Shift+click freezes the piece (again: frees it)");
     } else {
       ImGui::TextDisabled("Drape the garment to see it on the body, or Arrange to place its pieces.");
       ImGui::TextDisabled("Drag the picture to turn it.");
@@ -2745,6 +2818,7 @@ std::optional<double> Studio::measured() const { return impl_->measured; }
 std::optional<int> Studio::held_particle() const { return impl_->pulling; }
 bool Studio::view_in_window_context() const { return impl_->view != nullptr; }
 bool Studio::arranging() const { return impl_->arranging; }
+std::vector<sim::HandControl::Pin> Studio::pins() const { return impl_->hand->pins(); }
 std::optional<Rect> Studio::arrangement_point_on_screen(std::string_view label) const {
   const auto r = widget("preview");
   if (!impl_->preview_camera || !r) return std::nullopt;

@@ -40,8 +40,8 @@ class Harness {
   // Several frames (animations, popups opening, the preview catching up).
   void frames(int n);
   // Moves the mouse to (x, y) and clicks the left button (four frames: move,
-  // press, release, settle).
-  void click_at(float x, float y, bool shift = false);
+  // press, release, settle), with Shift and Alt held when asked.
+  void click_at(float x, float y, bool shift = false, bool alt = false);
   // Clicks the middle of a named widget of the last frame (Studio::widget);
   // throws vgd::Error naming it when there is no such widget on screen.
   void click(std::string_view widget, bool shift = false);
@@ -64,7 +64,7 @@ class Harness {
 
   // Runs a script, one command per line ('#' starts a comment):
   //   open FILE | save [FILE] | export-vrml FILE.wrl | click WIDGET | click-stretch PATTERN SEQ
-  //   click-piece PATTERN [DX DY] | drag-point PATTERN SEQ INDEX DX DY (px)
+  //   click-piece PATTERN [DX DY] | drop-piece PATTERN POINT | drag-point PATTERN SEQ INDEX DX DY (px)
   //   key CHORD | type TEXT | frames N | wait-drape | screenshot FILE.png
   //   expect-status TEXT (fails unless the status bar contains TEXT)
   // Paths are relative to the script's folder. Throws vgd::Error naming the

@@ -42,6 +42,7 @@
 #include "vgd/dress/certificate.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/dress/drape.hpp"
+#include "vgd/sim/effects/hand.hpp"
 #include "vgd/xvc/document.hpp"
 
 struct ImDrawData;
@@ -224,6 +225,10 @@ class Studio {
   // start, where an arrangement point ("torso front", "left arm", ...) is on
   // screen, and a point of an arranged piece (the particle nearest its
   // middle) on screen; the particles of that piece as drawn (m).
+  // Pins set in the 3-D view while a drape runs here (Alt+click a particle,
+  // Alt+Shift+click a piece to freeze it): the particles held and where
+  // (m), by increasing particle.
+  std::vector<sim::HandControl::Pin> pins() const;
   bool arranging() const;
   std::optional<Rect> arrangement_point_on_screen(std::string_view label) const;
   std::optional<Rect> arranged_piece_on_screen(std::string_view pattern_id, int copy = 0) const;
