@@ -1528,3 +1528,174 @@ TEST(Studio, AnMToNSeamIsPickedWithShiftAndFlipped) {
   h.key("ctrl+z");
   EXPECT_TRUE(h.studio().document() == before);
 }
+
+// A designer's session on a shared DXF, every step through the studio: the
+// racer-back tank imported (size 36, its sample); its front moved on the
+// sheet, turned 3° off the grain, a hem corner dragged 12 px down; seams
+// suggested and all but the first accepted, that one picked by hand from
+// its two stretches; Arrange, the front dragged 15 px up the torso in 3-D;
+// a drape started, the cloth pulled by hand for 0.3 s simulated (it moves,
+// stays finite), stopped; draped again to rest on one thread, shown as its
+// weft strain map (the 3-D view against tests/golden/studio/session-weft.png,
+// colour SSIM > 0.97, looked at); saved: the file validates and holds every
+// edit.
+TEST(Studio, ASharedDxfIsImportedEditedArrangedDrapedAndSaved) {
+  const fs::path shared = fs::path(VGD_SHARED_DIR) / "data" / "dxf" / "WM_SLIM_TANK.DXF";
+  if (!fs::exists(shared)) GTEST_SKIP() << "shared data absent: " << shared;
+  omp_set_num_threads(1);
+  const fs::path dir = temp_dir("session");
+  fs::copy_file(shared, dir / "tank.dxf");
+  Harness h(1280, 800);
+  ASSERT_TRUE(h.studio().open(dir / "tank.dxf")) << h.studio().status();
+  h.frames(2);
+  h.click("import:ok");
+  h.frames(2);
+  h.click("imported:ok");
+  ASSERT_EQ(h.studio().drape_options().size, "36");
+  const std::string front = pattern_id(h.studio().document(), "TANK_SR_FR", "36");
+  const std::string back = pattern_id(h.studio().document(), "TANK_SR_BK", "36");
+  ASSERT_FALSE(front.empty() || back.empty());
+  const auto imported = h.studio().document();
+
+  // Moved on the sheet, turned 3°, a hem corner dragged down.
+  const auto at = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(at.has_value());
+  h.drag(at->cx(), at->cy(), at->cx() + 20, at->cy());
+  ASSERT_TRUE(vgd::xvc::sheet_position(*h.studio().document().find(front)).has_value()) << h.studio().status();
+  h.click_at(at->cx() + 20, at->cy());
+  ASSERT_EQ(h.studio().selected(), front);
+  h.click("rotate angle");
+  h.key("ctrl+a");
+  h.type("3");
+  h.key("enter");
+  h.click("Rotate");
+  ASSERT_NE(h.studio().status().find("by 3"), std::string::npos) << h.studio().status();
+  h.frame();
+  // The front's lowest outline point: a hem corner.
+  const auto stretches = vgd::xvc::boundary_stretches(*h.studio().document().find(front));
+  std::optional<vgd::xvc::OutlinePoint> corner;
+  double lowest = 1e9;
+  for (const auto& st : stretches) {
+    const vgd::xvc::OutlinePoint p{front, st.id, 0};
+    const double y = outline_point(h.studio().document(), p).y();
+    if (y < lowest) lowest = y, corner = p;
+  }
+  ASSERT_TRUE(corner.has_value());
+  const auto cs = h.studio().point_on_screen(*corner);
+  ASSERT_TRUE(cs.has_value());
+  const auto before_drag = outline_point(h.studio().document(), *corner);
+  h.drag(cs->cx(), cs->cy(), cs->cx(), cs->cy() + 12);
+  const auto after_drag = outline_point(h.studio().document(), *corner);
+  EXPECT_NEAR(before_drag.y() - after_drag.y(), 12 / h.studio().pattern_scale(), 1e-6) << h.studio().status();
+
+  // Seams: the suggestions but the first, which is picked by hand.
+  vgd::xvc::SeamOptions so;
+  so.size = "36";
+  const auto suggested = vgd::xvc::suggest_seams(h.studio().document(), so);
+  ASSERT_GE(suggested.size(), 3u);
+  h.click("Suggest seams");
+  h.frames(2);
+  h.click("suggestion:1");
+  h.click("suggestions:add");
+  ASSERT_EQ(vgd::xvc::list_seams(h.studio().document()).size(), suggested.size() - 1) << h.studio().status();
+  const auto& first = suggested.front();
+  ASSERT_EQ(first.hems.size(), 2u);
+  ASSERT_EQ(first.hems[0].from, first.hems[0].to) << "one stretch a side";
+  ASSERT_EQ(first.hems[1].from, first.hems[1].to);
+  h.click("Clear picks");
+  for (const auto& hem : first.hems) {
+    const auto r = h.studio().stretch_on_screen(hem.pattern, hem.from);
+    ASSERT_TRUE(r.has_value());
+    h.click_at(r->cx(), r->cy());
+  }
+  h.click("Add seam");
+  const auto seams = vgd::xvc::list_seams(h.studio().document());
+  ASSERT_EQ(seams.size(), suggested.size()) << h.studio().status();
+  if (first.hems[0].reverse == first.hems[1].reverse) {
+    // Picked, hem B runs against hem A; the suggestion runs both one way.
+    h.click("tree:" + seams.back().id);
+    h.click("Flip seam");
+  }
+
+  // Arranged in 3-D: the front dragged 15 px up its place.
+  h.click("Arrange");
+  h.frames(2);
+  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+  const auto fa = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(fa.has_value());
+  h.drag(fa->cx(), fa->cy(), fa->cx(), fa->cy() - 15);
+  const auto arranged = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(arranged.size(), 1u) << h.studio().status();
+  EXPECT_EQ(arranged[0].segment, "torso");
+
+  // A drape, pulled by hand a while, stopped.
+  auto& o = h.studio().drape_options();
+  o.time_limit = 6.0;
+  o.spacing = 0.02;
+  h.click("Drape");
+  ASSERT_FALSE(h.studio().arranging());
+  ASSERT_TRUE(frames_until(h, [&] { return h.studio().drape_status().t > 0.3 && h.studio().particle_on_screen(0).has_value(); }))
+      << h.studio().drape_status().message;
+  const auto r = h.studio().widget("preview");
+  ASSERT_TRUE(r.has_value());
+  int pick = -1;
+  float best = 1e9f;
+  const auto x0 = h.studio().cloth_positions();
+  for (std::size_t i = 0; i < x0.size(); ++i)
+    if (const auto q = h.studio().particle_on_screen(static_cast<int>(i)))
+      if (const float d = std::hypot(q->cx() - r->cx(), q->cy() - (r->y0 + 0.55f * (r->y1 - r->y0))); d < best)
+        best = d, pick = static_cast<int>(i);
+  ASSERT_GE(pick, 0);
+  const auto ps = *h.studio().particle_on_screen(pick);
+  h.press(ps.cx(), ps.cy(), true);
+  ASSERT_TRUE(h.studio().held_particle().has_value()) << h.studio().status();
+  const int held = *h.studio().held_particle();
+  const auto held_before = h.studio().cloth_positions()[static_cast<std::size_t>(held)];
+  for (int k = 1; k <= 4; ++k) h.move_mouse(ps.cx() + 10.0f * k, ps.cy());
+  const double t0 = h.studio().drape_status().t;
+  ASSERT_TRUE(frames_until(h, [&] { return h.studio().drape_status().t > t0 + 0.3; }));
+  h.frames(20);
+  const auto pulled = h.studio().cloth_positions();
+  const auto& held_after = pulled[static_cast<std::size_t>(held)];
+  EXPECT_GT(std::hypot(held_after[0] - held_before[0], held_after[1] - held_before[1], held_after[2] - held_before[2]), 0.01f);
+  for (const auto& q : pulled) ASSERT_TRUE(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]));
+  h.release();
+  h.click("Stop");
+  h.studio().wait_for_drape();
+  h.frames(2);
+
+  // Draped to rest, its weft strain shown.
+  h.click("Drape");
+  h.studio().wait_for_drape();
+  h.frames(4);
+  ASSERT_EQ(h.studio().drape_status().stage, "done") << h.studio().drape_status().message;
+  ASSERT_TRUE(h.studio().certificate().has_value());
+  EXPECT_TRUE(h.studio().certificate()->passed()) << h.studio().status();
+  h.click("map");
+  h.click("map:weft strain");
+  h.frames(4);
+  const auto view = crop(h.screenshot(), *h.studio().widget("preview"));
+  const fs::path golden = kSource / "tests/golden/studio/session-weft.png";
+  if (std::getenv("VGD_UPDATE_GOLDENS")) {
+    fs::create_directories(golden.parent_path());
+    vgd::render::write_png(view, golden);
+  }
+  const auto ref = vgd::render::read_png(golden);
+  ASSERT_EQ(ref.width, view.width);
+  ASSERT_EQ(ref.height, view.height);
+  EXPECT_GT(vgd::qa::colour_ssim(ref, view), 0.97);
+
+  // Saved: valid, every edit in it.
+  const fs::path out = dir / "tank-session.xvc";
+  ASSERT_TRUE(h.studio().save(out)) << h.studio().status();
+  const auto v = vgd::xvc::validate_file(out, vgd::xvc::default_schema_path());
+  for (const auto& d : v.items())
+    if (d.severity == vgd::Severity::error) ADD_FAILURE() << d.format();
+  const auto saved = vgd::xvc::load_file(out);
+  EXPECT_TRUE(saved == h.studio().document());
+  EXPECT_EQ(vgd::xvc::sheet_position(*saved.find(front)), vgd::xvc::sheet_position(*h.studio().document().find(front)));
+  EXPECT_NEAR(outline_point(saved, *corner).y(), after_drag.y(), 1e-9);
+  EXPECT_EQ(vgd::xvc::list_seams(saved).size(), suggested.size());
+  EXPECT_EQ(vgd::xvc::arrangements_of(*saved.find(front)).size(), 1u);
+  EXPECT_FALSE(saved == imported);
+}
