@@ -13,6 +13,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/file.hpp"
@@ -149,7 +150,7 @@ int run_headless(const Options& o) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", h.studio().status().c_str());
     return 1;
   }
-  if (!o.script.empty()) h.run_script(o.script);
+  if (!o.script.empty()) h.run_script(o.script, &std::cout);
   h.frames(3);
   if (!o.screenshot.empty()) vgd::render::write_png(h.screenshot(), o.screenshot);
   std::printf("%s\n", h.studio().status().c_str());

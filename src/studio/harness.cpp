@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -196,7 +198,23 @@ void Harness::type(std::string_view text) {
 
 render::Image Harness::screenshot() { return impl_->context.read_back(); }
 
-void Harness::run_script(const fs::path& script) {
+Harness::FrameTimes Harness::frames_timed(int n) {
+  FrameTimes out;
+  std::vector<double> ms;
+  for (int i = 0; i < n; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    frame();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  if (ms.empty()) return out;
+  out.frames = n;
+  for (const double m : ms) out.mean_ms += m / n, out.max_ms = std::max(out.max_ms, m);
+  std::sort(ms.begin(), ms.end());
+  out.p95_ms = ms[std::min(ms.size() - 1, static_cast<std::size_t>(0.95 * static_cast<double>(ms.size())))];
+  return out;
+}
+
+void Harness::run_script(const fs::path& script, std::ostream* report) {
   std::ifstream in(script);
   if (!in) throw Error(script.string(), "", "cannot read the script");
   const fs::path base = script.parent_path();
@@ -269,6 +287,15 @@ void Harness::run_script(const fs::path& script) {
         type(arg);
       } else if (cmd == "frames") {
         frames(std::stoi(arg));
+      } else if (cmd == "frames-timed") {
+        // frames-timed N: N frames, their wall times reported with the drape's state.
+        const FrameTimes t = frames_timed(std::stoi(arg));
+        const DrapeStatus d = studio().drape_status();
+        if (report)
+          *report << script.filename().string() << ":" << n << ": " << t.frames << " frames: mean " << format_fixed(t.mean_ms, 2)
+                  << " ms, p95 " << format_fixed(t.p95_ms, 2) << " ms, max " << format_fixed(t.max_ms, 2) << " ms; drape "
+                  << (d.running ? "running" : "not running") << (d.stage.empty() ? "" : " (" + d.stage + ")") << ", "
+                  << format_fixed(d.t, 2) << " s simulated\n";
       } else if (cmd == "wait-drape") {
         studio().wait_for_drape();
         frames(3);
@@ -279,7 +306,7 @@ void Harness::run_script(const fs::path& script) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, key, type, frames, "
+        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, key, type, frames, frames-timed, "
              "wait-drape, screenshot, expect-status)");
       }
     } catch (const Error& e) {

@@ -209,6 +209,8 @@ struct Studio::Impl {
   bool legend_shown = false;
   bool preview_dirty = false;
   double last_preview = -1e9;
+  bool turning = false;        // the 3-D view is being turned (dragged)
+  bool preview_fast = false;   // the picture shown was drawn fast (to be refined once still)
   double azimuth = 35, elevation = 8;
   int fit_map = 0;  // 0: the pieces' colours; k: render::FitMap k − 1 (warp, weft, shear, stretch, stress, pressure)
   // The stress map's fabric of each piece drawn, by name, resolved once per drape.
@@ -2183,6 +2185,20 @@ struct Studio::Impl {
     }
   }
 
+  // The renderer in the UI's GL context, made once (nullptr when it cannot
+  // be: the view is then drawn off-screen and uploaded).
+  bool ensure_view() {
+    if (!view && !view_failed && gl::ready()) {
+      try {
+        view = std::make_unique<render::Renderer>(reinterpret_cast<render::Renderer::ProcLoader>(gl::loader()));
+      } catch (const std::exception& e) {
+        view_failed = true;
+        say(std::string("The 3-D view is drawn off-screen: ") + e.what(), true);
+      }
+    }
+    return view != nullptr;
+  }
+
   void preview_panel() {
     drop_target.reset();
     if (const std::size_t n = hand->pin_count(); n > 0) {
@@ -2220,28 +2236,29 @@ struct Studio::Impl {
     const bool running = job->running();
     const double now = ImGui::GetTime();
     const bool resized = w != tex_w || h != tex_h;
+    if (view && preview_fast && !running && !turning) preview_dirty = true;  // refined once still
     if ((body || !cloth.positions.empty()) && gl::ready() &&
         ((preview_dirty && (!running || now - last_preview >= kPreviewInterval)) ||
          (resized && (view ? view_texture : texture)))) {
       try {
         const render::ViewPreset preset{"studio", azimuth, elevation, 30};
         const bool map = fit_map > 0 && !cloth.positions.empty();
-        if (!view && !view_failed) {
-          try {
-            view = std::make_unique<render::Renderer>(reinterpret_cast<render::Renderer::ProcLoader>(gl::loader()));
-          } catch (const std::exception& e) {
-            view_failed = true;
-            say(std::string("The 3-D view is drawn off-screen: ") + e.what(), true);
-          }
-        }
+        ensure_view();
         if (view) {
           // In the window's context: drawn at twice the size when still, shown
           // halved (a 2 x 2 box filter by the texture's linear filtering).
+          // Fast while the drape runs or the view turns (no floor shadow: on a
+          // software GL it is most of a picture's cost); refined, at twice the
+          // size and with the shadow, once still.
           view->set_scene(preview_scene());
           const render::Box& box = view->body_bounds().empty() ? view->scene_bounds() : view->body_bounds();
           const render::Camera cam = render::frame_camera(preset, box, static_cast<double>(w) / h);
-          const int s = running ? 1 : 2;
-          view_texture = view->draw_to_texture(cam, w * s, h * s);
+          const bool fast = running || turning;
+          render::RenderOptions ro;
+          ro.shadow = !fast;
+          const int s = fast ? 1 : 2;
+          view_texture = view->draw_to_texture(cam, w * s, h * s, ro);
+          preview_fast = fast;
           preview_camera = cam, preview_w = w, preview_h = h;
           legend_shown = map;
           if (map) {
@@ -2308,6 +2325,7 @@ struct Studio::Impl {
         pin_at({mouse.x - a.x, mouse.y - a.y}, ImGui::GetIO().KeyShift);
       if (pullable) draw_pins(a);
       if (pulling && (!ImGui::IsItemActive() || !pullable)) release_hand();
+      if (!ImGui::IsItemActive()) turning = false;
       if (pulling) {
         // The held particle is pulled to the point under the mouse at its depth.
         const auto p = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - a.x, mouse.y - a.y, pull_depth);
@@ -2319,6 +2337,7 @@ struct Studio::Impl {
           dl->AddCircleFilled(from, 4.0f, rgb(230, 60, 20));
         }
       } else if (ImGui::IsItemActive() && !lifting && !ImGui::GetIO().KeyAlt && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+        turning = true;
         const ImVec2 d = ImGui::GetIO().MouseDelta;
         azimuth -= 0.4 * d.x;
         elevation = std::clamp(elevation + 0.3 * d.y, -60.0, 80.0);

@@ -17,6 +17,7 @@
 // (ImGui's own font; llvmpipe's thread count pinned; time steps fixed at
 // 1/60 s per frame).
 #include <filesystem>
+#include <ostream>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -65,11 +66,19 @@ class Harness {
   // Runs a script, one command per line ('#' starts a comment):
   //   open FILE | save [FILE] | export-vrml FILE.wrl | click WIDGET | click-stretch PATTERN SEQ
   //   click-piece PATTERN [DX DY] | drop-piece PATTERN POINT | drag-point PATTERN SEQ INDEX DX DY (px)
-  //   key CHORD | type TEXT | frames N | wait-drape | screenshot FILE.png
+  //   key CHORD | type TEXT | frames N | frames-timed N | wait-drape | screenshot FILE.png
   //   expect-status TEXT (fails unless the status bar contains TEXT)
-  // Paths are relative to the script's folder. Throws vgd::Error naming the
-  // script, the line and the problem.
-  void run_script(const std::filesystem::path& script);
+  // Paths are relative to the script's folder. What a command reports
+  // (frames-timed: the frames' wall times) goes to `report` when given.
+  // Throws vgd::Error naming the script, the line and the problem.
+  void run_script(const std::filesystem::path& script, std::ostream* report = nullptr);
+
+  // Wall time per frame (ms) over `n` frames, with the drape's state at the end.
+  struct FrameTimes {
+    int frames = 0;
+    double mean_ms = 0, p95_ms = 0, max_ms = 0;
+  };
+  FrameTimes frames_timed(int n);
 
  private:
   struct Impl;
