@@ -445,4 +445,56 @@ bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up) {
   return w.top > w.bottom;
 }
 
+namespace {
+
+// The centripetal Catmull-Rom segment from p1 to p2 (neighbours p0, p3) at
+// u in [0, 1] (Barry and Goldman's pyramid, knots spaced by the square root
+// of the chord lengths: no cusps or self-loops within a segment).
+Vec2 catmull_rom(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, double u) {
+  auto knot = [](const Vec2& a, const Vec2& b) { return std::max(std::sqrt((b - a).norm()), 1e-9); };
+  const double t0 = 0, t1 = t0 + knot(p0, p1), t2 = t1 + knot(p1, p2), t3 = t2 + knot(p2, p3);
+  const double t = t1 + u * (t2 - t1);
+  const Vec2 a1 = ((t1 - t) * p0 + (t - t0) * p1) / (t1 - t0);
+  const Vec2 a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1);
+  const Vec2 a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2);
+  const Vec2 b1 = ((t2 - t) * a1 + (t - t0) * a2) / (t2 - t0);
+  const Vec2 b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1);
+  return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1);
+}
+
+}  // namespace
+
+std::vector<ContourPoint> smooth_through(const std::vector<ContourPoint>& points, bool closed, double spacing) {
+  const std::size_t n = points.size();
+  if (n < 2 || !(spacing > 0)) return points;
+  std::vector<ContourPoint> out;
+  const std::size_t segments = closed ? n : n - 1;
+  // A point the curve passes through smoothly: a curve point that has
+  // neighbours on both sides (an open line's ends are corners).
+  auto smooth = [&](std::size_t i) { return points[i].kind == PointKind::curve && (closed || (i > 0 && i + 1 < n)); };
+  for (std::size_t s = 0; s < segments; ++s) {
+    const std::size_t i = s, j = (s + 1) % n;
+    out.push_back(points[i]);
+    if (!smooth(i) && !smooth(j)) continue;  // corner to corner: straight
+    const Vec2 &p1 = points[i].p, &p2 = points[j].p;
+    // At a corner the curve heads for its neighbour: the neighbour beyond it mirrored.
+    const Vec2 p0 = smooth(i) ? points[(i + n - 1) % n].p : Vec2(2 * p1 - p2);
+    const Vec2 p3 = smooth(j) ? points[(j + 1) % n].p : Vec2(2 * p2 - p1);
+    // As many samples as keep every piece within the spacing.
+    std::vector<Vec2> run;
+    for (int k = std::max(1, static_cast<int>(std::ceil((p2 - p1).norm() / spacing)));; k *= 2) {
+      run.clear();
+      for (int m = 1; m < k; ++m) run.push_back(catmull_rom(p0, p1, p2, p3, static_cast<double>(m) / k));
+      double longest = 0;
+      Vec2 prev = p1;
+      for (const auto& q : run) longest = std::max(longest, (q - prev).norm()), prev = q;
+      longest = std::max(longest, (p2 - prev).norm());
+      if (longest <= spacing || k > 4096) break;
+    }
+    for (const auto& q : run) out.push_back({q, PointKind::curve});
+  }
+  if (!closed) out.push_back(points.back());
+  return out;
+}
+
 }  // namespace vgd::pattern

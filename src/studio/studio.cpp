@@ -29,6 +29,7 @@
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
 #include "vgd/mesh/surface.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/render/fit_map.hpp"
 #include "vgd/render/looks.hpp"
 #include "vgd/render/offscreen.hpp"
@@ -153,6 +154,7 @@ struct Studio::Impl {
   Drawing drawing = Drawing::none;
   std::string draw_on;
   std::vector<pattern::Vec2> drawn_points;
+  std::vector<bool> drawn_curve;  // per drawn point: Shift+clicked, a point a smooth curve passes through
   std::vector<std::pair<std::string, std::string>> picked;
   std::size_t picked_a = 0;  // the first picked_a picks are hem A (Shift+click adds to it), the rest hem B
   std::string seam_name = "seam";
@@ -1114,7 +1116,7 @@ struct Studio::Impl {
       if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
       if (!pressed) return;
       if (lit) return finish_drawing();
-      drawing = mode, drawn_points.clear(), measuring = false, measure_points.clear();
+      drawing = mode, drawn_points.clear(), drawn_curve.clear(), measuring = false, measure_points.clear();
       draw_on = mode == Drawing::line ? selected : "";
       const xvc::Node* p = doc.find(draw_on);
       say(mode == Drawing::line
@@ -1150,15 +1152,29 @@ struct Studio::Impl {
       if (std::hypot(mouse.x - first.x, mouse.y - first.y) < kPointRadius) return finish_drawing();
     }
     drawn_points.push_back(at);
+    drawn_curve.push_back(ImGui::GetIO().KeyShift);
+  }
+
+  // The drawing as it will be made: straight between corners, smooth through
+  // Shift+clicked points (pattern::smooth_through, 5 mm pieces); `to` is the
+  // point under the mouse, a corner, when given.
+  std::vector<pattern::ContourPoint> drawn_outline(std::optional<pattern::Vec2> to = std::nullopt) const {
+    std::vector<pattern::ContourPoint> c;
+    for (std::size_t k = 0; k < drawn_points.size(); ++k)
+      c.push_back({drawn_points[k], k < drawn_curve.size() && drawn_curve[k] ? pattern::PointKind::curve : pattern::PointKind::turn});
+    if (to) c.push_back({*to, pattern::PointKind::turn});
+    return pattern::smooth_through(c, drawing == Drawing::piece && !to, 0.005);
   }
 
   // The drawing becomes a command (one undo step): the line in its piece's own
   // frame, the piece where it was drawn, in the size shown.
   void finish_drawing() {
-    const Drawing mode = std::exchange(drawing, Drawing::none);
-    std::vector<pattern::Vec2> pts = std::exchange(drawn_points, {});
+    const Drawing mode = drawing;
     if (mode == Drawing::none) return;
-    if (pts.size() < (mode == Drawing::line ? 2u : 3u)) {
+    const std::size_t clicks = drawn_points.size();
+    const auto outline = drawn_outline();
+    drawing = Drawing::none, drawn_points.clear(), drawn_curve.clear();
+    if (clicks < (mode == Drawing::line ? 2u : 3u)) {
       say(mode == Drawing::line ? "Draw line ended: a line needs two points." : "Draw piece ended: a piece needs three corners.");
       return;
     }
@@ -1166,11 +1182,12 @@ struct Studio::Impl {
     if (mode == Drawing::line) {
       const PieceView* pv = piece_view(draw_on);
       if (!pv) return say("Draw line ended: its piece is no longer shown.", true);
-      for (const auto& q : pts) xy.push_back({q.x() - pv->shift.x(), q.y() - pv->shift.y()});
+      for (const auto& q : outline) xy.push_back({q.p.x() - pv->shift.x(), q.p.y() - pv->shift.y()});
       run(std::make_unique<xvc::AddInternalLine>(draw_on, xy));
     } else {
-      for (const auto& q : pts) xy.push_back({q.x(), q.y()});
-      run(std::make_unique<xvc::AddDrawnPattern>("drawn piece", drape.size, xy));
+      std::vector<bool> curve;
+      for (const auto& q : outline) xy.push_back({q.p.x(), q.p.y()}), curve.push_back(q.kind == pattern::PointKind::curve);
+      run(std::make_unique<xvc::AddDrawnPattern>("drawn piece", drape.size, xy, curve));
     }
   }
 
@@ -1178,10 +1195,17 @@ struct Studio::Impl {
     if (drawing == Drawing::none || drawn_points.empty()) return;
     const ImU32 col = rgb(120, 40, 200);
     std::vector<ImVec2> pts;
-    for (const auto& q : drawn_points) pts.push_back(to_screen(q));
-    if (canvas_hovered) pts.push_back(mouse);
+    for (const auto& q : drawn_outline(canvas_hovered ? std::optional(from_screen(mouse)) : std::nullopt))
+      pts.push_back(to_screen(q.p));
     dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), col, 0, 2.0f);
-    for (const auto& q : drawn_points) dl->AddCircleFilled(to_screen(q), 3.5f, col);
+    // Corners as squares, curve points as dots.
+    for (std::size_t k = 0; k < drawn_points.size(); ++k) {
+      const ImVec2 q = to_screen(drawn_points[k]);
+      if (k < drawn_curve.size() && drawn_curve[k])
+        dl->AddCircleFilled(q, 3.5f, col);
+      else
+        dl->AddRectFilled({q.x - 3.5f, q.y - 3.5f}, {q.x + 3.5f, q.y + 3.5f}, col);
+    }
   }
 
   // A measuring click: the outline point nearest the mouse (within the grab
@@ -2553,7 +2577,7 @@ struct Studio::Impl {
     if (ImGui::IsKeyPressed(kF5Key, false)) start_drape();
     if (drawing != Drawing::none && pressed(ImGuiKey_Enter)) finish_drawing();
     if (drawing != Drawing::none && pressed(ImGuiKey_Escape))
-      drawing = Drawing::none, drawn_points.clear(), say("Drawing dropped.");
+      drawing = Drawing::none, drawn_points.clear(), drawn_curve.clear(), say("Drawing dropped.");
   }
 };
 

@@ -620,8 +620,9 @@ std::string AddInternalLine::apply(Editor& edit) {
   return id_;
 }
 
-AddDrawnPattern::AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points)
-    : name_(std::move(name)), size_(std::move(size)), points_(std::move(points)) {}
+AddDrawnPattern::AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points,
+                                 std::vector<bool> curve)
+    : name_(std::move(name)), size_(std::move(size)), points_(std::move(points)), curve_(std::move(curve)) {}
 
 std::string AddDrawnPattern::label() const { return "Draw piece " + name_; }
 
@@ -631,13 +632,21 @@ std::string AddDrawnPattern::apply(Editor& edit) {
   if (points_.size() < 3)
     throw Error(doc.name(), where, "a piece needs at least 3 points, not " + std::to_string(points_.size()));
   const auto pts = finite_points(doc, where, points_);
+  if (!curve_.empty() && curve_.size() != pts.size())
+    throw Error(doc.name(), where, "a curve mark for each of its " + std::to_string(pts.size()) + " points, not " +
+                                       std::to_string(curve_.size()));
   pattern::Piece pc;
-  for (const auto& q : pts) pc.boundary.push_back({q, pattern::PointKind::turn});
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    pc.boundary.push_back({pts[k], !curve_.empty() && curve_[k] ? pattern::PointKind::curve : pattern::PointKind::turn});
   if (pattern::is_self_intersecting(pc.boundary)) throw Error(doc.name(), where, "its sides cross");
   constexpr double kLeastArea = 1e-4;  // m²
   if (std::abs(pattern::signed_area(pc.boundary)) < kLeastArea)
     throw Error(doc.name(), where, "its area is under 1 cm²");
   pattern::make_counter_clockwise(pc.boundary);
+  // Its first stretch begins at a corner.
+  const auto corner = std::find_if(pc.boundary.begin(), pc.boundary.end(),
+                                   [](const pattern::ContourPoint& c) { return c.kind == pattern::PointKind::turn; });
+  if (corner != pc.boundary.end()) std::rotate(pc.boundary.begin(), corner, pc.boundary.end());
   std::set<std::string> blocks, pieces;
   for (const Node* p : doc.patterns()) {
     blocks.insert(std::string(p->attribute("block")));

@@ -1274,6 +1274,49 @@ TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
   h.key("ctrl+z");
   h.frame();
   EXPECT_TRUE(h.studio().document() == original);
+
+  // Curves: a Shift+click is a point the line or outline passes through
+  // smoothly. A piece with two corners and a curve point 30 px above their
+  // middle: two stretches, the top an arch through the point (more area
+  // than the triangle, less than the box).
+  h.click("Draw piece");
+  h.click_at(x, y);
+  h.click_at(x + 40, y);
+  h.click_at(x + 20, y - 30, /*shift=*/true);
+  h.click_at(x + 1, y);
+  h.frame();
+  ASSERT_EQ(h.studio().document().patterns().size(), patterns + 1) << h.studio().status();
+  const vgd::xvc::Node* arch = h.studio().document().patterns().back();
+  EXPECT_EQ(vgd::xvc::boundary_stretches(*arch).size(), 2u);
+  const auto arch_piece = vgd::xvc::to_piece(h.studio().document(), std::string(arch->id()));
+  EXPECT_GT(arch_piece.boundary.size(), 10u);
+  double top = -1e9, bottom = 1e9;
+  for (const auto& c : arch_piece.boundary) top = std::max(top, c.p.y()), bottom = std::min(bottom, c.p.y());
+  EXPECT_NEAR(top - bottom, 30 / scale, 1.5 / scale) << "through the curve point";
+  const double arch_area = std::abs(vgd::pattern::signed_area(arch_piece.boundary)) * scale * scale;  // px²
+  EXPECT_GT(arch_area, 1.1 * 0.5 * 40 * 30);
+  EXPECT_LT(arch_area, 40 * 30);
+  h.key("ctrl+z");
+  h.frame();
+  // A line bent through a Shift+clicked point.
+  h.click_at(centre->cx(), centre->cy());  // the front selected again (the drawn piece was)
+  h.frame();
+  ASSERT_EQ(h.studio().selected(), front);
+  h.click("Draw line");
+  h.click_at(centre->cx() - 20, centre->cy());
+  h.click_at(centre->cx(), centre->cy() - 10, /*shift=*/true);
+  h.click_at(centre->cx() + 20, centre->cy());
+  h.key("enter");
+  h.frame();
+  const auto bent = vgd::xvc::to_piece(h.studio().document(), front).internal_lines;
+  ASSERT_EQ(bent.size(), lines + 1) << h.studio().status();
+  EXPECT_GT(bent.back().points.size(), 5u);
+  double high = -1e9;
+  for (const auto& q : bent.back().points) high = std::max(high, q.y());
+  EXPECT_NEAR(high - bent.back().points.front().y(), 10 / scale, 1.5 / scale);
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
 }
 
 // Moving a piece in the pattern view: the skirt's front dragged by (40, 25) px

@@ -555,6 +555,29 @@ TEST(AddDrawnPattern, AddsAPolygonAsAPieceWithAStretchPerSide) {
   EXPECT_EQ(doc.patterns().size(), n + 2);
 }
 
+// A drawn piece with curve points (a smoothed outline): stretches begin at
+// its corners only, the first at a corner, the points keep their kinds; a
+// curve mark per point or none, else refused.
+TEST(AddDrawnPattern, CurvePointsJoinTheStretchesBetweenCorners) {
+  Document doc = full_document();
+  // A 20 x 20 cm piece whose top bulges through four curve points.
+  const std::vector<std::array<double, 2>> pts = {{2.2, 0.2}, {2.15, 0.22}, {2.1, 0.23}, {2.05, 0.22}, {2.0, 0.2}, {2.0, 0.0}, {2.2, 0.0}};
+  const std::vector<bool> curve = {true, true, true, true, false, false, false};
+  const std::string id = execute(doc, *std::make_unique<AddDrawnPattern>("CURVED", "", pts, curve));
+  const Piece pc = to_piece(doc, id);
+  ASSERT_EQ(pc.boundary.size(), pts.size());
+  EXPECT_EQ(pc.boundary.front().kind, vgd::pattern::PointKind::turn) << "it starts at a corner";
+  int turns = 0, curves = 0;
+  for (const auto& c : pc.boundary) turns += c.kind == vgd::pattern::PointKind::turn, curves += c.kind == vgd::pattern::PointKind::curve;
+  EXPECT_EQ(turns, 3);
+  EXPECT_EQ(curves, 4);
+  EXPECT_EQ(boundary_stretches(*doc.find(id)).size(), 3u) << "a stretch from each corner";
+  EXPECT_GT(vgd::pattern::signed_area(pc.boundary), 0.0);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  EXPECT_EQ(vgd::xvc::validate_string(save_string(doc), "t.xvc", vgd::xvc::default_schema_path()).count(vgd::Severity::error), 0u);
+  EXPECT_THROW(execute(doc, *std::make_unique<AddDrawnPattern>("X", "", pts, std::vector<bool>{true, false})), vgd::Error);
+}
+
 // A piece's place on the sheet: set (one POSITION type="sheet", the document
 // checks and validates), set again (still one, the new place), kept by a
 // rotation and a mirroring (the piece is not moved on the sheet by them),

@@ -119,4 +119,14 @@ EndWidths end_widths(const std::vector<ContourPoint>& outline, const Vec2& up);
 // (end_widths): a leg's waist end against its hem.
 bool wider_at_top(const std::vector<ContourPoint>& outline, const Vec2& up);
 
+// A line or an outline drawn by clicks, smoothed: `points` (m) with their
+// kinds, `turn` a corner and `curve` a point a smooth curve passes through.
+// Between two corners the line is straight; a run with curve points is a
+// centripetal Catmull-Rom spline through its points (at a corner it starts
+// or ends heading for its neighbour), sampled so that no piece of a curved
+// part is longer than `spacing` (m); a straight side stays one edge. Every clicked point is kept, with its kind;
+// the samples between are `curve`. `closed`: the last point joins the
+// first. Fewer than two points come back as they are.
+std::vector<ContourPoint> smooth_through(const std::vector<ContourPoint>& points, bool closed, double spacing = 0.005);
+
 }  // namespace vgd::pattern

@@ -330,19 +330,23 @@ class AddInternalLine : public Command {
 
 // Adds a piece drawn as a polygon (m): a PATTERN of `size` (empty: the sample
 // size, else the first pattern's) cut once, each vertex a turn point (every side
-// a stretch of its own, to be sewn), counter-clockwise, with its own GRADATION.
-// Its piece and block names are `name`, numbered when taken. Refused for fewer
-// than three points, a non-finite coordinate, sides that cross, or an area under
-// 1 cm². Returns the new PATTERN's id.
+// a stretch of its own, to be sewn) unless `curve` marks it a point on a curve
+// (one per point, or empty: none; pattern::smooth_through makes such outlines),
+// counter-clockwise from a turn point, with its own GRADATION. Its piece and
+// block names are `name`, numbered when taken. Refused for fewer than three
+// points, a non-finite coordinate, sides that cross, or an area under 1 cm².
+// Returns the new PATTERN's id.
 class AddDrawnPattern : public Command {
  public:
-  AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points);
+  AddDrawnPattern(std::string name, std::string size, std::vector<std::array<double, 2>> points,
+                  std::vector<bool> curve = {});
   std::string label() const override;
   std::string apply(Editor& edit) override;
 
  private:
   std::string name_, size_;
   std::vector<std::array<double, 2>> points_;
+  std::vector<bool> curve_;
 };
 
 // Cuts a PATTERN from a fabric of its own: `material` (a MATERIAL element, e.g.
