@@ -70,6 +70,7 @@ struct PieceView {
   pattern::Vec2 shift = pattern::Vec2::Zero();  // m: layout position minus the piece's own
   std::vector<pattern::Vec2> outline;           // m, laid out: every boundary point, for hit tests
   std::vector<std::vector<pattern::Vec2>> lines;  // m, laid out: its internal lines (a closed one repeats its first point)
+  std::optional<std::array<pattern::Vec2, 2>> grain;  // m, laid out: its grain line's ends
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
@@ -165,6 +166,9 @@ struct Studio::Impl {
   std::optional<xvc::OutlinePoint> dragging;
   pattern::Vec2 drag_to = pattern::Vec2::Zero();
   ImVec2 drag_from{0, 0};
+  // An end (0 or 1) of the selected piece's grain line being dragged, from where.
+  std::optional<int> grain_drag;
+  ImVec2 grain_from{0, 0};
   double rotate_deg = 90;
   std::vector<xvc::SeamSuggestion> suggestions;  // the dialog's, while it is open
   std::vector<char> accepted;                    // per suggestion: ticked
@@ -568,6 +572,7 @@ struct Studio::Impl {
         r.view.lines.push_back(l.points);
         if (l.closed && !l.points.empty()) r.view.lines.back().push_back(l.points.front());
       }
+      if (piece.grain_line) r.view.grain = std::array<pattern::Vec2, 2>{piece.grain_line->a, piece.grain_line->b};
       raw.push_back(std::move(r));
     }
     if (raw.empty()) return;
@@ -604,6 +609,8 @@ struct Studio::Impl {
         }
         for (auto& l : raw[i].view.lines)
           for (auto& q : l) q += shift;
+        if (raw[i].view.grain)
+          for (auto& q : *raw[i].view.grain) q += shift;
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
         raw[i].view.shift = shift;
         x += raw[i].hi.x() - raw[i].lo.x() + gap;
@@ -638,6 +645,45 @@ struct Studio::Impl {
       for (const auto& sv : pv->stretches)
         if (sv.id == pt.sequence_id && pt.index + 1 < sv.points.size()) return sv.points[pt.index];
     return std::nullopt;
+  }
+
+  // A grain line: a line with an arrowhead at each end (the garment-pattern
+  // sign); the selected piece's with its ends as handles, the one dragged
+  // following the mouse.
+  void draw_grain(ImDrawList* dl, const PieceView& pv, const ImVec2& mouse) const {
+    ImVec2 e[2] = {to_screen((*pv.grain)[0]), to_screen((*pv.grain)[1])};
+    const bool mine = pv.pattern_id == selected;
+    if (mine && grain_drag) {
+      ImVec2& q = e[*grain_drag];
+      q = {q.x + mouse.x - grain_from.x, q.y + mouse.y - grain_from.y};
+    }
+    const ImU32 col = mine ? rgb(20, 120, 80) : rgb(110, 110, 110);
+    dl->AddLine(e[0], e[1], col, mine ? 2.0f : 1.0f);
+    const float len = std::hypot(e[1].x - e[0].x, e[1].y - e[0].y);
+    if (len > 1) {
+      const float ux = (e[1].x - e[0].x) / len, uy = (e[1].y - e[0].y) / len, h = 7, w = 3.5f;
+      for (int k = 0; k < 2; ++k) {
+        const float s = k == 0 ? 1.0f : -1.0f;  // each head points outwards
+        const ImVec2 tip = e[k], base{tip.x + s * h * ux, tip.y + s * h * uy};
+        dl->AddTriangleFilled(tip, {base.x - w * uy, base.y + w * ux}, {base.x + w * uy, base.y - w * ux}, col);
+      }
+    }
+    if (mine)
+      for (const ImVec2& q : e) dl->AddCircle(q, 4.5f, col, 0, 2.0f);
+  }
+
+  // Where a drag of a grain line's end ends: the line set (one undo step),
+  // unless the mouse came back to where it started.
+  void end_grain_drag(const ImVec2& mouse) {
+    const int end = *std::exchange(grain_drag, std::nullopt);
+    const PieceView* pv = piece_view(selected);
+    if (!pv || !pv->grain || scale <= 0) return;
+    if (std::hypot(mouse.x - grain_from.x, mouse.y - grain_from.y) < 1.0f) return;
+    std::array<pattern::Vec2, 2> g = *pv->grain;
+    g[static_cast<std::size_t>(end)] += pattern::Vec2(mouse.x - grain_from.x, grain_from.y - mouse.y) / scale;
+    const pattern::Vec2 a = g[0] - pv->shift, b = g[1] - pv->shift;
+    run(std::make_unique<xvc::SetGrainLine>(pv->pattern_id, std::array<double, 2>{a.x(), a.y()},
+                                            std::array<double, 2>{b.x(), b.y()}));
   }
 
   // Where a drag of an outline point ends: the point moved (one undo step),
@@ -959,6 +1005,20 @@ struct Studio::Impl {
           }
         if (point_hover) hovered.reset();
       }
+      // The selected piece's grain line: its ends grabbed like points.
+      std::optional<int> grain_hover;
+      if (sel_piece && sel_piece->grain && canvas_hovered && !point_hover && !dragging && !grain_drag && !measuring &&
+          drawing == Drawing::none)
+        for (int e = 0; e < 2; ++e) {
+          const ImVec2 q = to_screen((*sel_piece->grain)[static_cast<std::size_t>(e)]);
+          if (std::hypot(mouse.x - q.x, mouse.y - q.y) < kPointRadius) grain_hover = e;
+        }
+      if (grain_hover) {
+        hovered.reset();
+        ImGui::SetTooltip("Drag to turn or move the grain line (the fabric's warp runs along it)");
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) grain_drag = grain_hover, grain_from = mouse;
+      }
+      if (grain_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) end_grain_drag(mouse);
       if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         dragging = point_hover, point_sel = point_hover, drag_from = mouse;
         drag_to = *laid_out(*point_hover) - sel_piece->shift;
@@ -995,6 +1055,7 @@ struct Studio::Impl {
           for (const auto& q : l) pts.push_back(to_screen(q));
           dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), rgb(130, 130, 130), 0, 1.0f);
         }
+        if (pv.grain) draw_grain(dl, pv, mouse);
         const ImVec2 c = to_screen(pv.centre);
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
@@ -1031,7 +1092,7 @@ struct Studio::Impl {
           picked.push_back(*hovered);
         }
         if (picked_a == 0 && !picked.empty()) picked_a = 1;  // hem A's last pick dropped: the next becomes A
-      } else if (!point_hover && ImGui::IsItemClicked()) {
+      } else if (!point_hover && !grain_hover && !grain_drag && ImGui::IsItemClicked()) {
         // A click inside a piece selects it (its points to edit); outside every
         // piece, nothing.
         const pattern::Vec2 m = from_screen(mouse);
@@ -2857,6 +2918,12 @@ std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
   return Rect{q.x, q.y, q.x, q.y};
 }
 float Studio::pattern_scale() const { return impl_->scale; }
+std::optional<Rect> Studio::grain_end_on_screen(std::string_view pattern_id, int end) const {
+  const PieceView* pv = impl_->piece_view(pattern_id);
+  if (!pv || !pv->grain || end < 0 || end > 1) return std::nullopt;
+  const ImVec2 q = impl_->to_screen((*pv->grain)[static_cast<std::size_t>(end)]);
+  return Rect{q.x, q.y, q.x, q.y};
+}
 std::optional<double> Studio::measured() const { return impl_->measured; }
 std::optional<int> Studio::held_particle() const { return impl_->pulling; }
 bool Studio::view_in_window_context() const { return impl_->view != nullptr; }

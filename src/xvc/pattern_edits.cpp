@@ -416,6 +416,44 @@ std::string RotatePattern::apply(Editor& edit) {
   return id_;
 }
 
+// ---- SetGrainLine -----------------------------------------------------------------
+
+SetGrainLine::SetGrainLine(std::string pattern_id, std::array<double, 2> a, std::array<double, 2> b)
+    : id_(std::move(pattern_id)), a_(a), b_(b) {}
+
+std::string SetGrainLine::label() const { return "Set the grain line of " + id_; }
+
+std::string SetGrainLine::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, id_, "PATTERN");
+  const Vec2 a(a_[0], a_[1]), b(b_[0], b_[1]);
+  if (!a.allFinite() || !b.allFinite()) throw Error(doc.name(), id_, "a grain line's ends must be finite");
+  if ((b - a).norm() < 0.01)
+    throw Error(doc.name(), id_, "a grain line must be at least 1 cm long, not " + format_double(100 * (b - a).norm()) + " cm");
+  Node p = doc.at(path);
+  Node* seq = nullptr;
+  for (auto& c : p.children)
+    if (c.tag == "C2DSEQ" && c.attribute("role") == "grain") seq = &c;
+  detail::IdMaker ids(doc);
+  if (!seq) {
+    // After the pattern's other sequences.
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < p.children.size(); ++i)
+      if (p.children[i].tag == "C2DSEQ" || p.children[i].tag == "ANNOTATION") at = i + 1;
+    auto it = p.children.insert(p.children.begin() + static_cast<std::ptrdiff_t>(at),
+                                Node{"C2DSEQ", {{"id", ids.make("seq")}, {"role", "grain"}}, {}});
+    seq = &*it;
+  }
+  seq->children.clear();
+  for (const Vec2& q : {a, b}) {
+    Node c{"C2D", {}, {}};
+    set_point(c, q);
+    seq->children.push_back(std::move(c));
+  }
+  edit.replace(path, std::move(p));
+  return id_;
+}
+
 // ---- SetSheetPosition -----------------------------------------------------------------
 
 std::optional<std::array<double, 2>> sheet_position(const Node& pattern) {

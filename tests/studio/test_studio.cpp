@@ -1365,6 +1365,36 @@ TEST(Studio, APieceIsMovedInThePatternView) {
   EXPECT_TRUE(h.studio().document() == original);
 }
 
+// The grain line in the pattern view: every piece's drawn, the selected
+// piece's ends handles; the front's second end dragged 25 px right moves it
+// 25 px / scale in the piece's frame (the first stays), one undo step.
+TEST(Studio, AGrainLineIsTurnedByDraggingItsEnd) {
+  Harness h;
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const auto original = h.studio().document();
+  const auto g0 = vgd::xvc::to_piece(original, front).grain_line;
+  ASSERT_TRUE(g0.has_value());
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx() + 40, centre->cy() + 40);  // inside, away from the grain line
+  h.frame();
+  ASSERT_EQ(h.studio().selected(), front);
+  const auto end = h.studio().grain_end_on_screen(front, 1);
+  ASSERT_TRUE(end.has_value());
+  const float scale = h.studio().pattern_scale();
+  h.drag(end->cx(), end->cy(), end->cx() + 25, end->cy());
+  const auto g1 = vgd::xvc::to_piece(h.studio().document(), front).grain_line;
+  ASSERT_TRUE(g1.has_value()) << h.studio().status();
+  EXPECT_LT((g1->a - g0->a).norm(), 1e-12) << "the other end stays";
+  EXPECT_NEAR(g1->b.x() - g0->b.x(), 25 / scale, 1e-6) << h.studio().status();
+  EXPECT_NEAR(g1->b.y(), g0->b.y(), 1e-6);
+  EXPECT_FALSE(vgd::xvc::sheet_position(*h.studio().document().find(front)).has_value()) << "the piece did not move";
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+}
+
 // Outline editing in the pattern view: a click inside a piece selects it and
 // shows its points; a point dragged by (30, -12) px moves by that much in the
 // piece's frame (y up), as one undo step; a point clicked, a point inserted

@@ -629,3 +629,41 @@ TEST(SetSheetPosition, PlacesThePieceOnTheSheetOnceAndRotationKeepsIt) {
     EXPECT_NE(std::string(e.what()).find("belongs inside a PATTERN"), std::string::npos) << e.what();
   }
 }
+
+// A grain line set: the piece's grain line runs between the new ends (its
+// sequence keeps its id), one is added to a piece without, the document
+// checks and validates; refused under 1 cm or not finite; undo restores.
+TEST(SetGrainLine, MovesTheGrainLineOrAddsOne) {
+  Document doc = full_document();
+  const Document before = doc;
+  UndoStack stack(doc);
+  const Piece a = to_piece(doc, "pattern1");
+  ASSERT_TRUE(a.grain_line.has_value());
+  stack.execute(std::make_unique<SetGrainLine>("pattern1", std::array<double, 2>{0.1, 0.1}, std::array<double, 2>{0.2, 0.3}));
+  const Piece b = to_piece(doc, "pattern1");
+  ASSERT_TRUE(b.grain_line.has_value());
+  EXPECT_EQ(b.grain_line->a, Vec2(0.1, 0.1));
+  EXPECT_EQ(b.grain_line->b, Vec2(0.2, 0.3));
+  int grains = 0;
+  for (const auto& c : doc.find("pattern1")->children) grains += c.tag == "C2DSEQ" && c.attribute("role") == "grain";
+  EXPECT_EQ(grains, 1);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  // A drawn piece has none: one is added.
+  const std::string drawn = stack.execute(std::make_unique<AddDrawnPattern>(
+      "PATCH", "", std::vector<std::array<double, 2>>{{2.0, 0.0}, {2.2, 0.0}, {2.2, 0.1}, {2.0, 0.1}}));
+  EXPECT_FALSE(to_piece(doc, drawn).grain_line.has_value());
+  stack.execute(std::make_unique<SetGrainLine>(drawn, std::array<double, 2>{2.1, 0.02}, std::array<double, 2>{2.1, 0.08}));
+  ASSERT_TRUE(to_piece(doc, drawn).grain_line.has_value());
+  EXPECT_EQ(to_piece(doc, drawn).grain_line->b, Vec2(2.1, 0.08));
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  const auto valid = validate_string(save_string(doc), "grain.xvc", schema());
+  EXPECT_FALSE(valid.has_errors()) << dump(valid);
+  EXPECT_THROW(stack.execute(std::make_unique<SetGrainLine>("pattern1", std::array<double, 2>{0.1, 0.1},
+                                                            std::array<double, 2>{0.1, 0.105})),
+               vgd::Error);
+  EXPECT_THROW(stack.execute(std::make_unique<SetGrainLine>("pattern1", std::array<double, 2>{NAN, 0.1},
+                                                            std::array<double, 2>{0.1, 0.3})),
+               vgd::Error);
+  while (stack.can_undo()) stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+}

@@ -367,6 +367,21 @@ class SetPieceMaterial : public Command {
   std::optional<Node> material_;
 };
 
+// Sets a PATTERN's grain line (the fabric's warp runs along it; the drape cuts
+// the piece so) to run from `a` to `b` (m, in the pattern's frame), adding
+// one when it has none. Refused for a non-finite point or a line under 1 cm.
+// Returns the pattern id.
+class SetGrainLine : public Command {
+ public:
+  SetGrainLine(std::string pattern_id, std::array<double, 2> a, std::array<double, 2> b);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string id_;
+  std::array<double, 2> a_, b_;
+};
+
 // Where a PATTERN lies on the flat sheet the studio's pattern view shows:
 // POSITION type="sheet" in the PATTERN, x and y (m) the sheet point its own
 // origin lies on (the sheet shows the piece translated by them, never turned).
