@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <set>
 #include <unistd.h>
 
@@ -71,6 +72,12 @@ struct PieceView {
   std::vector<pattern::Vec2> outline;           // m, laid out: every boundary point, for hit tests
   std::vector<std::vector<pattern::Vec2>> lines;  // m, laid out: its internal lines (a closed one repeats its first point)
   std::optional<std::array<pattern::Vec2, 2>> grain;  // m, laid out: its grain line's ends
+  struct NotchView {
+    std::string id;       // its POSITION
+    pattern::Vec2 at;     // m, laid out
+    double angle_deg = 0;  // the cut's direction
+  };
+  std::vector<NotchView> notches;
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
@@ -169,6 +176,7 @@ struct Studio::Impl {
   // An end (0 or 1) of the selected piece's grain line being dragged, from where.
   std::optional<int> grain_drag;
   ImVec2 grain_from{0, 0};
+  std::optional<std::string> notch_drag;  // a notch of the selected piece being dragged (its POSITION id)
   double rotate_deg = 90;
   std::vector<xvc::SeamSuggestion> suggestions;  // the dialog's, while it is open
   std::vector<char> accepted;                    // per suggestion: ticked
@@ -573,6 +581,11 @@ struct Studio::Impl {
         if (l.closed && !l.points.empty()) r.view.lines.back().push_back(l.points.front());
       }
       if (piece.grain_line) r.view.grain = std::array<pattern::Vec2, 2>{piece.grain_line->a, piece.grain_line->b};
+      for (const auto& c : p->children)
+        if (c.tag == "POSITION" && c.attribute("type") == "notch") {
+          const auto x = parse_double(c.attribute("x")), y = parse_double(c.attribute("y"));
+          if (x && y) r.view.notches.push_back({std::string(c.id()), pattern::Vec2(*x, *y), parse_double(c.attribute("angle")).value_or(0.0)});
+        }
       raw.push_back(std::move(r));
     }
     if (raw.empty()) return;
@@ -611,6 +624,7 @@ struct Studio::Impl {
           for (auto& q : l) q += shift;
         if (raw[i].view.grain)
           for (auto& q : *raw[i].view.grain) q += shift;
+        for (auto& nv : raw[i].view.notches) nv.at += shift;
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
         raw[i].view.shift = shift;
         x += raw[i].hi.x() - raw[i].lo.x() + gap;
@@ -670,6 +684,48 @@ struct Studio::Impl {
     }
     if (mine)
       for (const ImVec2& q : e) dl->AddCircle(q, 4.5f, col, 0, 2.0f);
+  }
+
+  // A notch's cut: 8 px into the piece along its angle (its handle at the inner end).
+  ImVec2 notch_handle(const PieceView::NotchView& nv) const {
+    const ImVec2 q = to_screen(nv.at);
+    const double a = nv.angle_deg * std::numbers::pi / 180.0;
+    return {q.x + 8.0f * static_cast<float>(std::cos(a)), q.y - 8.0f * static_cast<float>(std::sin(a))};
+  }
+  void draw_notches(ImDrawList* dl, const PieceView& pv, const ImVec2& mouse) const {
+    const bool mine = pv.pattern_id == selected;
+    for (const auto& nv : pv.notches) {
+      const ImU32 col = mine ? rgb(170, 40, 40) : rgb(120, 70, 70);
+      dl->AddLine(to_screen(nv.at), notch_handle(nv), col, mine ? 2.0f : 1.5f);
+      if (!mine) continue;
+      dl->AddCircle(notch_handle(nv), 3.5f, col, 0, 1.5f);
+      if (notch_drag && *notch_drag == nv.id) {
+        if (const auto v = nearest_vertex(pv, mouse)) dl->AddCircle(to_screen(v->second), 6.0f, col, 0, 2.0f);
+      }
+    }
+  }
+  // The outline vertex of a piece nearest the mouse: its index over the
+  // concatenated boundary and where it is laid out.
+  std::optional<std::pair<std::size_t, pattern::Vec2>> nearest_vertex(const PieceView& pv, const ImVec2& mouse) const {
+    std::optional<std::pair<std::size_t, pattern::Vec2>> best;
+    float d2 = 1e30f;
+    for (const auto& sv : pv.stretches)
+      for (std::size_t k = 0; k + 1 < sv.points.size(); ++k) {
+        const ImVec2 q = to_screen(sv.points[k]);
+        if (const float d = (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y); d < d2)
+          d2 = d, best = std::make_pair(sv.first + k, sv.points[k]);
+      }
+    return best;
+  }
+  void end_notch_drag(const ImVec2& mouse) {
+    const std::string id = *std::exchange(notch_drag, std::nullopt);
+    const PieceView* pv = piece_view(selected);
+    if (!pv) return;
+    const auto v = nearest_vertex(*pv, mouse);
+    if (!v) return;
+    for (const auto& nv : pv->notches)
+      if (nv.id == id && (nv.at - v->second).norm() < 1e-12) return;  // where it was
+    run(std::make_unique<xvc::MoveNotch>(pv->pattern_id, id, v->first));
   }
 
   // Where a drag of a grain line's end ends: the line set (one undo step),
@@ -1019,6 +1075,20 @@ struct Studio::Impl {
         if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) grain_drag = grain_hover, grain_from = mouse;
       }
       if (grain_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) end_grain_drag(mouse);
+      // Its notches: grabbed by the inner end of their cut, dropped on the outline vertex nearest the mouse.
+      std::optional<std::string> notch_hover;
+      if (sel_piece && canvas_hovered && !point_hover && !grain_hover && !dragging && !grain_drag && !notch_drag &&
+          !measuring && drawing == Drawing::none)
+        for (const auto& nv : sel_piece->notches) {
+          const ImVec2 q = notch_handle(nv);
+          if (std::hypot(mouse.x - q.x, mouse.y - q.y) < kPointRadius) notch_hover = nv.id;
+        }
+      if (notch_hover) {
+        hovered.reset();
+        ImGui::SetTooltip("Drag the notch to another point of the outline");
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) notch_drag = notch_hover;
+      }
+      if (notch_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) end_notch_drag(mouse);
       if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         dragging = point_hover, point_sel = point_hover, drag_from = mouse;
         drag_to = *laid_out(*point_hover) - sel_piece->shift;
@@ -1056,6 +1126,7 @@ struct Studio::Impl {
           dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), rgb(130, 130, 130), 0, 1.0f);
         }
         if (pv.grain) draw_grain(dl, pv, mouse);
+        draw_notches(dl, pv, mouse);
         const ImVec2 c = to_screen(pv.centre);
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
@@ -1092,7 +1163,7 @@ struct Studio::Impl {
           picked.push_back(*hovered);
         }
         if (picked_a == 0 && !picked.empty()) picked_a = 1;  // hem A's last pick dropped: the next becomes A
-      } else if (!point_hover && !grain_hover && !grain_drag && ImGui::IsItemClicked()) {
+      } else if (!point_hover && !grain_hover && !grain_drag && !notch_hover && !notch_drag && ImGui::IsItemClicked()) {
         // A click inside a piece selects it (its points to edit); outside every
         // piece, nothing.
         const pattern::Vec2 m = from_screen(mouse);
@@ -2918,6 +2989,16 @@ std::optional<Rect> Studio::piece_on_screen(std::string_view pattern_id) const {
   return Rect{q.x, q.y, q.x, q.y};
 }
 float Studio::pattern_scale() const { return impl_->scale; }
+std::optional<Rect> Studio::notch_on_screen(std::string_view pattern_id, std::string_view notch_id) const {
+  const PieceView* pv = impl_->piece_view(pattern_id);
+  if (!pv) return std::nullopt;
+  for (const auto& nv : pv->notches)
+    if (nv.id == notch_id) {
+      const ImVec2 q = impl_->notch_handle(nv);
+      return Rect{q.x, q.y, q.x, q.y};
+    }
+  return std::nullopt;
+}
 std::optional<Rect> Studio::grain_end_on_screen(std::string_view pattern_id, int end) const {
   const PieceView* pv = impl_->piece_view(pattern_id);
   if (!pv || !pv->grain || end < 0 || end > 1) return std::nullopt;

@@ -1319,6 +1319,46 @@ TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
   EXPECT_TRUE(h.studio().document() == original);
 }
 
+// Notches in the pattern view: the selected piece's are grabbed by the
+// inner end of their cut and dropped on the outline point nearest the
+// mouse: the skirt front's first notch dragged onto the outline point two
+// along from its vertex moves there (its vertex said), one undo step.
+TEST(Studio, ANotchIsDraggedToAnotherOutlinePoint) {
+  Harness h;
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const auto original = h.studio().document();
+  const vgd::xvc::Node* notch = nullptr;
+  for (const auto& c : original.find(front)->children)
+    if (c.tag == "POSITION" && c.attribute("type") == "notch" && c.has_attribute("vertex") && !notch) notch = &c;
+  ASSERT_NE(notch, nullptr);
+  const std::string nid(notch->id());
+  const std::size_t v0 = std::stoul(std::string(notch->attribute("vertex")));
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx() + 40, centre->cy() + 40);
+  h.frame();
+  ASSERT_EQ(h.studio().selected(), front);
+  // The outline point two along from the notch's vertex.
+  const std::size_t n = vgd::xvc::to_piece(original, front).boundary.size();
+  const std::size_t v1 = (v0 + 2) % n;
+  std::optional<vgd::xvc::OutlinePoint> target;
+  for (const auto& st : stretches)
+    if (v1 >= st.first && v1 < st.first + st.count) target = vgd::xvc::OutlinePoint{front, st.id, v1 - st.first};
+  ASSERT_TRUE(target.has_value());
+  const auto from = h.studio().notch_on_screen(front, nid), to = h.studio().point_on_screen(*target);
+  ASSERT_TRUE(from && to);
+  h.drag(from->cx(), from->cy(), to->cx() + 2, to->cy() + 2);
+  const vgd::xvc::Node* moved = h.studio().document().find(nid);
+  ASSERT_NE(moved, nullptr);
+  EXPECT_EQ(moved->attribute("vertex"), std::to_string(v1)) << h.studio().status();
+  const auto p = outline_point(h.studio().document(), *target);
+  EXPECT_EQ(moved->attribute("x"), vgd::format_double(p.x()));
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+}
+
 // Moving a piece in the pattern view: the skirt's front dragged by (40, 25) px
 // from inside it is drawn 40 px right and 25 px lower, the others where they
 // were; the document holds its sheet position (checked, validated, saved);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 
 #include "fixtures.hpp"
@@ -665,5 +666,40 @@ TEST(SetGrainLine, MovesTheGrainLineOrAddsOne) {
                                                             std::array<double, 2>{0.1, 0.3})),
                vgd::Error);
   while (stack.can_undo()) stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+}
+
+// A notch moved to another boundary vertex: its point is that vertex, its
+// vertex attribute says so, its cut points into the piece (square to the
+// outline there: along the inward normal from the neighbours); the document
+// checks; refused beyond the boundary or for what is not a notch; undo
+// restores.
+TEST(MoveNotch, PutsTheNotchOnAnotherVertexCuttingInwards) {
+  Document doc = full_document();
+  const Document before = doc;
+  const Node* notch = notch_of(doc, "pattern1");
+  ASSERT_NE(notch, nullptr);
+  const std::string id(notch->id());
+  const Piece a = to_piece(doc, "pattern1");
+  const std::size_t n = a.boundary.size();
+  const std::size_t v = (std::stoul(std::string(notch->attribute("vertex"))) + 2) % n;
+  UndoStack stack(doc);
+  EXPECT_EQ(stack.execute(std::make_unique<MoveNotch>("pattern1", id, v)), id);
+  const Node* moved = doc.find(id);
+  EXPECT_EQ(xy(*moved), a.boundary[v].p);
+  EXPECT_EQ(moved->attribute("vertex"), std::to_string(v));
+  const double ang = std::stod(std::string(moved->attribute("angle"))) * std::numbers::pi / 180.0;
+  const Vec2 cut(std::cos(ang), std::sin(ang));
+  const Vec2 t = a.boundary[(v + 1) % n].p - a.boundary[(v + n - 1) % n].p;
+  EXPECT_NEAR(cut.dot(t.normalized()), 0.0, 1e-9) << "square to the outline";
+  EXPECT_TRUE(vgd::pattern::point_in_outline(a.boundary, a.boundary[v].p + 0.002 * cut)) << "into the piece";
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", id, n)), vgd::Error);
+  std::string drill;
+  for (const auto& c : doc.find("pattern1")->children)
+    if (c.tag == "POSITION" && c.attribute("type") == "drill") drill = std::string(c.id());
+  if (!drill.empty()) EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", drill, 0)), vgd::Error);
+  EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", "no-such", 0)), vgd::Error);
+  stack.undo();
   EXPECT_EQ(doc.root(), before.root());
 }

@@ -206,6 +206,8 @@ class Studio {
   // (px per m: a drag of d px moves a point d / scale m).
   std::optional<Rect> point_on_screen(const xvc::OutlinePoint& point) const;
   std::optional<Rect> piece_on_screen(std::string_view pattern_id) const;
+  // A notch's handle (the inner end of its cut) on screen, by its POSITION id.
+  std::optional<Rect> notch_on_screen(std::string_view pattern_id, std::string_view notch_id) const;
   // An end (0: its first point, 1: its second) of a piece's grain line on screen.
   std::optional<Rect> grain_end_on_screen(std::string_view pattern_id, int end) const;
   float pattern_scale() const;

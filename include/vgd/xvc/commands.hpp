@@ -367,6 +367,23 @@ class SetPieceMaterial : public Command {
   std::optional<Node> material_;
 };
 
+// Moves a notch (POSITION type="notch" `notch_id` of a PATTERN) onto the
+// pattern's boundary vertex `vertex` (0-based over the concatenated
+// boundary): its point, its vertex, and its cut square into the piece there
+// (the inward normal of the outline at the vertex, from its neighbours).
+// Refused for another element or a vertex beyond the boundary. Returns the
+// notch's id.
+class MoveNotch : public Command {
+ public:
+  MoveNotch(std::string pattern_id, std::string notch_id, std::size_t vertex);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string pattern_, notch_;
+  std::size_t vertex_;
+};
+
 // Sets a PATTERN's grain line (the fabric's warp runs along it; the drape cuts
 // the piece so) to run from `a` to `b` (m, in the pattern's frame), adding
 // one when it has none. Refused for a non-finite point or a line under 1 cm.
