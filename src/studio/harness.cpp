@@ -30,6 +30,7 @@ int key_index(std::string_view name) {
   if (name == "tab") return kKeyBase + ImGuiKey_Tab;
   if (name == "backspace") return kKeyBase + ImGuiKey_Backspace;
   if (name == "f5") return kF5Key;
+  if (name == "space") return kKeyBase + ImGuiKey_Space;
   return -1;
 }
 
@@ -181,7 +182,7 @@ void Harness::key(std::string_view chord) {
     else break;
   }
   const int k = key_index(rest);
-  if (k < 0) throw Error("", std::string(chord), "unknown key (letters a-z, delete, escape, enter, tab, backspace, f5)");
+  if (k < 0) throw Error("", std::string(chord), "unknown key (letters a-z, delete, escape, enter, tab, backspace, f5, space)");
   io.KeyCtrl = ctrl, io.KeyShift = shift;
   io.KeysDown[k] = true;
   frame();

@@ -2707,6 +2707,7 @@ struct Studio::Impl {
       else delete_selected();
     }
     if (ImGui::IsKeyPressed(kF5Key, false)) start_drape();
+    if (pressed(ImGuiKey_Space) && job->running() && job->pausable()) toggle_pause();  // held or let run on
     if (drawing != Drawing::none && pressed(ImGuiKey_Enter)) finish_drawing();
     if (drawing != Drawing::none && pressed(ImGuiKey_Escape))
       drawing = Drawing::none, drawn_points.clear(), drawn_curve.clear(), say("Drawing dropped.");

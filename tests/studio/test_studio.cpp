@@ -1647,8 +1647,9 @@ TEST(Studio, AnMToNSeamIsPickedWithShiftAndFlipped) {
 // sheet, turned 3° off the grain, a hem corner dragged 12 px down; seams
 // suggested and all but the first accepted, that one picked by hand from
 // its two stretches; Arrange, the front dragged 15 px up the torso in 3-D;
-// a drape started, the cloth pulled by hand for 0.3 s simulated (it moves,
-// stays finite), stopped; draped again to rest on one thread, shown as its
+// a drape started and held at once (Space), the cloth taken by hand, the
+// drape let run on for 0.3 s simulated while pulled (it moves, stays
+// finite), stopped; draped again to rest on one thread, shown as its
 // weft strain map (the 3-D view against tests/golden/studio/session-weft.png,
 // colour SSIM > 0.97, looked at); saved: the file validates and holds every
 // edit.
@@ -1747,8 +1748,13 @@ TEST(Studio, ASharedDxfIsImportedEditedArrangedDrapedAndSaved) {
   o.spacing = 0.02;
   h.click("Drape");
   ASSERT_FALSE(h.studio().arranging());
-  ASSERT_TRUE(frames_until(h, [&] { return h.studio().drape_status().t > 0.3 && h.studio().particle_on_screen(0).has_value(); }))
+  // Held (Space) from the start, so that however slowly the preview comes,
+  // the drape waits for the hand: it holds after its first frame.
+  h.key("space");
+  ASSERT_TRUE(h.studio().drape_status().paused) << h.studio().status();
+  ASSERT_TRUE(frames_until(h, [&] { return h.studio().drape_status().t > 0 && h.studio().particle_on_screen(0).has_value(); }))
       << h.studio().drape_status().message;
+  h.frames(20);  // the preview shows the frame it holds
   const auto r = h.studio().widget("preview");
   ASSERT_TRUE(r.has_value());
   int pick = -1;
@@ -1766,6 +1772,8 @@ TEST(Studio, ASharedDxfIsImportedEditedArrangedDrapedAndSaved) {
   const auto held_before = h.studio().cloth_positions()[static_cast<std::size_t>(held)];
   for (int k = 1; k <= 4; ++k) h.move_mouse(ps.cx() + 10.0f * k, ps.cy());
   const double t0 = h.studio().drape_status().t;
+  h.key("space");  // runs on, still held by the hand
+  ASSERT_FALSE(h.studio().drape_status().paused);
   ASSERT_TRUE(frames_until(h, [&] { return h.studio().drape_status().t > t0 + 0.3; }));
   h.frames(20);
   const auto pulled = h.studio().cloth_positions();
