@@ -114,15 +114,20 @@ std::vector<xvc::Arrangement> put_on(std::vector<xvc::Arrangement> current, cons
   return current;
 }
 
-xvc::Arrangement moved(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& delta) {
+body::Vec3 height_direction(const xvc::Arrangement& a, const Avatar& avatar) {
   const BodySegment* s = avatar.segment(a.segment);
   if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to move a piece along");
+  return on_limb(a.segment) ? s->axis : body::Vec3::UnitY();
+}
+
+xvc::Arrangement moved(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& delta) {
+  const double step = delta.dot(height_direction(a, avatar));
   if (on_limb(a.segment)) {
-    a.height = std::clamp(a.height + delta.dot(s->axis), -0.3, s->length);
+    a.height = std::clamp(a.height + step, -0.3, avatar.segment(a.segment)->length);
   } else {
     double top = 0.0;
     for (const auto& v : avatar.surface.vertices) top = std::max(top, v.y());
-    a.height = std::clamp(a.height + delta.y(), 0.0, top);
+    a.height = std::clamp(a.height + step, 0.0, top);
   }
   return a;
 }

@@ -1834,8 +1834,9 @@ struct Studio::Impl {
   // The drape's settings for the document as it is now, unsaved edits
   // included, made ready as vgd dress makes it (dress/prepare.hpp): seams
   // suggested when it has none, the pieces no seam sews left out, the body's
-  // table and size. The prepared copy is written to the studio's work folder.
-  dress::DrapeOptions prepared_drape(dress::Preparation& prep, fs::path& copy) {
+  // table and size. The prepared copy is written to the studio's work folder
+  // (and given back in `prepared_out` when asked).
+  dress::DrapeOptions prepared_drape(dress::Preparation& prep, fs::path& copy, xvc::Document* prepared_out = nullptr) {
     if (work_dir.empty()) {
       work_dir = fs::temp_directory_path() / ("vgd-studio-" + std::to_string(::getpid()) + "-" +
                                               std::to_string(reinterpret_cast<std::uintptr_t>(this)));
@@ -1845,6 +1846,7 @@ struct Studio::Impl {
     xvc::Document prepared = doc;
     prep = dress::prepare_garment(prepared, prepare_options());
     xvc::save_file(prepared, copy);
+    if (prepared_out) *prepared_out = std::move(prepared);
     dress::DrapeOptions d = drape;
     d.garment = copy;
     if (d.pieces.empty()) d.pieces = prep.pieces;
@@ -2069,14 +2071,15 @@ struct Studio::Impl {
     try {
       dress::Preparation prep;
       fs::path copy;
-      const scene::SceneDef def = dress::drape_scene(prepared_drape(prep, copy));
+      xvc::Document prepared;
+      const scene::SceneDef def = dress::drape_scene(prepared_drape(prep, copy, &prepared));
       if (!def.avatar) throw Error("", "", "the drape has no body");
       const scene::AvatarDef& a = *def.avatar;
       const std::string key = std::to_string(static_cast<int>(a.kind)) + "|" + a.size + "|" + a.table + "|" +
                               a.file.string() + "|" + a.unit + "|" + a.up + "|" + a.facing;
       if (!arrange_body || key != arrange_body_key) arrange_body = scene::build_avatar(def), arrange_body_key = key;
       const scene::MadeCloths made = dress::dress_garments(def, *arrange_body);
-      arrange_doc = xvc::load_file(copy);
+      arrange_doc = std::move(prepared);
       arrange_current = dress::garment_arrangements(arrange_doc, *arrange_body);
       arrange_points = dress::arrangement_points(*arrange_body);
       LiveCloth c;
@@ -2179,13 +2182,10 @@ struct Studio::Impl {
     const auto p1 = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - origin.x, mouse.y - origin.y, l.depth);
     const body::Vec3 delta(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
     const xvc::Arrangement& a = list[static_cast<std::size_t>(copy)];
-    const body::BodySegment* seg = arrange_body->segment(a.segment);
-    if (!seg) return;
+    if (!arrange_body->segment(a.segment)) return;
     // Along the segment: the height it will take, clamped as the library clamps it.
     const double dh = dress::moved(a, *arrange_body, delta).height - a.height;
-    const body::Vec3 dir = a.segment.find("-arm") != std::string::npos || a.segment.find("-leg") != std::string::npos
-                               ? seg->axis : body::Vec3::UnitY();
-    l.along = dh * dir;
+    l.along = dh * dress::height_direction(a, *arrange_body);
     for (std::size_t i = 0; i < cloth.positions.size(); ++i)
       if (particle_piece[i] == l.piece)
         for (int k = 0; k < 3; ++k) cloth.positions[i][k] = l.start[i][k] + static_cast<float>(l.along[k]);
@@ -3037,21 +3037,20 @@ std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id
   for (std::size_t k = 0; k < I.arranged_pieces.size(); ++k)
     if (I.arranged_pieces[k].first == pattern_id && I.arranged_pieces[k].second == copy) piece = k;
   if (!piece) return std::nullopt;
-  std::array<double, 3> mean{0, 0, 0};
-  int n = 0;
+  // Its particle nearest its mean.
+  std::vector<int> mine;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < I.particle_piece.size() && i < I.cloth.positions.size(); ++i)
-    if (I.particle_piece[i] == static_cast<int>(*piece))
-      for (int c = 0; c < 3; ++c) mean[c] += I.cloth.positions[i][c] / 1.0, n += c == 0;
-  if (n == 0) return std::nullopt;
-  std::optional<int> best;
-  double d2 = 1e300;
-  for (std::size_t i = 0; i < I.particle_piece.size() && i < I.cloth.positions.size(); ++i) {
-    if (I.particle_piece[i] != static_cast<int>(*piece)) continue;
-    double d = 0;
-    for (int c = 0; c < 3; ++c) d += std::pow(I.cloth.positions[i][c] - mean[c] / n, 2);
-    if (d < d2) d2 = d, best = static_cast<int>(i);
-  }
-  return best ? particle_on_screen(*best) : std::nullopt;
+    if (I.particle_piece[i] == static_cast<int>(*piece)) {
+      mine.push_back(static_cast<int>(i));
+      mean += Eigen::Vector3f(I.cloth.positions[i].data()).cast<double>();
+    }
+  if (mine.empty()) return std::nullopt;
+  mean /= static_cast<double>(mine.size());
+  const auto dist = [&](int i) {
+    return (Eigen::Vector3f(I.cloth.positions[static_cast<std::size_t>(i)].data()).cast<double>() - mean).squaredNorm();
+  };
+  return particle_on_screen(*std::min_element(mine.begin(), mine.end(), [&](int a, int b) { return dist(a) < dist(b); }));
 }
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
 std::optional<Rect> Studio::particle_on_screen(int particle) const {

@@ -427,11 +427,7 @@ std::string MoveNotch::apply(Editor& edit) {
   const Document& doc = edit.document();
   const NodePath path = require(doc, pattern_, "PATTERN");
   Node p = doc.at(path);
-  std::vector<Vec2> outline;
-  for (const auto& c : p.children)
-    if (detail::is_boundary_sequence(c))
-      for (const auto& q : c.children)
-        if (q.tag == "C2D") outline.push_back(point_of(q));
+  const auto outline = to_piece(doc, pattern_).boundary;  // the concatenated boundary, as `vertex` counts it
   const std::size_t n = outline.size();
   if (vertex_ >= n)
     throw Error(doc.name(), notch_, "vertex " + std::to_string(vertex_) + " is beyond the boundary of " + pattern_ +
@@ -442,14 +438,9 @@ std::string MoveNotch::apply(Editor& edit) {
   if (!notch || notch->attribute("type") != "notch")
     throw Error(doc.name(), notch_, notch_ + " is not a notch of " + pattern_);
   // The inward normal: the outline's tangent there turned a quarter towards the inside.
-  double area2 = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 &a = outline[i], &b = outline[(i + 1) % n];
-    area2 += a.x() * b.y() - b.x() * a.y();
-  }
-  const Vec2 t = outline[(vertex_ + 1) % n] - outline[(vertex_ + n - 1) % n];
-  const Vec2 inward = area2 >= 0 ? Vec2(-t.y(), t.x()) : Vec2(t.y(), -t.x());
-  set_point(*notch, outline[vertex_]);
+  const Vec2 t = outline[(vertex_ + 1) % n].p - outline[(vertex_ + n - 1) % n].p;
+  const Vec2 inward = pattern::signed_area(outline) >= 0 ? Vec2(-t.y(), t.x()) : Vec2(t.y(), -t.x());
+  set_point(*notch, outline[vertex_].p);
   notch->set_attribute("vertex", std::to_string(vertex_));
   if (inward.norm() > 0)
     notch->set_attribute("angle", format_double(normalise_deg(std::atan2(inward.y(), inward.x()) * 180.0 / std::numbers::pi)));

@@ -45,6 +45,11 @@ std::vector<ArrangementPoint> arrangement_points(const body::Avatar& avatar);
 std::vector<xvc::Arrangement> put_on(std::vector<xvc::Arrangement> current, const ArrangementPoint& point,
                                      const pattern::Piece& piece);
 
+// The world direction (unit) in which `a`'s height grows: up (+Y) on the
+// neck, torso and hips, down the limb's axis on an arm or a leg. Throws
+// vgd::Error when the avatar lacks the segment.
+body::Vec3 height_direction(const xvc::Arrangement& a, const body::Avatar& avatar);
+
 // `a` moved by the world displacement `delta` (m) along its segment: on the
 // neck, torso and hips its height changes by delta's vertical part, on an arm
 // or a leg by delta's part along the limb's axis (down the limb). Heights

@@ -73,7 +73,7 @@ class Harness {
   // Throws vgd::Error naming the script, the line and the problem.
   void run_script(const std::filesystem::path& script, std::ostream* report = nullptr);
 
-  // Wall time per frame (ms) over `n` frames, with the drape's state at the end.
+  // Wall time per frame (ms) over `n` frames: mean, 95th percentile, longest.
   struct FrameTimes {
     int frames = 0;
     double mean_ms = 0, p95_ms = 0, max_ms = 0;
