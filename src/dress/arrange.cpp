@@ -132,4 +132,42 @@ xvc::Arrangement moved(xvc::Arrangement a, const Avatar& avatar, const body::Vec
   return a;
 }
 
+body::Vec3 side_direction(const xvc::Arrangement& a, const Avatar& avatar) {
+  const BodySegment* s = avatar.segment(a.segment);
+  if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to turn a piece round");
+  const body::Vec3 axis = s->axis.normalized();
+  const body::Vec3 up = on_limb(a.segment) ? body::Vec3(-axis) : axis;  // the pattern's up, as place_piece has it
+  const body::Vec3 e1 = (s->front - s->front.dot(axis) * axis).normalized();
+  const body::Vec3 e2 = up.cross(e1).normalized();
+  if (a.side == "back") return -e1;
+  if (a.side == "left") return e2;
+  if (a.side == "right") return -e2;
+  return e1;
+}
+
+xvc::Arrangement turned_to(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& to) {
+  const BodySegment* s = avatar.segment(a.segment);
+  if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to turn a piece round");
+  const body::Vec3 axis = s->axis.normalized();
+  const body::SegmentRing ring = body::ring_at(*s, (to - s->start).dot(axis));
+  body::Vec3 v = to - ring.centre;
+  v -= v.dot(axis) * axis;
+  if (v.norm() < 1e-9) return a;
+  std::string best = a.side;
+  double most = -2;
+  for (const char* side : {"front", "left", "back", "right"}) {
+    xvc::Arrangement t = a;
+    t.side = side;
+    const double c = v.normalized().dot(side_direction(t, avatar));
+    if (c > most + 1e-12) most = c, best = side;
+  }
+  a.side = best;
+  return a;
+}
+
+xvc::Arrangement moved_off(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& delta) {
+  a.clearance = std::clamp(a.clearance + delta.dot(side_direction(a, avatar)), 0.0, kMaxClearance);
+  return a;
+}
+
 }  // namespace vgd::dress

@@ -104,9 +104,11 @@ void Harness::click_at(float x, float y, bool shift, bool alt) {
   frame();
   io.MouseDown[0] = false;
   frame();
-  io.KeyShift = false;
-  io.KeyAlt = false;
-  frame();
+  if (shift || alt) {
+    io.KeyShift = false;
+    io.KeyAlt = false;
+    frame();
+  }
 }
 
 void Harness::click(std::string_view name, bool shift) {
@@ -119,10 +121,12 @@ void Harness::click(std::string_view name, bool shift) {
   click_at(r->cx(), r->cy(), shift);
 }
 
-void Harness::drag(float x0, float y0, float x1, float y1, int steps) {
+void Harness::drag(float x0, float y0, float x1, float y1, int steps, bool shift, bool alt) {
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = {x0, y0};
+  io.KeyShift = shift;
+  io.KeyAlt = alt;
   frame();
   io.MouseDown[0] = true;
   frame();
@@ -133,6 +137,11 @@ void Harness::drag(float x0, float y0, float x1, float y1, int steps) {
   }
   io.MouseDown[0] = false;
   frame();
+  if (shift || alt) {
+    io.KeyShift = false;
+    io.KeyAlt = false;
+    frame();
+  }
 }
 
 void Harness::press(float x, float y, bool ctrl) {
@@ -282,6 +291,17 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         auto r = studio().point_on_screen(pt);
         if (!r) fail("point " + std::to_string(pt.index) + " of " + pt.pattern_id + "/" + pt.sequence_id + " is not on screen");
         drag(r->cx(), r->cy(), r->cx() + dx, r->cy() + dy);
+      } else if (cmd == "drag-arranged") {
+        // drag-arranged PATTERN DX DY [shift|alt]: an arranged piece dragged in the 3-D view.
+        std::istringstream as(arg);
+        std::string pattern_id, how;
+        float dx = 0, dy = 0;
+        if (!(as >> pattern_id >> dx >> dy)) fail("give the pattern and the drag in px: drag-arranged pattern9 0 -30 [shift|alt]");
+        as >> how;
+        if (!how.empty() && how != "shift" && how != "alt") fail("the drag's key is shift or alt, not \"" + how + "\"");
+        const auto r = studio().arranged_piece_on_screen(pattern_id);
+        if (!r) fail(pattern_id + " is not arranged on screen (click Arrange first)");
+        drag(r->cx(), r->cy(), r->cx() + dx, r->cy() + dy, 8, how == "shift", how == "alt");
       } else if (cmd == "key") {
         key(arg);
       } else if (cmd == "type") {
@@ -307,7 +327,8 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, key, type, frames, frames-timed, "
+        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, drag-arranged, key, type, frames, "
+             "frames-timed, "
              "wait-drape, screenshot, expect-status)");
       }
     } catch (const Error& e) {

@@ -296,11 +296,15 @@ struct Studio::Impl {
   ImVec2 canvas_lo, canvas_hi;            // the pattern view on screen
   std::optional<std::size_t> drop_target;  // the arrangement point under it
   struct Lift {
+    // A plain drag slides the piece along its segment, Shift+drag turns it
+    // round the body to another side, Alt+drag moves it off the body (or nearer).
+    enum class How { along, around, off } how = How::along;
     int piece = 0;
     ImVec2 from;
     double depth = 0;
     std::vector<std::array<float, 3>> start;  // the cloth's positions when it was taken
     body::Vec3 along = body::Vec3::Zero();    // the move so far, along the segment (m)
+    std::optional<xvc::Arrangement> to;       // around, off: the arrangement it takes when let go
   };
   std::optional<Lift> lifting;  // a piece dragged in 3-D
 
@@ -2123,7 +2127,8 @@ struct Studio::Impl {
     arrange();
     if (arranging)
       say("Arranging size " + drape.size + ": drag a piece from the pattern view onto a point on the body, or a "
-          "piece in 3-D along its place (up and down the trunk, along a limb).");
+          "piece in 3-D along its place (up and down the trunk, along a limb); Shift+drag turns it round the "
+          "body, Alt+drag moves it off the body.");
   }
 
   // The pattern's arrangements as the drape uses them (stored, else suggested).
@@ -2166,6 +2171,8 @@ struct Studio::Impl {
     const auto hit = particle_under(at, 12);
     if (!hit || static_cast<std::size_t>(hit->first) >= particle_piece.size()) return;
     Lift l;
+    const ImGuiIO& io = ImGui::GetIO();
+    l.how = io.KeyShift ? Lift::How::around : io.KeyAlt ? Lift::How::off : Lift::How::along;
     l.piece = particle_piece[static_cast<std::size_t>(hit->first)];
     l.from = mouse;
     l.depth = hit->second;
@@ -2183,6 +2190,27 @@ struct Studio::Impl {
     const body::Vec3 delta(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
     const xvc::Arrangement& a = list[static_cast<std::size_t>(copy)];
     if (!arrange_body->segment(a.segment)) return;
+    if (l.how == Lift::How::around) {
+      // The side facing the mouse's point (at the depth the piece was taken),
+      // shown by a tooltip; the piece is laid out there when let go.
+      l.to = dress::turned_to(a, *arrange_body, body::Vec3(p1[0], p1[1], p1[2]));
+      ImGui::SetTooltip("%s", (l.to->side == a.side ? std::string("Drag round the body to turn the piece to another side")
+                                                    : "Let go to turn it to the " + a.segment + "'s " + l.to->side)
+                                  .c_str());
+      return;
+    }
+    if (l.how == Lift::How::off) {
+      // Off the body: the piece moved along its side's direction by the
+      // clearance it will take (the layout there is made when let go).
+      l.to = dress::moved_off(a, *arrange_body, delta);
+      const body::Vec3 out = (l.to->clearance - a.clearance) * dress::side_direction(a, *arrange_body);
+      for (std::size_t i = 0; i < cloth.positions.size(); ++i)
+        if (particle_piece[i] == l.piece)
+          for (int k = 0; k < 3; ++k) cloth.positions[i][k] = l.start[i][k] + static_cast<float>(out[k]);
+      ImGui::SetTooltip("Clearance %.1f cm (was %.1f cm)", 100 * l.to->clearance, 100 * a.clearance);
+      preview_dirty = true;
+      return;
+    }
     // Along the segment: the height it will take, clamped as the library clamps it.
     const double dh = dress::moved(a, *arrange_body, delta).height - a.height;
     l.along = dh * dress::height_direction(a, *arrange_body);
@@ -2197,7 +2225,21 @@ struct Studio::Impl {
     lifting.reset();
     const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
     auto list = current_arrangements(pattern_id);
-    if (l.along.norm() < 1e-3 || static_cast<std::size_t>(copy) >= list.size() || !doc.find(pattern_id)) {
+    if (l.how != Lift::How::along && l.to && static_cast<std::size_t>(copy) < list.size() && doc.find(pattern_id)) {
+      auto& a = list[static_cast<std::size_t>(copy)];
+      const xvc::Arrangement before = a;
+      if (l.to->side != before.side || std::abs(l.to->clearance - before.clearance) >= 1e-3) {
+        a = *l.to;
+        run(std::make_unique<xvc::SetArrangements>(pattern_id, list));
+        const std::string name(doc.find(pattern_id)->attribute("piece"));
+        say(l.how == Lift::How::around ? name + " turned round the " + a.segment + " from its " + before.side + " to its " + a.side + "."
+                                       : name + " moved off the body: clearance " + format_fixed(100 * before.clearance, 1) +
+                                             " to " + format_fixed(100 * a.clearance, 1) + " cm.");
+        return;
+      }
+    }
+    if (l.how != Lift::How::along || l.along.norm() < 1e-3 || static_cast<std::size_t>(copy) >= list.size() ||
+        !doc.find(pattern_id)) {
       cloth.positions = l.start;
       preview_dirty = true;
       return;
@@ -3050,7 +3092,18 @@ std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id
   const auto dist = [&](int i) {
     return (Eigen::Vector3f(I.cloth.positions[static_cast<std::size_t>(i)].data()).cast<double>() - mean).squaredNorm();
   };
-  return particle_on_screen(*std::min_element(mine.begin(), mine.end(), [&](int a, int b) { return dist(a) < dist(b); }));
+  std::sort(mine.begin(), mine.end(), [&](int a, int b) { return dist(a) < dist(b); });
+  // A press takes the particle nearest the eye within 12 px (lift_piece): the
+  // first of the nearest 300 for which that is one of this piece's.
+  for (std::size_t j = 0; j < std::min<std::size_t>(mine.size(), 300); ++j) {
+    const auto q = I.particle_screen(mine[j]);
+    if (!q) continue;
+    const auto hit = I.particle_under(ImVec2(static_cast<float>(q->x), static_cast<float>(q->y)), 12);
+    if (hit && static_cast<std::size_t>(hit->first) < I.particle_piece.size() &&
+        I.particle_piece[static_cast<std::size_t>(hit->first)] == static_cast<int>(*piece))
+      return particle_on_screen(mine[j]);
+  }
+  return particle_on_screen(mine.front());
 }
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
 std::optional<Rect> Studio::particle_on_screen(int particle) const {

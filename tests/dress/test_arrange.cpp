@@ -184,3 +184,64 @@ TEST(Arrange, AMovedPieceSlidesAlongItsSegmentAndStaysOnTheBody) {
   EXPECT_NEAR(dress::moved(on("left-arm", "left", 0.06), a, 5 * arm->axis).height, arm->length, 1e-12);
   EXPECT_THROW(dress::moved(on("tail", "front", 0.1), a, delta), vgd::Error);
 }
+
+// Turned round its segment: the side facing a point of the world, a quarter
+// at a time; the piece place_piece lays out then lies on that side of the
+// segment (its middle along side_direction from the axis); a point on the
+// axis changes nothing; on an arm the outside stays the outside.
+TEST(Arrange, ATurnedPieceGoesToTheSideItIsDraggedTo) {
+  const auto& a = mannequin();
+  const auto front = on("torso", "front", 1.40);
+  const Vec3 centre = body::ring_at(*a.segment("torso"), 0.5 * a.segment("torso")->length).centre;
+  const std::map<std::string, Vec3> toward = {{"left", Vec3(0.3, 0, 0.05)},
+                                              {"right", Vec3(-0.3, 0, -0.05)},
+                                              {"back", Vec3(0.05, 0, -0.3)},
+                                              {"front", Vec3(-0.1, 0, 0.3)}};
+  const pattern::Piece piece = panel();
+  std::vector<Vec2> nodes;
+  for (const auto& q : piece.boundary) nodes.push_back(q.p);
+  for (const auto& [side, d] : toward) {
+    const auto t = dress::turned_to(front, a, centre + d);
+    EXPECT_EQ(t.side, side);
+    EXPECT_DOUBLE_EQ(t.height, front.height);
+    EXPECT_DOUBLE_EQ(t.clearance, front.clearance);
+    // Where the piece goes: its middle off the axis along the side's direction.
+    const auto placed = dress::place_piece(nodes, t, a);
+    Vec3 mid = Vec3::Zero();
+    for (const auto& p : placed.points) mid += p / static_cast<double>(placed.points.size());
+    Vec3 off = mid - placed.axis_point;
+    off -= off.dot(placed.axis) * placed.axis;
+    EXPECT_GT(off.normalized().dot(dress::side_direction(t, a)), 0.9) << side;
+  }
+  EXPECT_EQ(dress::turned_to(front, a, centre + Vec3(0, 0.2, 0)).side, "front") << "a point on the axis";
+  // The left arm hanging in the A-pose: its outside (+x) is its side "left".
+  const body::BodySegment* arm = a.segment("left-arm");
+  const auto sleeve = on("left-arm", "front", 0.10, true);
+  const Vec3 on_arm = arm->start + 0.10 * arm->axis;
+  EXPECT_EQ(dress::turned_to(sleeve, a, on_arm + Vec3(0.2, 0, 0)).side, "left");
+  EXPECT_GT(dress::side_direction(dress::turned_to(sleeve, a, on_arm + Vec3(0.2, 0, 0)), a).x(), 0.5);
+  EXPECT_THROW(dress::turned_to(on("tail", "front", 0.1), a, centre), vgd::Error);
+}
+
+// Moved off the body: the clearance grows by the move's part along the
+// side's direction, shrinks towards the body, and stays within [0, 30 cm].
+TEST(Arrange, APieceMovedOffTheBodyChangesItsClearanceOnly) {
+  const auto& a = mannequin();
+  auto back = on("torso", "back", 1.40);
+  back.clearance = 0.03;
+  const auto out = dress::moved_off(back, a, Vec3(0.04, 0.10, -0.05));
+  EXPECT_NEAR(out.clearance, 0.08, 1e-9);
+  EXPECT_EQ(out.side, "back");
+  EXPECT_DOUBLE_EQ(out.height, 1.40);
+  EXPECT_NEAR(dress::moved_off(back, a, Vec3(0, 0, 0.02)).clearance, 0.01, 1e-9);
+  EXPECT_DOUBLE_EQ(dress::moved_off(back, a, Vec3(0, 0, 0.5)).clearance, 0.0);
+  EXPECT_DOUBLE_EQ(dress::moved_off(back, a, Vec3(0, 0, -2)).clearance, dress::kMaxClearance);
+  // Laid out further off the body (at 3 cm place_piece widens the panel's
+  // clearance a little so it fits half way round; at 8 cm it needs not).
+  const pattern::Piece piece = panel();
+  std::vector<Vec2> nodes;
+  for (const auto& q : piece.boundary) nodes.push_back(q.p);
+  const auto near = dress::place_piece(nodes, back, a), far = dress::place_piece(nodes, out, a);
+  EXPECT_NEAR(far.clearance, 0.08, 1e-9);
+  EXPECT_GT(far.clearance, near.clearance + 0.04);
+}

@@ -573,6 +573,55 @@ TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
   h.studio().wait_for_drape();
 }
 
+// Shift+drag turns an arranged piece round the body: the T-shirt's front
+// dragged 150 px to the right (the body's left, +x, seen from the front)
+// goes to the torso's left side, and the piece laid out there shows right of
+// where it was; Alt+drag 40 px further right moves it off the body (its
+// clearance grows, its side stays); each an undo step, undone both.
+TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
+  Harness h;
+  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  ASSERT_FALSE(front.empty());
+  const auto original = h.studio().document();
+  h.click("Arrange");
+  h.frames(2);
+  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+  const auto at = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(at.has_value());
+  const auto before = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0].side, "front");
+
+  h.drag(at->cx(), at->cy(), at->cx() + 150, at->cy(), 8, /*shift=*/true);
+  h.frames(2);
+  const auto turned = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(turned.size(), 1u);
+  EXPECT_EQ(turned[0].side, "left") << h.studio().status();
+  EXPECT_EQ(turned[0].segment, "torso");
+  EXPECT_DOUBLE_EQ(turned[0].height, before[0].height);
+  EXPECT_NE(h.studio().status().find("turned round the torso from its front to its left"), std::string::npos)
+      << h.studio().status();
+  const auto now = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(now.has_value());
+  EXPECT_GT(now->cx(), at->cx() + 20) << "laid out on the body's left, right of the front on screen";
+
+  h.drag(now->cx(), now->cy(), now->cx() + 40, now->cy(), 8, false, /*alt=*/true);
+  h.frames(2);
+  const auto off = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_EQ(off[0].side, "left");
+  EXPECT_GT(off[0].clearance, turned[0].clearance + 0.05) << h.studio().status();
+  EXPECT_LE(off[0].clearance, vgd::dress::kMaxClearance);
+  EXPECT_NE(h.studio().status().find("moved off the body"), std::string::npos) << h.studio().status();
+
+  h.key("ctrl+z");
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+}
+
 // Pulling the cloth by hand: Ctrl+press on the skirt's front hem in the 3-D
 // view while it drapes takes hold of a particle there; the mouse moved 60 px
 // to the right and held for half a second of simulated time drags that

@@ -58,4 +58,26 @@ body::Vec3 height_direction(const xvc::Arrangement& a, const body::Avatar& avata
 // when the avatar lacks the segment.
 xvc::Arrangement moved(xvc::Arrangement a, const body::Avatar& avatar, const body::Vec3& delta);
 
+// The world direction (unit, normal to the segment's axis) that `a`'s side
+// faces on its segment, as place_piece lays a piece out: front is the
+// segment's front; left is the pattern's up × front (the body's left on the
+// trunk; on a limb it turns with the limb, so an arm's outside stays its
+// outside from A- to T-pose); back and right the opposites. Throws
+// vgd::Error when the avatar lacks the segment.
+body::Vec3 side_direction(const xvc::Arrangement& a, const body::Avatar& avatar);
+
+// `a` turned round its segment to the side (front, left, back or right)
+// that faces the world point `to` most nearly, seen from the segment's axis at
+// `to`'s level: a drag round the body turns a piece a quarter at a time.
+// Unchanged when `to` lies on the axis. Throws vgd::Error when the avatar
+// lacks the segment.
+xvc::Arrangement turned_to(xvc::Arrangement a, const body::Avatar& avatar, const body::Vec3& to);
+
+// `a` moved off the body (or towards it) by the part of the world
+// displacement `delta` (m) along its side's direction (side_direction): its
+// clearance changes by that much, kept within [0, kMaxClearance]. Throws
+// vgd::Error when the avatar lacks the segment.
+inline constexpr double kMaxClearance = 0.30;  // m
+xvc::Arrangement moved_off(xvc::Arrangement a, const body::Avatar& avatar, const body::Vec3& delta);
+
 }  // namespace vgd::dress

@@ -46,8 +46,9 @@ class Harness {
   // Clicks the middle of a named widget of the last frame (Studio::widget);
   // throws vgd::Error naming it when there is no such widget on screen.
   void click(std::string_view widget, bool shift = false);
-  // Drags with the left button from (x0, y0) to (x1, y1) in `steps` moves.
-  void drag(float x0, float y0, float x1, float y1, int steps = 8);
+  // Drags with the left button from (x0, y0) to (x1, y1) in `steps` moves,
+  // with Shift and Alt held when asked.
+  void drag(float x0, float y0, float x1, float y1, int steps = 8, bool shift = false, bool alt = false);
   // The left button held down at (x, y) (with Ctrl when asked), the mouse
   // moved while it is held, and let go: for drags that must last.
   void press(float x, float y, bool ctrl = false);
@@ -66,6 +67,7 @@ class Harness {
   // Runs a script, one command per line ('#' starts a comment):
   //   open FILE | save [FILE] | export-vrml FILE.wrl | click WIDGET | click-stretch PATTERN SEQ
   //   click-piece PATTERN [DX DY] | drop-piece PATTERN POINT | drag-point PATTERN SEQ INDEX DX DY (px)
+  //   drag-arranged PATTERN DX DY [shift|alt] (px)
   //   key CHORD | type TEXT | frames N | frames-timed N | wait-drape | screenshot FILE.png
   //   expect-status TEXT (fails unless the status bar contains TEXT)
   // Paths are relative to the script's folder. What a command reports

@@ -235,6 +235,9 @@ class Studio {
   std::vector<sim::HandControl::Pin> pins() const;
   bool arranging() const;
   std::optional<Rect> arrangement_point_on_screen(std::string_view label) const;
+  // Where an arranged piece can be taken in the 3-D view: of its particles
+  // nearest its middle, the first that a press there takes (no other piece
+  // in front of it).
   std::optional<Rect> arranged_piece_on_screen(std::string_view pattern_id, int copy = 0) const;
   std::vector<std::array<float, 3>> arranged_piece(std::string_view pattern_id, int copy = 0) const;
 
