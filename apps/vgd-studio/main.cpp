@@ -2,6 +2,7 @@
 //
 //   vgd-studio data/garments/t-shirt.xvc                    a window (GLFW, OpenGL 3.3)
 //   vgd-studio --headless --script session.txt              off-screen, scripted (tests, QA)
+//   vgd-studio --script session.txt                         the same script in a window
 //   vgd-studio --headless t-shirt.xvc --screenshot s.png    one frame of the studio as a PNG
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -140,8 +141,9 @@ int run_window(const Options& o) {
   return code;
 }
 
-int run_headless(const Options& o) {
-  vgd::studio::Harness h(o.width, o.height);
+// The studio driven by the harness (off-screen, or in a window for a
+// script): the file opened, the script run, the last frame written.
+int run_scripted(vgd::studio::Harness& h, const Options& o) {
   if (!o.avatar.empty()) h.studio().set_body(o.avatar, o.unit, o.up, o.facing);
   h.studio().set_server(o.server, token(o));
   h.studio().set_autosave_seconds(o.autosave_s);
@@ -157,6 +159,51 @@ int run_headless(const Options& o) {
   return h.studio().status_is_error() ? 3 : 0;
 }
 
+int run_headless(const Options& o) {
+  vgd::studio::Harness h(o.width, o.height);
+  return run_scripted(h, o);
+}
+
+// A script run in a window: what it does is seen as it happens, and the
+// window's OpenGL draws every frame (the input is the script's, not the
+// window's).
+int run_window_script(const Options& o) {
+  glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "vgd-studio: GLFW %d: %s\n", code, text); });
+  if (!glfwInit()) {
+    std::fprintf(stderr, "vgd-studio: error: no display to open a window on (use --headless for off-screen runs)\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "vgd studio (script)", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "vgd-studio: error: cannot open an OpenGL 3.3 window\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(0);  // a script runs as fast as it draws
+  int code = 0;
+  {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window, &w, &h);
+    vgd::studio::HarnessWindow win;
+    win.loader = reinterpret_cast<vgd::studio::GlLoader>(glfwGetProcAddress);
+    win.make_current = [window] { glfwMakeContextCurrent(window); };
+    win.present = [window] {
+      glfwSwapBuffers(window);
+      glfwPollEvents();
+    };
+    vgd::studio::Harness harness(win, w, h);
+    code = run_scripted(harness, o);
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -165,7 +212,7 @@ int main(int argc, char** argv) {
   app.add_option("FILE", o.file, "XVC document to open")->check(CLI::ExistingFile);
   app.add_flag("--headless", o.headless, "No window: draw off-screen (OSMesa), for scripts and screenshots");
   app.add_option("--script", o.script,
-                 "With --headless: run these studio commands (open, save, export-vrml, click, click-stretch, "
+                 "Run these studio commands, off-screen with --headless, else in a window (open, save, export-vrml, click, click-stretch, "
                  "click-piece, drop-piece, drag-point, drag-arranged, key, type, frames, frames-timed, wait-drape, screenshot, "
                  "expect-status; docs/studio.md)")
       ->check(CLI::ExistingFile);
@@ -201,13 +248,13 @@ int main(int argc, char** argv) {
   app.footer("Exit codes: 0 done, 1 bad input or a failed script line (the message names it), 3 the studio ended "
              "with an error in its status bar.");
   CLI11_PARSE(app, argc, argv);
-  if (!o.headless && (!o.script.empty() || (!o.screenshot.empty() && o.quit_after == 0))) {
-    std::fprintf(stderr, "vgd-studio: error: --script needs --headless, --screenshot needs --headless or --quit-after\n");
+  if (!o.headless && o.script.empty() && !o.screenshot.empty() && o.quit_after == 0) {
+    std::fprintf(stderr, "vgd-studio: error: --screenshot needs --headless, --script or --quit-after\n");
     return 2;
   }
   omp_set_num_threads(o.threads > 0 ? o.threads : omp_get_num_procs());
   try {
-    return o.headless ? run_headless(o) : run_window(o);
+    return o.headless ? run_headless(o) : !o.script.empty() ? run_window_script(o) : run_window(o);
   } catch (const vgd::Error& e) {
     std::fprintf(stderr, "vgd-studio: error: %s\n", e.diagnostic().format().c_str());
     return 1;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "vgd/core/diagnostics.hpp"
@@ -38,11 +39,18 @@ int key_index(std::string_view name) {
 
 struct Harness::Impl {
   int width, height;
-  render::OffscreenContext context;
+  std::optional<render::OffscreenContext> context;  // off-screen, unless drawing into `window`
+  HarnessWindow window;
   ImGuiContext* imgui = nullptr;
   std::unique_ptr<Studio> studio;
 
-  Impl(int w, int h) : width(w), height(h), context(w, h) {
+  Impl(int w, int h, const HarnessWindow* win) : width(w), height(h) {
+    if (win) {
+      VGD_ASSERT(win->loader && win->make_current && win->present, "a harness window needs a loader, make_current and present");
+      window = *win;
+    } else {
+      context.emplace(w, h);
+    }
     IMGUI_CHECKVERSION();
     imgui = ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
@@ -55,31 +63,38 @@ struct Harness::Impl {
     io.KeyMap[ImGuiKey_A] = 'A', io.KeyMap[ImGuiKey_C] = 'C', io.KeyMap[ImGuiKey_V] = 'V';
     io.KeyMap[ImGuiKey_X] = 'X', io.KeyMap[ImGuiKey_Y] = 'Y', io.KeyMap[ImGuiKey_Z] = 'Z';
     ImGui::StyleColorsLight();
-    context.make_current();
-    init_gl(render::OffscreenContext::loader());
+    make_current();
+    init_gl(context ? render::OffscreenContext::loader() : window.loader);
     studio = std::make_unique<Studio>();
-    studio->set_restore_context([this] { context.make_current(); });
+    studio->set_restore_context([this] { make_current(); });
   }
 
   ~Impl() {
     studio.reset();
-    context.make_current();
+    make_current();
     shutdown_gl();
     ImGui::DestroyContext(imgui);
   }
 
-  void frame() {
-    context.make_current();
+  void make_current() { context ? context->make_current() : window.make_current(); }
+
+  // One frame; in a window presented unless `present` is false (a screenshot
+  // reads it first).
+  void frame(bool present = true) {
+    make_current();
     ImGui::SetCurrentContext(imgui);
     new_frame_gl();
     ImGui::NewFrame();
     studio->draw();
     ImGui::Render();
     render_gl(ImGui::GetDrawData());
+    if (!context && present) window.present();
   }
 };
 
-Harness::Harness(int width, int height) : impl_(std::make_unique<Impl>(width, height)) {}
+Harness::Harness(int width, int height) : impl_(std::make_unique<Impl>(width, height, nullptr)) {}
+Harness::Harness(const HarnessWindow& window, int width, int height)
+    : impl_(std::make_unique<Impl>(width, height, &window)) {}
 Harness::~Harness() = default;
 
 Studio& Harness::studio() { return *impl_->studio; }
@@ -104,11 +119,9 @@ void Harness::click_at(float x, float y, bool shift, bool alt) {
   frame();
   io.MouseDown[0] = false;
   frame();
-  if (shift || alt) {
-    io.KeyShift = false;
-    io.KeyAlt = false;
-    frame();
-  }
+  io.KeyShift = false;
+  io.KeyAlt = false;
+  frame();
 }
 
 void Harness::click(std::string_view name, bool shift) {
@@ -206,7 +219,14 @@ void Harness::type(std::string_view text) {
   frame();
 }
 
-render::Image Harness::screenshot() { return impl_->context.read_back(); }
+render::Image Harness::screenshot() {
+  if (impl_->context) return impl_->context->read_back();
+  ImGui::SetCurrentContext(impl_->imgui);
+  impl_->frame(false);
+  render::Image img = read_framebuffer(impl_->width, impl_->height);
+  impl_->window.present();
+  return img;
+}
 
 Harness::FrameTimes Harness::frames_timed(int n) {
   FrameTimes out;

@@ -35,8 +35,54 @@
 #include "vgd/xvc/style.hpp"
 #include "vgd/xvc/validate.hpp"
 
+#ifdef VGD_STUDIO_TEST_WINDOW
+#include <GLFW/glfw3.h>
+#endif
+
 namespace fs = std::filesystem;
 using vgd::studio::Harness;
+
+// Where the tests' studio draws: off-screen (vgd_test_studio), or, built with
+// VGD_STUDIO_TEST_WINDOW (vgd_test_studio_window, run on Xvfb by
+// window_tests.sh), in a GLFW window of its own per test, the same tests
+// against the same goldens.
+#ifdef VGD_STUDIO_TEST_WINDOW
+namespace {
+struct TestWindow {
+  GLFWwindow* window = nullptr;
+  TestWindow(int width, int height) {
+    if (!glfwInit()) throw std::runtime_error("no X display for the studio's window (run under xvfb-run)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    window = glfwCreateWindow(width, height, "vgd studio test", nullptr, nullptr);
+    if (!window) throw std::runtime_error("cannot open an OpenGL 3.3 window");
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(0);
+  }
+  ~TestWindow() { glfwDestroyWindow(window); }
+  vgd::studio::HarnessWindow spec() const {
+    vgd::studio::HarnessWindow w;
+    w.loader = reinterpret_cast<vgd::studio::GlLoader>(glfwGetProcAddress);
+    w.make_current = [win = window] { glfwMakeContextCurrent(win); };
+    w.present = [win = window] {
+      glfwSwapBuffers(win);
+      glfwPollEvents();
+    };
+    return w;
+  }
+};
+// The window first (a base made before the harness, gone after it).
+class TestHarness : private TestWindow, public Harness {
+ public:
+  explicit TestHarness(int width = 1280, int height = 800)
+      : TestWindow(width, height), Harness(spec(), width, height) {}
+};
+}  // namespace
+#else
+using TestHarness = Harness;
+#endif
 
 namespace {
 
@@ -105,7 +151,7 @@ vgd::render::Image crop(const vgd::render::Image& img, const vgd::studio::Rect& 
 }  // namespace
 
 TEST(Studio, OpensADocumentAndShowsItsTreeAndTheSampleSizesPieces) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
   h.frame();
   const auto& doc = h.studio().document();
@@ -124,7 +170,7 @@ TEST(Studio, OpensADocumentAndShowsItsTreeAndTheSampleSizesPieces) {
 }
 
 TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   auto& o = h.studio().drape_options();
@@ -171,7 +217,7 @@ TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
 }
 
 TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   const auto& doc = h.studio().document();
@@ -211,7 +257,7 @@ TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {
 }
 
 TEST(Studio, ThePatternViewZoomsAboutTheMouseAndPans) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   const auto& doc = h.studio().document();
@@ -233,7 +279,7 @@ TEST(Studio, ThePatternViewZoomsAboutTheMouseAndPans) {
 }
 
 TEST(Studio, AnAttributeEditedInTheInspectorIsOneUndoableCommand) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   const std::string seam = vgd::xvc::list_seams(h.studio().document()).front().id;
@@ -261,7 +307,7 @@ TEST(Studio, AnAttributeEditedInTheInspectorIsOneUndoableCommand) {
 
 TEST(Studio, TheOpenDialogTakesATypedPathAndABadFileKeepsTheOpenDocument) {
   const fs::path dir = temp_dir("open");
-  Harness h;
+  TestHarness h;
   h.frame();
   h.click("File");
   h.click("Open...");
@@ -287,7 +333,7 @@ TEST(Studio, TheOpenDialogTakesATypedPathAndABadFileKeepsTheOpenDocument) {
 }
 
 TEST(Studio, UnsavedChangesAreNotLostToOpenOrClose) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   const std::string seam = vgd::xvc::list_seams(h.studio().document()).front().id;
@@ -318,7 +364,7 @@ TEST(Studio, UnsavedChangesAreNotLostToOpenOrClose) {
 
 TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
   const fs::path dir = temp_dir("save");
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   h.click("Suggest seams");
@@ -343,7 +389,7 @@ TEST(Studio, SavingWritesTheEditedDocumentAndClearsTheModifiedMark) {
 
 TEST(Studio, DrapesTheSkirtFromTheDrapeButtonAndShowsItOnTheBody) {
   omp_set_num_threads(1);  // the studio drapes with the UI thread's count; ctest runs tests side by side
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   auto& o = h.studio().drape_options();
@@ -455,7 +501,7 @@ TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
   omp_set_num_threads(1);
   const fs::path dir = temp_dir("textured");
   vgd::test::write_textured_skirt(dir / "skirt.xvc");
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   start_quick_drape(h, dir / "skirt.xvc");
   h.studio().wait_for_drape();
   h.frames(4);
@@ -482,7 +528,7 @@ TEST(Studio, ThePreviewDrawsTheDocumentsTexture) {
 // to rest.
 TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   omp_set_num_threads(1);
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   start_quick_drape(h, kSkirt);
   const auto wait_until = [&](const std::function<bool()>& done) { return frames_until(h, done); };
   ASSERT_TRUE(wait_until([&] { return h.studio().drape_status().t > 0.0; })) << "the drape never reached a frame";
@@ -516,7 +562,7 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
 // waist in the view); dragged up 30 px in the 3-D view it follows the mouse
 // up the hips by 30 px on screen; each one undo step; a drape ends arranging.
 TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
   h.frame();
   const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
@@ -579,7 +625,7 @@ TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
 // where it was; Alt+drag 40 px further right moves it off the body (its
 // clearance grows, its side stays); each an undo step, undone both.
 TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
   h.frame();
   const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
@@ -630,7 +676,7 @@ TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
 // moves down, not sideways); let go, nothing is held.
 TEST(Studio, TheClothIsPulledByHandDuringADrape) {
   omp_set_num_threads(1);
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   auto& o = h.studio().drape_options();
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
@@ -689,7 +735,7 @@ TEST(Studio, TheClothIsPulledByHandDuringADrape) {
 // lets every pin go.
 TEST(Studio, TheClothIsPinnedAndAPieceFrozenDuringADrape) {
   omp_set_num_threads(1);
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   auto& o = h.studio().drape_options();
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
@@ -771,7 +817,7 @@ TEST(Studio, FileDialogsAskTheDesktopsDialogProgram) {
                          "cat '" + answer.string() + "'\nexit $(cat '" + code.string() + "')\n");
   fs::permissions(program, fs::perms::owner_all);
   fs::copy_file(kSkirt, dir / "skirt.xvc", fs::copy_options::overwrite_existing);
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   h.studio().set_file_dialog_program(program);
   const auto ask = [&](const char* item, const fs::path& chosen, int exit_code) {
     vgd::write_file_atomic(answer, chosen.empty() ? std::string() : chosen.string() + "\n");
@@ -819,7 +865,7 @@ TEST(Studio, ADocumentWithoutSeamsIsPreparedAsVgdDressPreparesIt) {
   ASSERT_TRUE(xvc::list_seams(d).empty());
   const fs::path file = temp_dir("unsewn") / "skirt.xvc";
   xvc::save_file(d, file);
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   start_quick_drape(h, file);
   EXPECT_NE(h.studio().status().find("seams suggested (not in the document)"), std::string::npos) << h.studio().status();
   h.studio().wait_for_drape();
@@ -849,7 +895,7 @@ TEST(Studio, DrapesOnABodyFileWithTheUnitAndUpChosenInItsRow) {
     for (const auto& v : m.surface.vertices) out << "v " << 100 * v.x() << ' ' << -100 * v.z() << ' ' << 100 * v.y() << '\n';
     for (const auto& t : m.surface.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
   }
-  Harness h(1024, 700);
+  TestHarness h(1024, 700);
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   auto& o = h.studio().drape_options();
@@ -899,7 +945,7 @@ TEST(Studio, DrapesOnABodyFileWithTheUnitAndUpChosenInItsRow) {
 }
 
 TEST(Studio, StopEndsARunningDrape) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   h.studio().drape_options().time_limit = 60;
@@ -915,7 +961,7 @@ TEST(Studio, StopEndsARunningDrape) {
 TEST(Studio, ScriptsNameTheLineThatFailed) {
   const fs::path dir = temp_dir("script");
   std::ofstream(dir / "s.txt") << "# a comment\nopen " << kTShirt.string() << "\nclick No such button\n";
-  Harness h;
+  TestHarness h;
   try {
     h.run_script(dir / "s.txt");
     FAIL() << "the script should fail";
@@ -933,7 +979,7 @@ TEST(Studio, TheFirstFrameWithTheTShirtMatchesItsGolden) {
   // by, which would otherwise differ between machines.
   const fs::path cwd = fs::current_path();
   fs::current_path(kCopies.root);
-  Harness h;
+  TestHarness h;
   const bool opened = h.studio().open("data/garments/t-shirt.xvc");
   h.frames(3);
   fs::current_path(cwd);
@@ -985,7 +1031,7 @@ TEST(Studio, AnEditSurvivesTheStudioKilledAndIsOfferedForRecovery) {
   EXPECT_EQ(on_disk.find("kept after the crash"), std::string::npos) << "the edit was never saved";
   EXPECT_NE(vgd::read_file(autosave).find("kept after the crash"), std::string::npos);
   {
-    Harness h;
+    TestHarness h;
     ASSERT_TRUE(h.studio().open(doc));
     EXPECT_TRUE(h.studio().recovery_offered());
     EXPECT_NE(h.studio().status().find("unsaved changes from"), std::string::npos) << h.studio().status();
@@ -1003,13 +1049,13 @@ TEST(Studio, AnEditSurvivesTheStudioKilledAndIsOfferedForRecovery) {
   vgd::xvc::execute(d, *std::make_unique<vgd::xvc::SetAttribute>(seam, "name", "never wanted"));
   vgd::xvc::save_file(d, autosave);
   {
-    Harness h;  // closed with the question unanswered: the autosave stays
+    TestHarness h;  // closed with the question unanswered: the autosave stays
     ASSERT_TRUE(h.studio().open(doc));
     EXPECT_TRUE(h.studio().recovery_offered());
   }
   ASSERT_TRUE(fs::exists(autosave));
   {
-    Harness h;
+    TestHarness h;
     ASSERT_TRUE(h.studio().open(doc));
     h.frames(2);
     h.click("recover:no");
@@ -1019,7 +1065,7 @@ TEST(Studio, AnEditSurvivesTheStudioKilledAndIsOfferedForRecovery) {
   }
   // A normal close leaves no autosave, even of changes it was told to discard.
   {
-    Harness h;
+    TestHarness h;
     h.studio().set_autosave_seconds(0);
     ASSERT_TRUE(h.studio().open(doc));
     h.frame();
@@ -1045,7 +1091,7 @@ TEST(Studio, ADxfOpensThroughTheImportDialogWithItsReport) {
   const fs::path dxf = dir / "clo-pattern.dxf";
   fs::copy_file(shared, dxf);
   std::ofstream(dir / "clo-pattern.xvc") << "<!-- the designer's own file, not to be overwritten -->\n";
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(dxf)) << h.studio().status();
   h.frames(2);
   h.click("import:ok");
@@ -1095,7 +1141,7 @@ TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
   const fs::path dir = temp_dir("recent");
   const fs::path store = dir / "recent-files";
   {
-    Harness h;
+    TestHarness h;
     h.studio().set_recent_store(store);
     EXPECT_TRUE(h.studio().recent_files().empty());
     ASSERT_TRUE(h.studio().open(kSkirt));
@@ -1106,7 +1152,7 @@ TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
     EXPECT_EQ(h.studio().recent_files()[1], fs::absolute(kTShirt));
   }
   EXPECT_EQ(vgd::read_file(store), fs::absolute(kSkirt).string() + "\n" + fs::absolute(kTShirt).string() + "\n");
-  Harness h;
+  TestHarness h;
   h.studio().set_recent_store(store);
   ASSERT_EQ(h.studio().recent_files().size(), 2u);
   h.frame();
@@ -1121,7 +1167,7 @@ TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
 // pieces, ease and score; the ticked ones are added as one undoable step,
 // Cancel adds none.
 TEST(Studio, SuggestedSeamsAreAcceptedOrRejectedOneByOne) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   const std::size_t before = vgd::xvc::list_seams(h.studio().document()).size();
@@ -1153,7 +1199,7 @@ TEST(Studio, SuggestedSeamsAreAcceptedOrRejectedOneByOne) {
 // A piece selected in the tree is duplicated (a piece of its own) or flipped
 // about its grain line, each one undo step.
 TEST(Studio, APieceIsDuplicatedAndFlippedFromTheInspector) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
@@ -1178,7 +1224,7 @@ TEST(Studio, APieceIsDuplicatedAndFlippedFromTheInspector) {
 // from hem A's ends to hem B's ends and dots at their starts (purple), none
 // when a piece is selected instead.
 TEST(Studio, ASelectedSeamShowsItsPairingInThePatternView) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   auto purple = [&] {
@@ -1231,7 +1277,7 @@ SkirtFront open_skirt_front(Harness& h) {
 // distance in the pattern, exactly (the points snap), said in the status bar;
 // meanwhile clicks pick no stretch and move no point.
 TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   ASSERT_GE(stretches.size(), 3u);
@@ -1266,7 +1312,7 @@ TEST(Studio, TheMeasuringToolGivesTheDistanceBetweenTwoOutlinePoints) {
 // pattern of the size shown with three stretches, undone in one step. A
 // drawing dropped with Esc changes nothing.
 TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   const auto centre = h.studio().piece_on_screen(front);
@@ -1373,7 +1419,7 @@ TEST(Studio, ALineAndAPieceAreDrawnInThePatternView) {
 // mouse: the skirt front's first notch dragged onto the outline point two
 // along from its vertex moves there (its vertex said), one undo step.
 TEST(Studio, ANotchIsDraggedToAnotherOutlinePoint) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   const auto original = h.studio().document();
@@ -1414,7 +1460,7 @@ TEST(Studio, ANotchIsDraggedToAnotherOutlinePoint) {
 // undo puts it back; let go off the pattern view (nothing arranged there) it
 // stays.
 TEST(Studio, APieceIsMovedInThePatternView) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   const std::string back = pattern_id(h.studio().document(), "BACK", "38");
@@ -1458,7 +1504,7 @@ TEST(Studio, APieceIsMovedInThePatternView) {
 // piece's ends handles; the front's second end dragged 25 px right moves it
 // 25 px / scale in the piece's frame (the first stays), one undo step.
 TEST(Studio, AGrainLineIsTurnedByDraggingItsEnd) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   const auto original = h.studio().document();
@@ -1490,7 +1536,7 @@ TEST(Studio, AGrainLineIsTurnedByDraggingItsEnd) {
 // after it and deleted again; the piece rotated 90° about its middle, its
 // grain line kept; the saved document validates and holds the edits.
 TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
-  Harness h;
+  TestHarness h;
   const auto [front, stretches] = open_skirt_front(h);
   ASSERT_FALSE(front.empty()) << h.studio().status();
   ASSERT_GE(stretches.size(), 2u);
@@ -1565,7 +1611,7 @@ TEST(Studio, AnOutlinePointIsDraggedInsertedAndDeletedAndAPieceRotated) {
 // pattern's ASSOCIATION), the piece still selected; one undo takes it back;
 // "garment's" again removes the copy.
 TEST(Studio, APieceIsCutFromAFabricOfItsOwn) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kSkirt));
   h.frame();
   const std::string band = pattern_id(h.studio().document(), "WAISTBAND", "38");
@@ -1595,7 +1641,7 @@ TEST(Studio, APieceIsCutFromAFabricOfItsOwn) {
 // its garment (t-shirt/FRONT_38, a-line-skirt/FRONT_38); taken off, the next
 // drape is the T-shirt's alone.
 TEST(Studio, AGarmentIsWornUnderTheDocument) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   h.click("layer");
@@ -1642,7 +1688,7 @@ TEST(Studio, AGarmentIsWornUnderTheDocument) {
 // back's, reversed. Stretches of hem A not in a row are refused with the
 // reason. "Flip seam" on the new seam reverses hem B; undo takes it back.
 TEST(Studio, AnMToNSeamIsPickedWithShiftAndFlipped) {
-  Harness h;
+  TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
   h.frame();
   const auto& doc = h.studio().document();
@@ -1708,7 +1754,7 @@ TEST(Studio, ASharedDxfIsImportedEditedArrangedDrapedAndSaved) {
   omp_set_num_threads(1);
   const fs::path dir = temp_dir("session");
   fs::copy_file(shared, dir / "tank.dxf");
-  Harness h(1280, 800);
+  TestHarness h(1280, 800);
   ASSERT_TRUE(h.studio().open(dir / "tank.dxf")) << h.studio().status();
   h.frames(2);
   h.click("import:ok");

@@ -17,6 +17,7 @@
 // (ImGui's own font; llvmpipe's thread count pinned; time steps fixed at
 // 1/60 s per frame).
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <memory>
 #include <string>
@@ -27,9 +28,22 @@
 
 namespace vgd::studio {
 
+// A window for the harness to draw into instead of its off-screen context:
+// the window's OpenGL 3.3 core context (made current by make_current) and
+// what ends each frame (swap the buffers, poll the window's events). Input
+// still comes from the harness, so a script runs in a window exactly as it
+// runs off-screen (vgd-studio --script without --headless).
+struct HarnessWindow {
+  GlLoader loader = nullptr;
+  std::function<void()> make_current;
+  std::function<void()> present;
+};
+
 class Harness {
  public:
   Harness(int width = 1280, int height = 800);
+  // Drawing into `window`, whose framebuffer is width × height pixels.
+  Harness(const HarnessWindow& window, int width, int height);
   ~Harness();
   Harness(const Harness&) = delete;
   Harness& operator=(const Harness&) = delete;
@@ -61,7 +75,8 @@ class Harness {
   void key(std::string_view chord);
   // Types text into the focused text field.
   void type(std::string_view text);
-  // The last frame, row 0 at the top.
+  // The last frame, row 0 at the top (in a window: drawn once more and read
+  // before it is presented).
   render::Image screenshot();
 
   // Runs a script, one command per line ('#' starts a comment):
