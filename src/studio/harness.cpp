@@ -108,12 +108,13 @@ void Harness::frames(int n) {
   for (int i = 0; i < n; ++i) frame();
 }
 
-void Harness::click_at(float x, float y, bool shift, bool alt) {
+void Harness::click_at(float x, float y, bool shift, bool alt, bool ctrl) {
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = {x, y};
   io.KeyShift = shift;
   io.KeyAlt = alt;
+  io.KeyCtrl = ctrl;
   frame();
   io.MouseDown[0] = true;
   frame();
@@ -121,6 +122,7 @@ void Harness::click_at(float x, float y, bool shift, bool alt) {
   frame();
   io.KeyShift = false;
   io.KeyAlt = false;
+  io.KeyCtrl = false;
   frame();
 }
 

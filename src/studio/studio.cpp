@@ -1089,11 +1089,27 @@ struct Studio::Impl {
         }
       if (notch_hover) {
         hovered.reset();
-        ImGui::SetTooltip("Drag the notch to another point of the outline");
-        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) notch_drag = notch_hover;
+        ImGui::SetTooltip("Drag the notch to another point of the outline; Ctrl+click removes it");
+        if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+          if (ImGui::GetIO().KeyCtrl)
+            run(std::make_unique<xvc::DeleteNode>(*notch_hover));
+          else
+            notch_drag = notch_hover;
+        }
       }
       if (notch_drag && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) end_notch_drag(mouse);
-      if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+      if (point_hover) ImGui::SetTooltip("Drag to move the point; Ctrl+click adds a notch here");
+      if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && ImGui::GetIO().KeyCtrl) {
+        // A notch on this vertex (its index over the concatenated boundary).
+        const std::string piece = sel_piece->pattern_id;
+        std::optional<std::size_t> vertex;
+        for (const auto& sv : sel_piece->stretches)
+          if (sv.id == point_hover->sequence_id) vertex = sv.first + point_hover->index;
+        if (vertex) {
+          run(std::make_unique<xvc::AddNotch>(piece, *vertex));
+          selected = piece;  // the piece stays selected, with its new notch
+        }
+      } else if (point_hover && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         dragging = point_hover, point_sel = point_hover, drag_from = mouse;
         drag_to = *laid_out(*point_hover) - sel_piece->shift;
       }

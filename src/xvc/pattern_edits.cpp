@@ -418,6 +418,23 @@ std::string RotatePattern::apply(Editor& edit) {
 
 // ---- MoveNotch ---------------------------------------------------------------------
 
+namespace {
+
+// A notch on boundary vertex `vertex` of `outline`: its point, its vertex,
+// its cut along the inward normal (the outline's tangent there, from its
+// neighbours, turned a quarter towards the inside).
+void lay_notch(Node& notch, const std::vector<pattern::ContourPoint>& outline, std::size_t vertex) {
+  const std::size_t n = outline.size();
+  const Vec2 t = outline[(vertex + 1) % n].p - outline[(vertex + n - 1) % n].p;
+  const Vec2 inward = pattern::signed_area(outline) >= 0 ? Vec2(-t.y(), t.x()) : Vec2(t.y(), -t.x());
+  set_point(notch, outline[vertex].p);
+  notch.set_attribute("vertex", std::to_string(vertex));
+  if (inward.norm() > 0)
+    notch.set_attribute("angle", format_double(normalise_deg(std::atan2(inward.y(), inward.x()) * 180.0 / std::numbers::pi)));
+}
+
+}  // namespace
+
 MoveNotch::MoveNotch(std::string pattern_id, std::string notch_id, std::size_t vertex)
     : pattern_(std::move(pattern_id)), notch_(std::move(notch_id)), vertex_(vertex) {}
 
@@ -437,15 +454,41 @@ std::string MoveNotch::apply(Editor& edit) {
     if (c.tag == "POSITION" && c.id() == notch_) notch = &c;
   if (!notch || notch->attribute("type") != "notch")
     throw Error(doc.name(), notch_, notch_ + " is not a notch of " + pattern_);
-  // The inward normal: the outline's tangent there turned a quarter towards the inside.
-  const Vec2 t = outline[(vertex_ + 1) % n].p - outline[(vertex_ + n - 1) % n].p;
-  const Vec2 inward = pattern::signed_area(outline) >= 0 ? Vec2(-t.y(), t.x()) : Vec2(t.y(), -t.x());
-  set_point(*notch, outline[vertex_].p);
-  notch->set_attribute("vertex", std::to_string(vertex_));
-  if (inward.norm() > 0)
-    notch->set_attribute("angle", format_double(normalise_deg(std::atan2(inward.y(), inward.x()) * 180.0 / std::numbers::pi)));
+  lay_notch(*notch, outline, vertex_);
   edit.replace(path, std::move(p));
   return notch_;
+}
+
+// ---- AddNotch ----------------------------------------------------------------------
+
+AddNotch::AddNotch(std::string pattern_id, std::size_t vertex) : pattern_(std::move(pattern_id)), vertex_(vertex) {}
+
+std::string AddNotch::label() const { return "Add a notch to " + pattern_ + " at vertex " + std::to_string(vertex_); }
+
+std::string AddNotch::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, pattern_, "PATTERN");
+  Node p = doc.at(path);
+  const auto outline = to_piece(doc, pattern_).boundary;
+  const std::size_t n = outline.size();
+  if (vertex_ >= n)
+    throw Error(doc.name(), pattern_, "vertex " + std::to_string(vertex_) + " is beyond the boundary of " + pattern_ +
+                                          ", which has " + std::to_string(n) + " points");
+  std::size_t at = 0;  // after the pattern's sequences, annotations and positions
+  for (std::size_t i = 0; i < p.children.size(); ++i) {
+    const Node& c = p.children[i];
+    if (c.tag == "C2DSEQ" || c.tag == "ANNOTATION" || c.tag == "POSITION") at = i + 1;
+    if (c.tag == "POSITION" && c.attribute("type") == "notch" && c.attribute("vertex") == std::to_string(vertex_))
+      throw Error(doc.name(), pattern_, "vertex " + std::to_string(vertex_) + " of " + pattern_ + " has a notch already (" +
+                                            std::string(c.id()) + ")");
+  }
+  detail::IdMaker ids(doc);
+  Node notch{"POSITION", {{"id", ids.make("pos")}, {"type", "notch"}, {"length", "0.005"}}, {}};
+  lay_notch(notch, outline, vertex_);
+  const std::string id(notch.id());
+  p.children.insert(p.children.begin() + static_cast<std::ptrdiff_t>(at), std::move(notch));
+  edit.replace(path, std::move(p));
+  return id;
 }
 
 // ---- SetGrainLine -----------------------------------------------------------------

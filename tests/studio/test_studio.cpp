@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <thread>
@@ -1452,6 +1453,60 @@ TEST(Studio, ANotchIsDraggedToAnotherOutlinePoint) {
   h.key("ctrl+z");
   h.frame();
   EXPECT_TRUE(h.studio().document() == original) << "one undo step";
+}
+
+// Ctrl+click on an outline point of the selected piece adds a notch there
+// (cut into the piece, the document checked), Ctrl+click on a notch removes
+// it; the piece stays selected; each one undo step.
+TEST(Studio, ANotchIsAddedAndRemovedByCtrlClicks) {
+  TestHarness h;
+  const auto [front, stretches] = open_skirt_front(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const auto original = h.studio().document();
+  const auto notches_of = [&](const vgd::xvc::Document& d) {
+    std::map<std::string, std::string> out;  // vertex -> id
+    for (const auto& c : d.find(front)->children)
+      if (c.tag == "POSITION" && c.attribute("type") == "notch") out[std::string(c.attribute("vertex"))] = std::string(c.id());
+    return out;
+  };
+  const auto before = notches_of(original);
+  const auto centre = h.studio().piece_on_screen(front);
+  ASSERT_TRUE(centre.has_value());
+  h.click_at(centre->cx() + 40, centre->cy() + 40);
+  h.frame();
+  ASSERT_EQ(h.studio().selected(), front);
+  // A vertex with no notch: the second point of the first stretch with three or more.
+  std::optional<vgd::xvc::OutlinePoint> target;
+  std::size_t vertex = 0;
+  for (const auto& st : stretches)
+    if (!target && st.count >= 3 && !before.count(std::to_string(st.first + 1)))
+      target = vgd::xvc::OutlinePoint{front, st.id, 1}, vertex = st.first + 1;
+  ASSERT_TRUE(target.has_value());
+  const auto at = h.studio().point_on_screen(*target);
+  ASSERT_TRUE(at.has_value());
+  h.click_at(at->cx(), at->cy(), false, false, /*ctrl=*/true);
+  h.frame();
+  const auto added = notches_of(h.studio().document());
+  ASSERT_EQ(added.size(), before.size() + 1) << h.studio().status();
+  ASSERT_EQ(added.count(std::to_string(vertex)), 1u) << h.studio().status();
+  const std::string nid = added.at(std::to_string(vertex));
+  EXPECT_EQ(h.studio().selected(), front) << "the piece stays selected";
+  const auto p = outline_point(h.studio().document(), *target);
+  EXPECT_EQ(h.studio().document().find(nid)->attribute("x"), vgd::format_double(p.x())) << "on the point clicked";
+  EXPECT_EQ(h.studio().document().find(nid)->attribute("y"), vgd::format_double(p.y()));
+  EXPECT_FALSE(vgd::xvc::check(h.studio().document()).has_errors());
+
+  const auto handle = h.studio().notch_on_screen(front, nid);
+  ASSERT_TRUE(handle.has_value());
+  h.click_at(handle->cx(), handle->cy(), false, false, /*ctrl=*/true);
+  h.frame();
+  EXPECT_EQ(notches_of(h.studio().document()), before) << h.studio().status();
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_EQ(notches_of(h.studio().document()).size(), before.size() + 1);
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original) << "one undo step each";
 }
 
 // Moving a piece in the pattern view: the skirt's front dragged by (40, 25) px

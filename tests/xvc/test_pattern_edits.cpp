@@ -703,3 +703,45 @@ TEST(MoveNotch, PutsTheNotchOnAnotherVertexCuttingInwards) {
   stack.undo();
   EXPECT_EQ(doc.root(), before.root());
 }
+
+// A notch added on a boundary vertex: a new POSITION type="notch" there, its
+// cut square into the piece, 5 mm deep; read back by to_piece as a notch; the
+// document checks and validates; refused on a vertex that has one and beyond
+// the boundary; DeleteNode removes it; undo restores.
+TEST(AddNotch, PutsANewNotchOnAVertexCuttingInwards) {
+  Document doc = full_document();
+  const Document before = doc;
+  const Piece a = to_piece(doc, "pattern1");
+  const std::size_t n = a.boundary.size();
+  const std::size_t notches = a.notches.size();
+  const Node* old = notch_of(doc, "pattern1");
+  ASSERT_NE(old, nullptr);
+  const std::size_t taken = std::stoul(std::string(old->attribute("vertex")));
+  const std::size_t v = (taken + 1) % n;
+  UndoStack stack(doc);
+  const std::string id = stack.execute(std::make_unique<AddNotch>("pattern1", v));
+  const Node* added = doc.find(id);
+  ASSERT_NE(added, nullptr);
+  EXPECT_EQ(added->tag, "POSITION");
+  EXPECT_EQ(added->attribute("type"), "notch");
+  EXPECT_EQ(xy(*added), a.boundary[v].p);
+  EXPECT_EQ(added->attribute("vertex"), std::to_string(v));
+  EXPECT_EQ(added->attribute("length"), "0.005");
+  const double ang = std::stod(std::string(added->attribute("angle"))) * std::numbers::pi / 180.0;
+  const Vec2 cut(std::cos(ang), std::sin(ang));
+  const Vec2 t = a.boundary[(v + 1) % n].p - a.boundary[(v + n - 1) % n].p;
+  EXPECT_NEAR(cut.dot(t.normalized()), 0.0, 1e-9) << "square to the outline";
+  EXPECT_TRUE(vgd::pattern::point_in_outline(a.boundary, a.boundary[v].p + 0.002 * cut)) << "into the piece";
+  EXPECT_EQ(to_piece(doc, "pattern1").notches.size(), notches + 1);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  const auto valid = validate_string(save_string(doc), "notch.xvc", schema());
+  EXPECT_FALSE(valid.has_errors()) << dump(valid);
+  EXPECT_THROW(stack.execute(std::make_unique<AddNotch>("pattern1", v)), vgd::Error) << "one there already";
+  EXPECT_THROW(stack.execute(std::make_unique<AddNotch>("pattern1", taken)), vgd::Error);
+  EXPECT_THROW(stack.execute(std::make_unique<AddNotch>("pattern1", n)), vgd::Error);
+  stack.execute(std::make_unique<DeleteNode>(id));
+  EXPECT_EQ(doc.find(id), nullptr);
+  EXPECT_EQ(to_piece(doc, "pattern1").notches.size(), notches);
+  while (stack.can_undo()) stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+}

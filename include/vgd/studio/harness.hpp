@@ -55,8 +55,8 @@ class Harness {
   // Several frames (animations, popups opening, the preview catching up).
   void frames(int n);
   // Moves the mouse to (x, y) and clicks the left button (four frames: move,
-  // press, release, settle), with Shift and Alt held when asked.
-  void click_at(float x, float y, bool shift = false, bool alt = false);
+  // press, release, settle), with Shift, Alt and Ctrl held when asked.
+  void click_at(float x, float y, bool shift = false, bool alt = false, bool ctrl = false);
   // Clicks the middle of a named widget of the last frame (Studio::widget);
   // throws vgd::Error naming it when there is no such widget on screen.
   void click(std::string_view widget, bool shift = false);

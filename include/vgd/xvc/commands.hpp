@@ -384,6 +384,22 @@ class MoveNotch : public Command {
   std::size_t vertex_;
 };
 
+// Adds a notch to a PATTERN on its boundary vertex `vertex` (0-based over the
+// concatenated boundary), laid as MoveNotch lays one (its cut square into the
+// piece there), 5 mm deep: a POSITION type="notch" after the pattern's other
+// positions. Refused for a vertex beyond the boundary or one that already has
+// a notch. Returns the new notch's id (DeleteNode removes it).
+class AddNotch : public Command {
+ public:
+  AddNotch(std::string pattern_id, std::size_t vertex);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string pattern_;
+  std::size_t vertex_;
+};
+
 // Sets a PATTERN's grain line (the fabric's warp runs along it; the drape cuts
 // the piece so) to run from `a` to `b` (m, in the pattern's frame), adding
 // one when it has none. Refused for a non-finite point or a line under 1 cm.
