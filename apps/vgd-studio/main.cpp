@@ -116,8 +116,10 @@ int run_window(const Options& o) {
         ImGui::NewFrame();
         studio.draw();
         ImGui::Render();
-        vgd::studio::render_gl(ImGui::GetDrawData());
-        if (o.quit_after > 0 && frame >= o.quit_after) {
+        // Drawn and shown only when it changed (the last frame, to be read, always).
+        const bool last = o.quit_after > 0 && frame >= o.quit_after;
+        const bool drawn = vgd::studio::render_gl_if_changed(ImGui::GetDrawData(), studio.picture_count(), last);
+        if (last) {
           if (!o.screenshot.empty()) {
             int w = 0, h = 0;
             glfwGetFramebufferSize(window, &w, &h);
@@ -126,7 +128,10 @@ int run_window(const Options& o) {
           std::printf("%s\n", studio.status().c_str());
           break;
         }
-        glfwSwapBuffers(window);
+        if (drawn)
+          glfwSwapBuffers(window);  // at the display's rate (vertical sync)
+        else
+          glfwWaitEventsTimeout(1.0 / 60.0);  // nothing new to show: wait for input, or the next frame's time
       }
     }
     vgd::studio::shutdown_gl();

@@ -14,6 +14,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -92,6 +93,7 @@ struct OffscreenContext::Impl {
   OSMesaContext context = nullptr;
   int width = kBufferSize, height = kBufferSize;
   std::vector<unsigned char> buffer;
+  void* last_frame = nullptr;  // the fence (GLsync) ending the frame before, or none
 };
 
 OffscreenContext::OffscreenContext() : OffscreenContext(kBufferSize, kBufferSize) {}
@@ -115,6 +117,10 @@ OffscreenContext::OffscreenContext(int width, int height) : impl_(std::make_uniq
 }
 
 OffscreenContext::~OffscreenContext() {
+  if (impl_->context && impl_->last_frame) {
+    make_current();
+    reinterpret_cast<void (*)(void*)>(osmesa().get_proc("glDeleteSync"))(impl_->last_frame);
+  }
   if (impl_->context) osmesa().destroy(impl_->context);
 }
 
@@ -123,10 +129,31 @@ void OffscreenContext::make_current() {
     throw Error("", "OSMesa", "cannot make the off-screen context current");
 }
 
-Image OffscreenContext::read_back() {
+void OffscreenContext::finish() {
   make_current();
   using Finish = void (*)();
   reinterpret_cast<Finish>(osmesa().get_proc("glFinish"))();
+}
+
+void OffscreenContext::end_frame() {
+  // OpenGL 3.2 sync objects (GL_SYNC_GPU_COMMANDS_COMPLETE, GL_SYNC_FLUSH_COMMANDS_BIT).
+  using FenceSync = void* (*)(unsigned, unsigned);
+  using ClientWaitSync = unsigned (*)(void*, unsigned, std::uint64_t);
+  using DeleteSync = void (*)(void*);
+  static const auto fence = reinterpret_cast<FenceSync>(osmesa().get_proc("glFenceSync"));
+  static const auto wait = reinterpret_cast<ClientWaitSync>(osmesa().get_proc("glClientWaitSync"));
+  static const auto remove = reinterpret_cast<DeleteSync>(osmesa().get_proc("glDeleteSync"));
+  make_current();
+  if (!fence || !wait || !remove) return finish();
+  if (impl_->last_frame) {
+    wait(impl_->last_frame, 0x1, ~std::uint64_t{0});  // until it is drawn
+    remove(impl_->last_frame);
+  }
+  impl_->last_frame = fence(0x9117, 0);
+}
+
+Image OffscreenContext::read_back() {
+  finish();
   // OSMesa's buffer holds the bottom row first (OSMESA_Y_UP).
   Image img(impl_->width, impl_->height);
   const std::size_t row = static_cast<std::size_t>(impl_->width) * 4;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -80,15 +81,20 @@ struct Harness::Impl {
 
   // One frame; in a window presented unless `present` is false (a screenshot
   // reads it first).
-  void frame(bool present = true) {
+  // Returns whether it drew.
+  bool frame(bool present = true) {
     make_current();
     ImGui::SetCurrentContext(imgui);
     new_frame_gl();
     ImGui::NewFrame();
     studio->draw();
     ImGui::Render();
-    render_gl(ImGui::GetDrawData());
-    if (!context && present) window.present();
+    // Drawn when it changed (or a window's back buffer is to be read); one
+    // frame in flight at most, as a window's swap has it.
+    if (!render_gl_if_changed(ImGui::GetDrawData(), studio->picture_count(), !context && !present)) return false;
+    if (context) context->end_frame();
+    else if (present) window.present();
+    return true;
   }
 };
 
@@ -232,17 +238,33 @@ render::Image Harness::screenshot() {
 
 Harness::FrameTimes Harness::frames_timed(int n) {
   FrameTimes out;
-  std::vector<double> ms;
+  std::vector<double> ms, drawn_ms;
+  using clock = std::chrono::steady_clock;
+  const auto period = std::chrono::microseconds(16667);
+  auto next = clock::now();
   for (int i = 0; i < n; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    frame();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    std::this_thread::sleep_until(next);
+    const auto t0 = clock::now();
+    ImGui::SetCurrentContext(impl_->imgui);
+    const bool drawn = impl_->frame();
+    const auto t1 = clock::now();
+    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (drawn) drawn_ms.push_back(ms.back());
+    next = std::max(t0 + period, t1);
   }
   if (ms.empty()) return out;
+  const auto p95 = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, static_cast<std::size_t>(0.95 * static_cast<double>(v.size())))];
+  };
   out.frames = n;
+  out.drawn = static_cast<int>(drawn_ms.size());
   for (const double m : ms) out.mean_ms += m / n, out.max_ms = std::max(out.max_ms, m);
-  std::sort(ms.begin(), ms.end());
-  out.p95_ms = ms[std::min(ms.size() - 1, static_cast<std::size_t>(0.95 * static_cast<double>(ms.size())))];
+  out.p95_ms = p95(ms);
+  if (!drawn_ms.empty()) {
+    for (const double m : drawn_ms) out.drawn_mean_ms += m / static_cast<double>(drawn_ms.size());
+    out.drawn_p95_ms = p95(drawn_ms);
+  }
   return out;
 }
 
@@ -336,7 +358,9 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         const DrapeStatus d = studio().drape_status();
         if (report)
           *report << script.filename().string() << ":" << n << ": " << t.frames << " frames: mean " << format_fixed(t.mean_ms, 2)
-                  << " ms, p95 " << format_fixed(t.p95_ms, 2) << " ms, max " << format_fixed(t.max_ms, 2) << " ms; drape "
+                  << " ms, p95 " << format_fixed(t.p95_ms, 2) << " ms, max " << format_fixed(t.max_ms, 2) << " ms; "
+                  << t.drawn << " drawn: mean " << format_fixed(t.drawn_mean_ms, 2) << " ms, p95 "
+                  << format_fixed(t.drawn_p95_ms, 2) << " ms; drape "
                   << (d.running ? "running" : "not running") << (d.stage.empty() ? "" : " (" + d.stage + ")") << ", "
                   << format_fixed(d.t, 2) << " s simulated\n";
       } else if (cmd == "wait-drape") {

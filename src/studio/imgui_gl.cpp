@@ -9,6 +9,10 @@
 
 #include VGD_IMGUI_OPENGL3_BACKEND  // imgui_impl_opengl3.cpp (path set by CMake)
 
+#include <functional>
+#include <optional>
+#include <string>
+
 #include "gl.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/studio/studio.hpp"
@@ -17,6 +21,7 @@ namespace vgd::studio {
 
 namespace {
 bool g_ready = false;
+std::optional<std::size_t> g_last_frame;  // hash of the last frame drawn (render_gl_if_changed)
 GlLoader g_loader = nullptr;
 }
 
@@ -35,9 +40,11 @@ void init_gl(GlLoader loader) {
   if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
     throw Error("", "OpenGL", "ImGui's OpenGL 3 renderer did not start");
   g_ready = true;
+  g_last_frame.reset();
 }
 
 void shutdown_gl() {
+  g_last_frame.reset();
   if (!g_ready) return;
   ImGui_ImplOpenGL3_Shutdown();
   g_ready = false;
@@ -45,7 +52,40 @@ void shutdown_gl() {
 
 void new_frame_gl() { ImGui_ImplOpenGL3_NewFrame(); }
 
-void render_gl(ImDrawData* data) { ImGui_ImplOpenGL3_RenderDrawData(data); }
+void render_gl(ImDrawData* data) {
+  ImGui_ImplOpenGL3_RenderDrawData(data);
+  g_last_frame.reset();
+}
+
+bool render_gl_if_changed(ImDrawData* data, std::uint64_t pictures, bool force) {
+  // What the frame draws: every list's vertices and indices, and per command
+  // its texture, clip rectangle and range; the display; the picture count.
+  std::string key;
+  const auto add = [&](const void* p, std::size_t n) { key.append(static_cast<const char*>(p), n); };
+  add(&pictures, sizeof pictures);
+  add(&data->DisplayPos, sizeof data->DisplayPos);
+  add(&data->DisplaySize, sizeof data->DisplaySize);
+  add(&data->FramebufferScale, sizeof data->FramebufferScale);
+  for (int i = 0; i < data->CmdListsCount; ++i) {
+    const ImDrawList* l = data->CmdLists[i];
+    add(l->VtxBuffer.Data, static_cast<std::size_t>(l->VtxBuffer.Size) * sizeof(ImDrawVert));
+    add(l->IdxBuffer.Data, static_cast<std::size_t>(l->IdxBuffer.Size) * sizeof(ImDrawIdx));
+    for (const ImDrawCmd& c : l->CmdBuffer) {
+      add(&c.ClipRect, sizeof c.ClipRect);
+      add(&c.TextureId, sizeof c.TextureId);
+      add(&c.VtxOffset, sizeof c.VtxOffset);
+      add(&c.IdxOffset, sizeof c.IdxOffset);
+      add(&c.ElemCount, sizeof c.ElemCount);
+      const bool callback = c.UserCallback != nullptr;
+      add(&callback, sizeof callback);
+    }
+  }
+  const std::size_t h = std::hash<std::string>{}(key);
+  if (!force && g_last_frame && *g_last_frame == h) return false;
+  ImGui_ImplOpenGL3_RenderDrawData(data);
+  g_last_frame = h;
+  return true;
+}
 
 render::Image read_framebuffer(int width, int height) {
   render::Image img(width, height);

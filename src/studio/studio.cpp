@@ -221,6 +221,7 @@ struct Studio::Impl {
   bool view_failed = false;
   unsigned view_texture = 0, legend_texture = 0;
   bool legend_shown = false;
+  std::uint64_t pictures = 0;  // pictures drawn or uploaded into the view's textures (Studio::picture_count)
   bool preview_dirty = false;
   double last_preview = -1e9;
   bool turning = false;        // the 3-D view is being turned (dragged)
@@ -2472,6 +2473,7 @@ struct Studio::Impl {
           ro.shadow = !fast;
           const int s = fast ? 1 : 2;
           view_texture = view->draw_to_texture(cam, w * s, h * s, ro);
+          ++pictures;
           preview_fast = fast;
           preview_camera = cam, preview_w = w, preview_h = h;
           legend_shown = map;
@@ -2480,6 +2482,7 @@ struct Studio::Impl {
             const auto m = static_cast<render::FitMap>(fit_map - 1);
             render::draw_legend(overlay, m, render::default_scale(m));
             legend_texture = gl::upload_texture(overlay, legend_texture);
+            ++pictures;
           }
         } else {
           if (!renderer) renderer = std::make_unique<render::OffscreenRenderer>();
@@ -2496,6 +2499,7 @@ struct Studio::Impl {
           }
           if (restore) restore();
           texture = gl::upload_texture(img, texture);
+          ++pictures;
         }
         if (!fabric_problem.empty()) say(fabric_problem, true), fabric_problem.clear();
         if (!looks_problem.empty() && !looks_said) say(looks_problem, true), looks_said = true;
@@ -3122,6 +3126,7 @@ std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id
   return particle_on_screen(mine.front());
 }
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
+std::uint64_t Studio::picture_count() const { return impl_->pictures; }
 std::optional<Rect> Studio::particle_on_screen(int particle) const {
   const auto q = impl_->particle_screen(particle);
   const auto r = widget("preview");

@@ -37,6 +37,14 @@ class OffscreenContext {
   OffscreenContext& operator=(const OffscreenContext&) = delete;
 
   void make_current();
+  // Waits until the drawing so far is done (glFinish).
+  void finish();
+  // Ends a frame as a window's buffer swap does: waits until the frame before
+  // this one is drawn and marks this one (a fence), so one frame at most is
+  // drawn while the next is prepared. A loop drawing frames faster than the
+  // rasteriser finishes them would otherwise queue them (llvmpipe: dozens),
+  // and the next wait (a read-back, a new texture) would pay for them all.
+  void end_frame();
   static Renderer::ProcLoader loader();  // OSMesaGetProcAddress
   // The context's own colour buffer after the drawing so far (glFinish), row
   // 0 at the top. Makes the context current.

@@ -90,10 +90,14 @@ class Harness {
   // Throws vgd::Error naming the script, the line and the problem.
   void run_script(const std::filesystem::path& script, std::ostream* report = nullptr);
 
-  // Wall time per frame (ms) over `n` frames: mean, 95th percentile, longest.
+  // `n` frames at most 60 a second, as a window with vertical sync draws
+  // them, and each one's wall time (ms): mean, 95th percentile, longest; and
+  // of those drawn (the others showed what the last one did:
+  // render_gl_if_changed) how many, their mean and 95th percentile.
   struct FrameTimes {
-    int frames = 0;
+    int frames = 0, drawn = 0;
     double mean_ms = 0, p95_ms = 0, max_ms = 0;
+    double drawn_mean_ms = 0, drawn_p95_ms = 0;
   };
   FrameTimes frames_timed(int n);
 
