@@ -71,22 +71,31 @@ std::string token(const Options& o) {
   return "";
 }
 
-int run_window(const Options& o) {
+// A window with an OpenGL 3.3 core context, current; nullptr (said, GLFW
+// ended) when there is no display or no such context.
+GLFWwindow* open_window(const Options& o, const char* title, bool resizable) {
   glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "vgd-studio: GLFW %d: %s\n", code, text); });
   if (!glfwInit()) {
     std::fprintf(stderr, "vgd-studio: error: no display to open a window on (use --headless for off-screen runs)\n");
-    return 1;
+    return nullptr;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "vgd studio", nullptr, nullptr);
+  glfwWindowHint(GLFW_RESIZABLE, resizable ? GLFW_TRUE : GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, title, nullptr, nullptr);
   if (!window) {
     std::fprintf(stderr, "vgd-studio: error: cannot open an OpenGL 3.3 window\n");
     glfwTerminate();
-    return 1;
+    return nullptr;
   }
   glfwMakeContextCurrent(window);
+  return window;
+}
+
+int run_window(const Options& o) {
+  GLFWwindow* window = open_window(o, "vgd studio", true);
+  if (!window) return 1;
   glfwSwapInterval(1);
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;
@@ -169,27 +178,12 @@ int run_headless(const Options& o) {
   return run_scripted(h, o);
 }
 
-// A script run in a window: what it does is seen as it happens, and the
-// window's OpenGL draws every frame (the input is the script's, not the
-// window's).
+// A script run in a window: what it does is seen as it happens, drawn by the
+// window's OpenGL (the input is the script's, not the window's).
 int run_window_script(const Options& o) {
-  glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "vgd-studio: GLFW %d: %s\n", code, text); });
-  if (!glfwInit()) {
-    std::fprintf(stderr, "vgd-studio: error: no display to open a window on (use --headless for off-screen runs)\n");
-    return 1;
-  }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "vgd studio (script)", nullptr, nullptr);
-  if (!window) {
-    std::fprintf(stderr, "vgd-studio: error: cannot open an OpenGL 3.3 window\n");
-    glfwTerminate();
-    return 1;
-  }
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(0);  // a script runs as fast as it draws
+  GLFWwindow* window = open_window(o, "vgd studio (script)", false);
+  if (!window) return 1;
+  glfwSwapInterval(0);  // a script runs as fast as it draws (frames-timed paces itself)
   int code = 0;
   {
     int w = 0, h = 0;

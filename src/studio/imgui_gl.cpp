@@ -20,6 +20,17 @@
 namespace vgd::studio {
 
 namespace {
+
+// The framebuffer cleared to the style's window background: the studio's
+// main window draws none of its own.
+void clear_frame(const ImDrawData* data) {
+  const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  glViewport(0, 0, static_cast<GLsizei>(data->DisplaySize.x * data->FramebufferScale.x),
+             static_cast<GLsizei>(data->DisplaySize.y * data->FramebufferScale.y));
+  glClearColor(bg.x, bg.y, bg.z, bg.w);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
 bool g_ready = false;
 std::optional<std::size_t> g_last_frame;  // hash of the last frame drawn (render_gl_if_changed)
 GlLoader g_loader = nullptr;
@@ -53,6 +64,7 @@ void shutdown_gl() {
 void new_frame_gl() { ImGui_ImplOpenGL3_NewFrame(); }
 
 void render_gl(ImDrawData* data) {
+  clear_frame(data);
   ImGui_ImplOpenGL3_RenderDrawData(data);
   g_last_frame.reset();
 }
@@ -82,6 +94,7 @@ bool render_gl_if_changed(ImDrawData* data, std::uint64_t pictures, bool force) 
   }
   const std::size_t h = std::hash<std::string>{}(key);
   if (!force && g_last_frame && *g_last_frame == h) return false;
+  clear_frame(data);
   ImGui_ImplOpenGL3_RenderDrawData(data);
   g_last_frame = h;
   return true;

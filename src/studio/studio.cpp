@@ -2938,7 +2938,12 @@ void Studio::draw() {
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                  ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_MenuBar |
                                  ImGuiWindowFlags_NoSavedSettings;
+  // The window's background is the frame's clear (render_gl_if_changed):
+  // a software GL clears a tile at a time, and fills a 1280 x 800 quad
+  // pixel by pixel.
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0, 0, 0, 0));
   ImGui::Begin("vgd studio", nullptr, flags);
+  ImGui::PopStyleColor();
   I.menu_bar(*this);
 
   const ImVec2 avail = ImGui::GetContentRegionAvail();
