@@ -557,6 +557,21 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
   EXPECT_FALSE(h.studio().drape_status().paused);
 }
 
+namespace {
+// The T-shirt opened and Arrange pressed: its FRONT 38's id ("" when it
+// did not come to arranging) and the document as opened.
+std::pair<std::string, vgd::xvc::Document> arrange_the_tshirt(Harness& h) {
+  if (!h.studio().open(kTShirt)) return {};
+  h.frame();
+  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
+  const auto original = h.studio().document();
+  h.click("Arrange");
+  h.frames(2);
+  if (front.empty() || !h.studio().arranging()) return {};
+  return {front, original};
+}
+}  // namespace
+
 // Arranging in 3-D: Arrange shows where the drape starts, with the body's
 // arrangement points. The T-shirt's front dragged from the pattern view onto
 // "hips front" hangs from the waist (its POSITION says so, its top at the
@@ -564,14 +579,8 @@ TEST(Studio, ADrapeCanBePausedAndSteppedFrameByFrame) {
 // up the hips by 30 px on screen; each one undo step; a drape ends arranging.
 TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
   TestHarness h;
-  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
-  h.frame();
-  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
-  ASSERT_FALSE(front.empty());
-  const auto original = h.studio().document();
-  h.click("Arrange");
-  h.frames(2);
-  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+  const auto [front, original] = arrange_the_tshirt(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
   const auto top_of = [](const std::vector<std::array<float, 3>>& ps) {
     float y = -1e30f;
     for (const auto& p : ps) y = std::max(y, p[1]);
@@ -627,14 +636,8 @@ TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
 // clearance grows, its side stays); each an undo step, undone both.
 TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
   TestHarness h;
-  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
-  h.frame();
-  const std::string front = pattern_id(h.studio().document(), "FRONT", "38");
-  ASSERT_FALSE(front.empty());
-  const auto original = h.studio().document();
-  h.click("Arrange");
-  h.frames(2);
-  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+  const auto [front, original] = arrange_the_tshirt(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
   const auto at = h.studio().arranged_piece_on_screen(front);
   ASSERT_TRUE(at.has_value());
   const auto before = vgd::xvc::arrangements_of(*h.studio().document().find(front));
