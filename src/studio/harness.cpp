@@ -79,9 +79,8 @@ struct Harness::Impl {
 
   void make_current() { context ? context->make_current() : window.make_current(); }
 
-  // One frame; in a window presented unless `present` is false (a screenshot
-  // reads it first).
-  // Returns whether it drew.
+  // One frame, and whether it was drawn; in a window presented unless
+  // `present` is false (a screenshot reads it first).
   bool frame(bool present = true) {
     make_current();
     ImGui::SetCurrentContext(imgui);

@@ -15,7 +15,9 @@
 //
 // Deterministic: the same script gives the same pixels on the same machine
 // (ImGui's own font; llvmpipe's thread count pinned; time steps fixed at
-// 1/60 s per frame).
+// 1/60 s per frame). A frame that would draw what the last one drew is not
+// drawn (render_gl_if_changed); one that is ends as a window's swap does,
+// with at most one frame in flight (OffscreenContext::end_frame).
 #include <filesystem>
 #include <functional>
 #include <ostream>
