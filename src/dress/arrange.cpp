@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/diagnostics.hpp"
@@ -145,24 +146,51 @@ body::Vec3 side_direction(const xvc::Arrangement& a, const Avatar& avatar) {
   return e1;
 }
 
-xvc::Arrangement turned_to(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& to) {
+xvc::Arrangement turned_by(xvc::Arrangement a, const Avatar& avatar, double angle) {
   const BodySegment* s = avatar.segment(a.segment);
   if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to turn a piece round");
-  const body::Vec3 axis = s->axis.normalized();
-  const body::SegmentRing ring = body::ring_at(*s, (to - s->start).dot(axis));
-  body::Vec3 v = to - ring.centre;
-  v -= v.dot(axis) * axis;
-  if (v.norm() < 1e-9) return a;
+  const body::Vec3 up = on_limb(a.segment) ? body::Vec3(-s->axis.normalized()) : body::Vec3(s->axis.normalized());
+  const body::Vec3 d = side_direction(a, avatar);
+  const body::Vec3 to = std::cos(angle) * d + std::sin(angle) * up.cross(d);  // d is normal to up
   std::string best = a.side;
   double most = -2;
   for (const char* side : {"front", "left", "back", "right"}) {
     xvc::Arrangement t = a;
     t.side = side;
-    const double c = v.normalized().dot(side_direction(t, avatar));
+    const double c = to.dot(side_direction(t, avatar));
     if (c > most + 1e-12) most = c, best = side;
   }
   a.side = best;
   return a;
+}
+
+double drag_turn(const xvc::Arrangement& a, const Avatar& avatar, const body::Vec3& delta, const body::Vec3& view) {
+  const BodySegment* s = avatar.segment(a.segment);
+  if (!s) throw Error(avatar.source, a.segment, "the body has no such segment to turn a piece round");
+  const body::Vec3 axis = s->axis.normalized();
+  const body::Vec3 up = on_limb(a.segment) ? body::Vec3(-axis) : axis;
+  const body::Vec3 v = view.normalized();
+  // The cross-section at the piece's height: the trunk's height is a world
+  // height, a limb's the distance along its axis.
+  const double along = on_limb(a.segment) ? a.height : (a.height - s->start.y()) / std::max(1e-9, axis.y());
+  const body::SegmentRing ring = body::ring_at(*s, along);
+  const double radius = std::max(0.5 * (ring.half_width + ring.half_depth) + a.clearance, 0.01);
+  // Turning by +1 rad moves the piece's middle by `radius` along up × d; in
+  // the view that is its part across the view direction. Seen edge on (the
+  // middle moving towards the eye), the drag across the segment's axis on
+  // screen turns it, as if a third of that move were seen.
+  const body::Vec3 t = up.cross(side_direction(a, avatar));
+  body::Vec3 seen = t - t.dot(v) * v;
+  double scale = seen.norm();
+  if (scale < 0.3) {
+    body::Vec3 across = v.cross(up - up.dot(v) * v);
+    if (across.norm() < 1e-9) return 0.0;  // looking along the segment: no drag across it
+    across.normalize();
+    seen = across.dot(t) < 0 ? body::Vec3(-across) : across;
+    scale = 0.3;
+  }
+  const double turn = delta.dot(seen.normalized()) / (radius * scale);
+  return std::clamp(turn, -std::numbers::pi, std::numbers::pi);
 }
 
 xvc::Arrangement moved_off(xvc::Arrangement a, const Avatar& avatar, const body::Vec3& delta) {

@@ -343,7 +343,7 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         as >> how;
         if (!how.empty() && how != "shift" && how != "alt") fail("the drag's key is shift or alt, not \"" + how + "\"");
         const auto r = studio().arranged_piece_on_screen(pattern_id);
-        if (!r) fail(pattern_id + " is not arranged on screen (click Arrange first)");
+        if (!r) fail(pattern_id + " cannot be taken in the 3-D view: it is not arranged (click Arrange first) or other pieces cover it from this view");
         drag(r->cx(), r->cy(), r->cx() + dx, r->cy() + dy, 8, how == "shift", how == "alt");
       } else if (cmd == "key") {
         key(arg);

@@ -2208,9 +2208,11 @@ struct Studio::Impl {
     const xvc::Arrangement& a = list[static_cast<std::size_t>(copy)];
     if (!arrange_body->segment(a.segment)) return;
     if (l.how == Lift::How::around) {
-      // The side facing the mouse's point (at the depth the piece was taken),
-      // shown by a tooltip; the piece is laid out there when let go.
-      l.to = dress::turned_to(a, *arrange_body, body::Vec3(p1[0], p1[1], p1[2]));
+      // Round the body as far as the mouse went across the view, to the
+      // nearest side (a tooltip names it); laid out there when let go.
+      const auto& c = *preview_camera;
+      const body::Vec3 toward(c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]);
+      l.to = dress::turned_by(a, *arrange_body, dress::drag_turn(a, *arrange_body, delta, toward.normalized()));
       ImGui::SetTooltip("%s", (l.to->side == a.side ? std::string("Drag round the body to turn the piece to another side")
                                                     : "Let go to turn it to the " + a.segment + "'s " + l.to->side)
                                   .c_str());
@@ -3119,8 +3121,9 @@ std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id
   };
   std::sort(mine.begin(), mine.end(), [&](int a, int b) { return dist(a) < dist(b); });
   // A press takes the particle nearest the eye within 12 px (lift_piece): the
-  // first of the nearest 300 for which that is one of this piece's.
-  for (std::size_t j = 0; j < std::min<std::size_t>(mine.size(), 300); ++j) {
+  // first for which that is one of this piece's (a back behind the front
+  // shows at its sides only).
+  for (std::size_t j = 0; j < mine.size(); ++j) {
     const auto q = I.particle_screen(mine[j]);
     if (!q) continue;
     const auto hit = I.particle_under(ImVec2(static_cast<float>(q->x), static_cast<float>(q->y)), 12);
@@ -3128,7 +3131,7 @@ std::optional<Rect> Studio::arranged_piece_on_screen(std::string_view pattern_id
         I.particle_piece[static_cast<std::size_t>(hit->first)] == static_cast<int>(*piece))
       return particle_on_screen(mine[j]);
   }
-  return particle_on_screen(mine.front());
+  return std::nullopt;  // covered by other pieces from this view
 }
 std::vector<std::array<float, 3>> Studio::cloth_positions() const { return impl_->cloth.positions; }
 std::uint64_t Studio::picture_count() const { return impl_->pictures; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include "vgd/body/mannequin.hpp"
 #include "vgd/body/sizes.hpp"
@@ -185,27 +186,27 @@ TEST(Arrange, AMovedPieceSlidesAlongItsSegmentAndStaysOnTheBody) {
   EXPECT_THROW(dress::moved(on("tail", "front", 0.1), a, delta), vgd::Error);
 }
 
-// Turned round its segment: the side facing a point of the world, a quarter
-// at a time; the piece place_piece lays out then lies on that side of the
-// segment (its middle along side_direction from the axis); a point on the
-// axis changes nothing; on an arm the outside stays the outside.
+// Turned round its segment: a quarter at a time, each once the turn passes
+// an eighth (positive: the front towards the left); the piece place_piece
+// then lays out lies on that side (its middle along side_direction from the
+// axis). A drag follows the mouse: from the front, the view's right is the
+// body's left, and the front goes that way; the back, seen through the body,
+// goes the same way on screen, to the body's left too; the turn is the move
+// over the radius.
 TEST(Arrange, ATurnedPieceGoesToTheSideItIsDraggedTo) {
   const auto& a = mannequin();
   const auto front = on("torso", "front", 1.40);
-  const Vec3 centre = body::ring_at(*a.segment("torso"), 0.5 * a.segment("torso")->length).centre;
-  const std::map<std::string, Vec3> toward = {{"left", Vec3(0.3, 0, 0.05)},
-                                              {"right", Vec3(-0.3, 0, -0.05)},
-                                              {"back", Vec3(0.05, 0, -0.3)},
-                                              {"front", Vec3(-0.1, 0, 0.3)}};
+  const double q = std::numbers::pi / 2;
+  const std::map<double, std::string> sides = {{0.0, "front"}, {0.7, "front"}, {0.8, "left"}, {q, "left"},
+                                               {2 * q, "back"}, {-q, "right"}, {-2.4, "back"}, {4 * q, "front"}};
   const pattern::Piece piece = panel();
   std::vector<Vec2> nodes;
-  for (const auto& q : piece.boundary) nodes.push_back(q.p);
-  for (const auto& [side, d] : toward) {
-    const auto t = dress::turned_to(front, a, centre + d);
-    EXPECT_EQ(t.side, side);
+  for (const auto& p : piece.boundary) nodes.push_back(p.p);
+  for (const auto& [angle, side] : sides) {
+    const auto t = dress::turned_by(front, a, angle);
+    EXPECT_EQ(t.side, side) << angle;
     EXPECT_DOUBLE_EQ(t.height, front.height);
     EXPECT_DOUBLE_EQ(t.clearance, front.clearance);
-    // Where the piece goes: its middle off the axis along the side's direction.
     const auto placed = dress::place_piece(nodes, t, a);
     Vec3 mid = Vec3::Zero();
     for (const auto& p : placed.points) mid += p / static_cast<double>(placed.points.size());
@@ -213,14 +214,34 @@ TEST(Arrange, ATurnedPieceGoesToTheSideItIsDraggedTo) {
     off -= off.dot(placed.axis) * placed.axis;
     EXPECT_GT(off.normalized().dot(dress::side_direction(t, a)), 0.9) << side;
   }
-  EXPECT_EQ(dress::turned_to(front, a, centre + Vec3(0, 0.2, 0)).side, "front") << "a point on the axis";
-  // The left arm hanging in the A-pose: its outside (+x) is its side "left".
-  const body::BodySegment* arm = a.segment("left-arm");
-  const auto sleeve = on("left-arm", "front", 0.10, true);
-  const Vec3 on_arm = arm->start + 0.10 * arm->axis;
-  EXPECT_EQ(dress::turned_to(sleeve, a, on_arm + Vec3(0.2, 0, 0)).side, "left");
-  EXPECT_GT(dress::side_direction(dress::turned_to(sleeve, a, on_arm + Vec3(0.2, 0, 0)), a).x(), 0.5);
-  EXPECT_THROW(dress::turned_to(on("tail", "front", 0.1), a, centre), vgd::Error);
+  EXPECT_GT(dress::side_direction(dress::turned_by(front, a, q), a).x(), 0.9) << "the body's left is +x";
+
+  // Drags seen from the front (looking along -z; the view's right is +x): 10 cm to the right.
+  const Vec3 view(0, 0, -1), move(0.10, 0.02, 0.0);
+  const double turn = dress::drag_turn(front, a, move, view);
+  EXPECT_GT(turn, 0.0);
+  const body::BodySegment* torso = a.segment("torso");
+  const body::SegmentRing ring = body::ring_at(*torso, front.height - torso->start.y());
+  EXPECT_NEAR(turn, 0.10 / (0.5 * (ring.half_width + ring.half_depth) + front.clearance), 1e-9);
+  EXPECT_LT(dress::drag_turn(on("torso", "back", 1.40), a, move, view), 0.0) << "the back turns the other way";
+  EXPECT_EQ(dress::turned_by(on("torso", "back", 1.40), a, dress::drag_turn(on("torso", "back", 1.40), a, 3 * move, view)).side,
+            "left");
+  EXPECT_EQ(dress::turned_by(front, a, dress::drag_turn(front, a, -2 * move, view)).side, "right");
+  EXPECT_DOUBLE_EQ(dress::drag_turn(front, a, 20 * move, view), std::numbers::pi) << "half a turn at most";
+  EXPECT_DOUBLE_EQ(dress::drag_turn(front, a, -20 * move, view), -std::numbers::pi);
+  // On the A-posed left arm: its outside is its "left"; turned a quarter it faces its back.
+  const auto sleeve = on("left-arm", "left", 0.10, true);
+  EXPECT_GT(dress::side_direction(sleeve, a).x(), 0.5);
+  EXPECT_EQ(dress::turned_by(sleeve, a, q).side, "back");
+  // A side piece seen edge on from the front (its arc runs towards the eye):
+  // a drag across the torso still turns it, by a third of the move's worth.
+  const auto side = on("torso", "left", 1.40);
+  EXPECT_GT(std::abs(dress::drag_turn(side, a, move, view)), 0.1);
+  EXPECT_NE(dress::turned_by(side, a, dress::drag_turn(side, a, 2 * move, view)).side, "left");
+  // Seen from the side (looking along -x), a drag up the torso does not turn the front.
+  EXPECT_NEAR(dress::drag_turn(front, a, Vec3(0, 0.1, 0), Vec3(-1, 0, 0)), 0.0, 1e-12);
+  EXPECT_THROW(dress::turned_by(on("tail", "front", 0.1), a, q), vgd::Error);
+  EXPECT_THROW(dress::drag_turn(on("tail", "front", 0.1), a, move, view), vgd::Error);
 }
 
 // Moved off the body: the clearance grows by the move's part along the

@@ -630,9 +630,10 @@ TEST(Studio, APieceIsArrangedOnTheBodyByDraggingIt) {
 }
 
 // Shift+drag turns an arranged piece round the body: the T-shirt's front
-// dragged 150 px to the right (the body's left, +x, seen from the front)
-// goes to the torso's left side, and the piece laid out there shows right of
-// where it was; Alt+drag 40 px further right moves it off the body (its
+// dragged 40 px to the right (about a quarter of the way round the torso on
+// screen; the body's left, +x, is to the right seen from the front) goes to
+// the torso's left side, and the piece laid out there shows right of where
+// it was; Alt+drag 40 px further right moves it off the body (its
 // clearance grows, its side stays); each an undo step, undone both.
 TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
   TestHarness h;
@@ -644,7 +645,7 @@ TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
   ASSERT_EQ(before.size(), 1u);
   EXPECT_EQ(before[0].side, "front");
 
-  h.drag(at->cx(), at->cy(), at->cx() + 150, at->cy(), 8, /*shift=*/true);
+  h.drag(at->cx(), at->cy(), at->cx() + 40, at->cy(), 8, /*shift=*/true);
   h.frames(2);
   const auto turned = vgd::xvc::arrangements_of(*h.studio().document().find(front));
   ASSERT_EQ(turned.size(), 1u);

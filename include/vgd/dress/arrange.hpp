@@ -66,12 +66,23 @@ xvc::Arrangement moved(xvc::Arrangement a, const body::Avatar& avatar, const bod
 // vgd::Error when the avatar lacks the segment.
 body::Vec3 side_direction(const xvc::Arrangement& a, const body::Avatar& avatar);
 
-// `a` turned round its segment to the side (front, left, back or right)
-// that faces the world point `to` most nearly, seen from the segment's axis at
-// `to`'s level: a drag round the body turns a piece a quarter at a time.
-// Unchanged when `to` lies on the axis. Throws vgd::Error when the avatar
-// lacks the segment.
-xvc::Arrangement turned_to(xvc::Arrangement a, const body::Avatar& avatar, const body::Vec3& to);
+// `a` turned round its segment by `angle` (rad; positive turns its front
+// towards its left, counter-clockwise seen from the pattern's up end) and
+// set on the side (front, left, back or right) nearest that direction: a
+// drag round the body turns a piece a quarter at a time, each once it has
+// gone an eighth of a turn. Throws vgd::Error when the avatar lacks the
+// segment.
+xvc::Arrangement turned_by(xvc::Arrangement a, const body::Avatar& avatar, double angle);
+
+// The turn (rad, for turned_by) that lets `a`'s piece follow a drag: the
+// world displacement `delta` (m) at the piece, in a view looking along
+// `view` (unit), moves the piece's middle as far along its arc round the
+// segment (its radius: the segment's cross-section there and the
+// clearance), as the view shows the arc, the way the mouse went; where the
+// arc runs towards the eye (a sleeve on an arm held out, seen from the
+// front) a drag across the segment turns it. Half a turn at most either
+// way. Throws vgd::Error when the avatar lacks the segment.
+double drag_turn(const xvc::Arrangement& a, const body::Avatar& avatar, const body::Vec3& delta, const body::Vec3& view);
 
 // `a` moved off the body (or towards it) by the part of the world
 // displacement `delta` (m) along its side's direction (side_direction): its

@@ -248,9 +248,9 @@ class Studio {
   std::uint64_t picture_count() const;
   bool arranging() const;
   std::optional<Rect> arrangement_point_on_screen(std::string_view label) const;
-  // Where an arranged piece can be taken in the 3-D view: of its particles
-  // nearest its middle, the first that a press there takes (no other piece
-  // in front of it).
+  // Where an arranged piece can be taken in the 3-D view: of its particles,
+  // the one nearest its middle that a press there takes (no other piece in
+  // front of it); nothing when other pieces cover it from this view.
   std::optional<Rect> arranged_piece_on_screen(std::string_view pattern_id, int copy = 0) const;
   std::vector<std::array<float, 3>> arranged_piece(std::string_view pattern_id, int copy = 0) const;
 
