@@ -1,7 +1,8 @@
 #pragma once
 // Arranging pieces round the body by hand (the studio's 3-D view): the
 // points on the body a piece can be put on, the arrangements putting a piece
-// there gives, and an arrangement moved along its segment by a drag.
+// there gives, and an arrangement moved by a drag: along its segment, round
+// it to another side, or off the body.
 // Units: metres (world frame: +Y up, the body facing +Z) and degrees.
 #include <string>
 #include <vector>
