@@ -11,7 +11,7 @@
 
 #include <functional>
 #include <optional>
-#include <string>
+#include <string_view>
 
 #include "gl.hpp"
 #include "vgd/core/diagnostics.hpp"
@@ -63,17 +63,14 @@ void shutdown_gl() {
 
 void new_frame_gl() { ImGui_ImplOpenGL3_NewFrame(); }
 
-void render_gl(ImDrawData* data) {
-  clear_frame(data);
-  ImGui_ImplOpenGL3_RenderDrawData(data);
-  g_last_frame.reset();
-}
-
 bool render_gl_if_changed(ImDrawData* data, std::uint64_t pictures, bool force) {
-  // What the frame draws: every list's vertices and indices, and per command
-  // its texture, clip rectangle and range; the display; the picture count.
-  std::string key;
-  const auto add = [&](const void* p, std::size_t n) { key.append(static_cast<const char*>(p), n); };
+  // What the frame draws, hashed piece by piece: every list's vertices and
+  // indices, and per command its texture, clip rectangle and range; the
+  // display; the picture count.
+  std::size_t h = 0;
+  const auto add = [&](const void* p, std::size_t n) {
+    h = (h ^ std::hash<std::string_view>{}(std::string_view(static_cast<const char*>(p), n))) * 1099511628211ULL;
+  };
   add(&pictures, sizeof pictures);
   add(&data->DisplayPos, sizeof data->DisplayPos);
   add(&data->DisplaySize, sizeof data->DisplaySize);
@@ -92,7 +89,6 @@ bool render_gl_if_changed(ImDrawData* data, std::uint64_t pictures, bool force) 
       add(&callback, sizeof callback);
     }
   }
-  const std::size_t h = std::hash<std::string>{}(key);
   if (!force && g_last_frame && *g_last_frame == h) return false;
   clear_frame(data);
   ImGui_ImplOpenGL3_RenderDrawData(data);

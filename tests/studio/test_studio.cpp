@@ -1269,6 +1269,16 @@ struct SkirtFront {
   std::string id;
   std::vector<vgd::xvc::Stretch> stretches;
 };
+// A click inside a piece, 40 px right of and below its middle (away from
+// its grain line and outline points): whether it is then selected.
+bool select_inside(Harness& h, const std::string& pattern) {
+  const auto centre = h.studio().piece_on_screen(pattern);
+  if (!centre) return false;
+  h.click_at(centre->cx() + 40, centre->cy() + 40);
+  h.frame();
+  return h.studio().selected() == pattern;
+}
+
 SkirtFront open_skirt_front(Harness& h) {
   SkirtFront f;
   if (!h.studio().open(kSkirt)) return f;
@@ -1434,11 +1444,7 @@ TEST(Studio, ANotchIsDraggedToAnotherOutlinePoint) {
   ASSERT_NE(notch, nullptr);
   const std::string nid(notch->id());
   const std::size_t v0 = std::stoul(std::string(notch->attribute("vertex")));
-  const auto centre = h.studio().piece_on_screen(front);
-  ASSERT_TRUE(centre.has_value());
-  h.click_at(centre->cx() + 40, centre->cy() + 40);
-  h.frame();
-  ASSERT_EQ(h.studio().selected(), front);
+  ASSERT_TRUE(select_inside(h, front)) << h.studio().status();
   // The outline point two along from the notch's vertex.
   const std::size_t n = vgd::xvc::to_piece(original, front).boundary.size();
   const std::size_t v1 = (v0 + 2) % n;
@@ -1474,11 +1480,7 @@ TEST(Studio, ANotchIsAddedAndRemovedByCtrlClicks) {
     return out;
   };
   const auto before = notches_of(original);
-  const auto centre = h.studio().piece_on_screen(front);
-  ASSERT_TRUE(centre.has_value());
-  h.click_at(centre->cx() + 40, centre->cy() + 40);
-  h.frame();
-  ASSERT_EQ(h.studio().selected(), front);
+  ASSERT_TRUE(select_inside(h, front)) << h.studio().status();
   // A vertex with no notch: the second point of the first stretch with three or more.
   std::optional<vgd::xvc::OutlinePoint> target;
   std::size_t vertex = 0;
@@ -1569,11 +1571,7 @@ TEST(Studio, AGrainLineIsTurnedByDraggingItsEnd) {
   const auto original = h.studio().document();
   const auto g0 = vgd::xvc::to_piece(original, front).grain_line;
   ASSERT_TRUE(g0.has_value());
-  const auto centre = h.studio().piece_on_screen(front);
-  ASSERT_TRUE(centre.has_value());
-  h.click_at(centre->cx() + 40, centre->cy() + 40);  // inside, away from the grain line
-  h.frame();
-  ASSERT_EQ(h.studio().selected(), front);
+  ASSERT_TRUE(select_inside(h, front)) << h.studio().status();
   const auto end = h.studio().grain_end_on_screen(front, 1);
   ASSERT_TRUE(end.has_value());
   const float scale = h.studio().pattern_scale();

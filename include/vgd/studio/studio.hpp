@@ -25,7 +25,7 @@
 // The Studio knows nothing about windows. A host makes the ImGui context and
 // an OpenGL 3.3 context, calls init_gl() once, then per frame new_frame_gl(),
 // ImGui::NewFrame(),
-// Studio::draw(), ImGui::Render() and render_gl(). Two hosts exist: the GLFW
+// Studio::draw(), ImGui::Render() and render_gl_if_changed(). Two hosts exist: the GLFW
 // window of apps/vgd-studio, and the Harness (harness.hpp), an OSMesa
 // off-screen host that scripts and tests drive with synthetic mouse and keys.
 #include <cstdint>
@@ -67,9 +67,8 @@ void shutdown_gl();
 // Before ImGui::NewFrame(): makes the renderer's font texture and shaders the
 // first time.
 void new_frame_gl();
-// Draws ImGui's frame into the current framebuffer.
-void render_gl(ImDrawData* data);
-// Draws it only when it differs from the last frame drawn (its vertices,
+// Draws ImGui's frame into the current framebuffer (cleared to the style's
+// window background first) only when it differs from the last frame drawn (its vertices,
 // indices, textures and clip rectangles) or the studio has drawn a new
 // picture since (Studio::picture_count: same texture, new pixels); `force`
 // draws it anyway (a window's back buffer to read). Returns whether it drew:
