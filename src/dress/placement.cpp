@@ -78,6 +78,9 @@ struct OffsetCurve {
   }
 };
 
+// m: how far from a leg's axis the surface beyond its ankle counts as its foot.
+constexpr double kFootReach = 0.30;
+
 bool trunk(const std::string& segment) { return segment == "neck" || segment == "torso" || segment == "hips"; }
 
 }  // namespace
@@ -123,6 +126,27 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   }
   if (nodes.empty()) smin = smax = s_ref;
 
+  // A leg's piece may reach past the leg's last ring (the ankle): trousers cut
+  // to the floor. There it goes round the foot, not through it: the body's
+  // surface beyond that ring, nearer this leg's axis than any other leg's,
+  // bounds the envelope as cloth under a piece does.
+  std::vector<Vec3> foot;
+  if (limb && ar.segment.find("leg") != std::string::npos && smax > seg->rings.back().s) {
+    const auto off_axis = [](const BodySegment& g, const Vec3& p) {
+      const Vec3 d = p - g.start;
+      return (d - d.dot(g.axis.normalized()) * g.axis.normalized()).norm();
+    };
+    for (const auto& v : avatar.surface.vertices) {
+      if ((v - seg->start).dot(axis) <= seg->rings.back().s) continue;
+      const double r = off_axis(*seg, v);
+      if (r > kFootReach) continue;
+      bool mine = true;
+      for (const auto& other : avatar.segments)
+        if (&other != seg && other.name.find("leg") != std::string::npos && off_axis(other, v) < r) mine = false;
+      if (mine) foot.push_back(v);
+    }
+  }
+
   // Envelope of the rings over [smin, smax] around the reference ring's centre line.
   // The reference ring is clamped to the segment's ends; the reference point is
   // not: a piece may reach above the torso's top ring (a bodice's shoulders).
@@ -155,9 +179,30 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
           if (outside && s > lo && s < hi) take(r);
         }
       }
+    // The foot: each point inside the ellipse grows it along one semi-axis, or
+    // both keeping its shape, whichever leaves the shorter perimeter.
+    a = std::max(a, 1e-3), b = std::max(b, 1e-3);
+    for (const auto& p : foot) {
+      const double s = (p - seg->start).dot(axis);
+      if (s < lo || s > hi) continue;
+      Vec3 d = p - axis_point;
+      d -= d.dot(axis) * axis;
+      const double x = std::abs(d.dot(e1)), y = std::abs(d.dot(e2));
+      const double q = (x / a) * (x / a) + (y / b) * (y / b);
+      if (q <= 1) continue;
+      std::pair<double, double> best{a * std::sqrt(q), b * std::sqrt(q)};
+      if (y < 0.9 * b) {
+        const double na = x / std::sqrt(1 - (y / b) * (y / b));
+        if (na + b < best.first + best.second) best = {na, b};
+      }
+      if (x < 0.9 * a) {
+        const double nb = y / std::sqrt(1 - (x / a) * (x / a));
+        if (a + nb < best.first + best.second) best = {a, nb};
+      }
+      a = best.first, b = best.second;
+    }
     // Cloth under the piece: the ellipse grows (keeping its shape) until its
     // offset curve at the clearance passes each point at the gap or more.
-    a = std::max(a, 1e-3), b = std::max(b, 1e-3);
     const double inset = std::max(0.0, ar.clearance) - kUnderlayerGap;
     for (const auto& layer : under) {
       if (layer.segment != ar.segment && !(trunk(layer.segment) && trunk(ar.segment))) continue;
@@ -211,8 +256,11 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   // A- to T-pose and beyond; no swap where the limb crosses the horizontal.
   // A half piece on the trunk (front or back, at most half way round) follows
   // the body's taper (below); a wider one is wrapped on the one curve.
-  const bool follow = !limb && (ar.side == "front" || ar.side == "back") && !nodes.empty() &&
-                      width <= 0.5 * curve.perimeter;
+  // A half leg follows its leg the same way (round the foot below the ankle,
+  // round the calf above it), however much wider than the leg it is cut.
+  const bool follow = (half_leg || (!limb && (ar.side == "front" || ar.side == "back") &&
+                                    width <= 0.5 * curve.perimeter)) &&
+                      !nodes.empty();
   if (!follow && nest > 0.0 && ar.side == "back") {
     curve.c += nest;
     curve.build();

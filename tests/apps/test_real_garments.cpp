@@ -27,6 +27,9 @@ struct RealGarment {
   int code;              // vgd dress's exit code: 0 passed, 3 a check failed, 1 nothing to drape
   const char* segments;  // the draped pieces' segments, sorted, space-separated; "" = not checked
   const char* says;      // what the output says: a decision, or why it cannot drape
+  // A garment vgd cannot drape yet: the failure classes its certificate may
+  // give, comma-separated (a class that is not listed fails the test).
+  const char* fails = "";
 };
 
 void PrintTo(const RealGarment& g, std::ostream* os) { *os << g.file << " " << g.size; }
@@ -52,8 +55,11 @@ TEST_P(RealGarments, DressAsListed) {
   if (g.code == 1) return;
   const nlohmann::json c = read_json(out / "certificate.json");
   EXPECT_EQ(c["passed"].get<bool>(), g.code == 0) << c["failures"].dump();
+  for (const auto& f : c["failures"])
+    EXPECT_NE(std::string(g.fails).find(f["class"].get<std::string>()), std::string::npos) << f.dump();
   if (!*g.segments) return;
-  for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
+  if (std::string(g.fails).find("seams open") == std::string::npos)
+    for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
   std::vector<std::string> segments;
   for (const auto& p : c["placement"]) segments.push_back(p["segment"].get<std::string>());
   std::sort(segments.begin(), segments.end());
@@ -144,12 +150,15 @@ INSTANTIATE_TEST_SUITE_P(
                     "block BACKPANEL is half a piece (cut once, no side or fold line in the file, a straight 70.5 cm "
                     "centre edge): unfolded"},
         // Not yet: each with the reason vgd gives.
-        // Cut as half legs: sewn and in place, on the tallest men's body its
-        // hip fits; cut to the floor, the hems lie on the feet, which show
-        // through them.
+        // Cut as half legs: in place, on the men's body its hip fits; cut to
+        // the floor, the legs start round the feet (not through them) and
+        // every seam closes but the outseams' last few pairs at the hem, held
+        // apart under the feet's widest part; nothing crosses, nothing is in
+        // the body.
         RealGarment{"valentina_trousers", "Valentina_Trousers_ASTM_R12.dxf", "", 3,
                     "left-leg left-leg right-leg right-leg",
-                    "piece FRONT_PLEATS (leg) left out: an alternative to the leg FRONT_NO_POCKET"}),
+                    "piece FRONT_PLEATS (leg) left out: an alternative to the leg FRONT_NO_POCKET",
+                    "no rest, seams open"}),
     [](const ::testing::TestParamInfo<RealGarment>& p) { return std::string(p.param.name); });
 
 // The tights' crotch without the body kept out of the cloth between

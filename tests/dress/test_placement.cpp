@@ -242,6 +242,74 @@ TEST(PiecePlacement, StartsOutsideTheClothUnderIt) {
     EXPECT_LT((with_sleeve.points[i] - alone.points[i]).norm(), 1e-12);
 }
 
+// Trousers cut to the floor: the half legs reach past the leg's last ring
+// (the ankle) and go round the foot there instead of through it; above the
+// foot they follow the leg as before, and the foot of the other leg does not
+// push them out.
+TEST(PiecePlacement, AHalfLegCutToTheFloorStartsRoundTheFoot) {
+  Avatar av;
+  av.source = "hand-built legs";
+  // Feet: ellipsoids 26 cm long, 9 cm wide, 8 cm tall, standing on y = 0, their
+  // centres 5 cm in front of the ankles (at x = ±0.1).
+  const auto foot_at = [](double x, const Vec3& p) {
+    const Vec3 c(x, 0.04, 0.05), r(0.045, 0.04, 0.13);
+    const Vec3 q = (p - c).cwiseQuotient(r);
+    return q.squaredNorm();  // < 1 inside
+  };
+  for (const double x : {0.1, -0.1}) {
+    BodySegment leg;
+    leg.name = x > 0 ? "left-leg" : "right-leg";
+    leg.start = Vec3(x, 0.9, 0);
+    leg.axis = -Vec3::UnitY();
+    leg.length = 0.8;  // hip joint to ankle, 10 cm above the floor
+    leg.front = Vec3::UnitZ();
+    for (const auto& [s, r] : {std::pair{0.0, 0.08}, {0.4, 0.05}, {0.8, 0.04}})
+      leg.rings.push_back({s, leg.start + s * leg.axis, r, r});
+    av.segments.push_back(leg);
+    for (int i = 0; i <= 24; ++i)
+      for (int k = 0; k < 48; ++k) {
+        const double th = M_PI * i / 24, ph = 2 * M_PI * k / 48;
+        av.surface.vertices.emplace_back(x + 0.045 * std::sin(th) * std::cos(ph), 0.04 + 0.04 * std::cos(th),
+                                         0.05 + 0.13 * std::sin(th) * std::sin(ph));
+      }
+  }
+  // The front half of the left leg: 22 cm wide, from the waist (5 cm above the
+  // hip joint) to 5 mm below the floor.
+  std::vector<Vec2> nodes;
+  std::vector<std::array<int, 3>> tris;
+  grid(0.22, 0.955, 22, 96, nodes, tris);
+  xvc::Arrangement a;
+  a.segment = "left-leg";
+  a.side = "front";
+  a.height = -0.05;
+  a.clearance = 0.01;
+  const auto placed = place_piece(nodes, a, av);
+  double lowest = 1e9;
+  int below_ankle = 0;
+  for (const auto& q : placed.points) {
+    lowest = std::min(lowest, q.y());
+    EXPECT_GT(foot_at(0.1, q), 1.0) << "inside the foot: " << q.transpose();
+    if (q.y() < 0.1) ++below_ankle;
+    if (q.y() > 0.4) {  // the shin and up: the leg's rings and the clearance, as before the foot
+      const double r = std::hypot(q.x() - 0.1, q.z());
+      const double s = std::clamp(0.9 - q.y(), 0.0, 0.8);
+      const double ring = s < 0.4 ? 0.08 - 0.03 * s / 0.4 : 0.05 - 0.01 * (s - 0.4) / 0.4;
+      EXPECT_GT(r, ring + 0.01 - 2e-3) << q.transpose();
+      EXPECT_LT(r, 0.13) << "pushed out by a foot 30 cm below: " << q.transpose();
+    }
+  }
+  EXPECT_NEAR(lowest, -0.005, 1e-3);
+  EXPECT_GT(below_ankle, 100);
+
+  // Without the feet the same piece starts through the foot.
+  Avatar bare = av;
+  bare.surface.vertices.clear();
+  int inside = 0;
+  for (const auto& q : place_piece(nodes, a, bare).points)
+    if (foot_at(0.1, q) < 1.0) ++inside;
+  EXPECT_GT(inside, 50);
+}
+
 TEST(PiecePlacement, MissingSegmentIsAnError) {
   xvc::Arrangement a;
   a.segment = "neck";
