@@ -16,7 +16,7 @@ namespace xvc = vgd::xvc;
 struct Options {
   std::string input;
   std::string output;
-  std::vector<std::string> delete_pattern, copy_pattern, mirror_pattern, set_parameter, delete_node, copy_node;
+  std::vector<std::string> delete_pattern, copy_pattern, mirror_pattern, set_parameter, delete_node, copy_node, pin;
 };
 
 // "mesh.spacing=0.01", "mesh.spacing=10mm", "mesh.max_area=2e-5m2", "mesh.turn_angle=30deg".
@@ -52,6 +52,30 @@ xvc::SetParameter parse_parameter(const std::string& arg) {
   return xvc::SetParameter(name, *value, unit);
 }
 
+// "pattern9=0,0.6", "pattern9=0,60cm": a pattern id and a point of it (metres,
+// or in the unit after the second number, which applies to both).
+xvc::AddPin parse_pin(const std::string& arg) {
+  const auto eq = arg.find('=');
+  const auto comma = arg.find(',', eq == std::string::npos ? 0 : eq);
+  if (eq == std::string::npos || eq == 0 || comma == std::string::npos)
+    throw vgd::Error("", arg, "--pin wants PATTERN=X,Y[UNIT], e.g. pattern9=0,0.6 or pattern9=0,60cm");
+  const std::string id = arg.substr(0, eq);
+  const auto x = vgd::parse_double(vgd::trim(std::string_view(arg).substr(eq + 1, comma - eq - 1)));
+  const std::string_view rest = vgd::trim(std::string_view(arg).substr(comma + 1));
+  std::optional<double> y;
+  std::size_t cut = rest.size();
+  for (; cut > 0; --cut)
+    if ((y = vgd::parse_double(rest.substr(0, cut)))) break;
+  if (!x || !y) throw vgd::Error("", id, "--pin's point is not two numbers: " + arg.substr(eq + 1));
+  double scale = 1.0;
+  if (const std::string unit(vgd::trim(rest.substr(cut))); !unit.empty()) {
+    const auto length = vgd::parse_length_unit(unit);
+    if (!length) throw vgd::Error("", id, "--pin's unit '" + unit + "' is not a length (m, cm, mm, in)");
+    scale = vgd::metres_per(*length);
+  }
+  return xvc::AddPin(id, {*x * scale, *y * scale});
+}
+
 xvc::MirrorAxis parse_axis(std::string& id) {
   const auto colon = id.find(':');
   if (colon == std::string::npos) return xvc::MirrorAxis::automatic;
@@ -63,7 +87,7 @@ xvc::MirrorAxis parse_axis(std::string& id) {
 }
 
 vgd::cli::Registrar reg{"edit", 30, [](CLI::App& app, vgd::cli::Common& common) {
-  auto* sub = app.add_subcommand("edit", "Edit an XVC document: delete, copy, mirror patterns; set parameters");
+  auto* sub = app.add_subcommand("edit", "Edit an XVC document: delete, copy, mirror patterns; pins; set parameters");
   auto o = std::make_shared<Options>();
   sub->add_option("FILE", o->input, "XVC document to read")->required();
   sub->add_option("-o,--output", o->output, "XVC document to write (may be FILE itself)")->required();
@@ -78,14 +102,18 @@ vgd::cli::Registrar reg{"edit", 30, [](CLI::App& app, vgd::cli::Common& common) 
                          "Set a parameter: NAME=VALUE[UNIT], e.g. mesh.spacing=10mm, mesh.turn_angle=30deg");
   auto* dno = repeatable("--delete-node", o->delete_node, "Delete any element by id (and what would dangle)");
   auto* cno = repeatable("--copy-node", o->copy_node, "Copy any element by id, with fresh ids, right after it");
+  auto* pin = repeatable("--pin", o->pin,
+                         "Pin a PATTERN's cloth at a point of it, held where the arrangement puts it while the garment "
+                         "drapes: PATTERN=X,Y[UNIT] in the pattern's frame, e.g. pattern9=0,0.6 or pattern9=0,60cm "
+                         "(--delete-node removes a pin by its id)");
   sub->footer("Edits run in the order given and may be repeated. Each is checked; the first one\n"
               "refused stops the run and nothing is written.");
-  return vgd::cli::Command{sub, [o, sub, del, cpy, mir, par, dno, cno, &common]() -> int {
+  return vgd::cli::Command{sub, [o, sub, del, cpy, mir, par, dno, cno, pin, &common]() -> int {
     xvc::Document doc = xvc::load_file(o->input);
     // Walk the options in command-line order; each occurrence takes its next value.
     std::map<const CLI::Option*, std::size_t> used;
     for (const CLI::Option* opt : sub->parse_order()) {
-      if (opt != del && opt != cpy && opt != mir && opt != par && opt != dno && opt != cno) continue;
+      if (opt != del && opt != cpy && opt != mir && opt != par && opt != dno && opt != cno && opt != pin) continue;
       std::string value = opt->results().at(used[opt]++);
       if (opt == del) {
         xvc::DeletePattern cmd(value);
@@ -107,6 +135,9 @@ vgd::cli::Registrar reg{"edit", 30, [](CLI::App& app, vgd::cli::Common& common) 
         xvc::DeleteNode cmd(value);
         xvc::execute(doc, cmd);
         vgd::cli::say(common, "vgd: deleted " + value);
+      } else if (opt == pin) {
+        auto cmd = parse_pin(value);
+        vgd::cli::say(common, "vgd: pinned " + value + " (" + xvc::execute(doc, cmd) + ")");
       } else if (opt == cno) {
         const auto path = doc.path_of(value);
         if (!path || path->empty()) throw vgd::Error(o->input, value, "no element with id " + value + " that can be copied");

@@ -10,6 +10,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/arrange.hpp"
 #include "vgd/dress/placement.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
@@ -94,6 +95,35 @@ void check_fit(const std::string& document, const std::string& size, const std::
   }
 }
 
+namespace {
+
+// The mesh nodes the PATTERN's pins hold (xvc::Pin): each pin's nearest node,
+// which must lie within 2 cm of it (the mesh resamples the outline, so a pin
+// on the cut edge is a few millimetres from the nearest node).
+std::vector<int> pinned_nodes(const std::string& file, const xvc::Document& doc, const GarmentPiece& gp, Diagnostics& diag) {
+  std::vector<int> out;
+  for (const auto& pin : xvc::pins_of(*doc.find(gp.pattern_id))) {
+    const pattern::Vec2 q(pin.x, pin.y);
+    int best = -1;
+    double d = 1e300;
+    for (int i = 0; i < static_cast<int>(gp.mesh.nodes.size()); ++i)
+      if (const double e = (gp.mesh.nodes[i] - q).norm(); e < d) d = e, best = i;
+    if (best < 0 || d > 0.02)
+      throw Error(file, pin.id,
+                  "the pin at (" + format_fixed(pin.x, 3) + ", " + format_fixed(pin.y, 3) + ") m is " +
+                      (best < 0 ? std::string("on a piece with no cloth") : format_fixed(100 * d, 1) + " cm from the cloth of " + gp.name) +
+                      ": move it onto the piece or delete it (vgd edit --delete-node " + pin.id + ")");
+    out.push_back(best);
+    diag.info(file, pin.id, "pin: " + gp.name + " held at (" + format_fixed(pin.x, 3) + ", " + format_fixed(pin.y, 3) +
+                                ") m where its arrangement puts it");
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
 scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avatar) {
   namespace fs = std::filesystem;
   scene::MadeCloths made;
@@ -165,7 +195,8 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
       mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
       out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment,
-                            xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.pattern_id, gp.copy});
+                            xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.pattern_id, gp.copy,
+                            pinned_nodes(file.string(), doc, gp, out.diagnostics)});
       first[k] = count;
       count += n;
     }

@@ -512,6 +512,18 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
         pin_particles(def, model, s.pieces, def.effects.pins[i], "effects.pins[" + std::to_string(i) + "]"));
     s.pinned.insert(s.pinned.end(), pin_groups.back().begin(), pin_groups.back().end());
   }
+  // The garments' own pins (POSITION type="pin"): one still group.
+  std::vector<int> document_pins;
+  for (const auto& [ci, cloth] : made) {
+    int k = 0;
+    for (const auto& info : s.pieces) {
+      if (info.cloth != ci) continue;
+      if (k < static_cast<int>(cloth.pieces.size()))
+        for (const int i : cloth.pieces[k].pinned) document_pins.push_back(info.first + i);
+      ++k;
+    }
+  }
+  s.pinned.insert(s.pinned.end(), document_pins.begin(), document_pins.end());
   std::sort(s.pinned.begin(), s.pinned.end());
   s.pinned.erase(std::unique(s.pinned.begin(), s.pinned.end()), s.pinned.end());
   // Offset contact keeps the start's relations (nothing through anything) and
@@ -557,6 +569,7 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
     if (e.hand) effects.push_back(sim::make_hand(*e.hand));
     for (std::size_t i = 0; i < pin_groups.size(); ++i)
       effects.push_back(sim::make_pins(model, {pin_groups[i], e.pins[i].velocity}));
+    if (!document_pins.empty()) effects.push_back(sim::make_pins(model, {document_pins, Vec3::Zero()}));
     // The speed limit before the contacts, so their tests see limited motion.
     if (e.speed_limit) effects.push_back(sim::make_speed_limit(model, *e.speed_limit));
     // Seams, then contacts: the contact effects constrain the total force,

@@ -122,6 +122,15 @@ std::vector<Arrangement> arrangements_of(const Node& pattern) {
   return out;
 }
 
+std::vector<Pin> pins_of(const Node& pattern) {
+  std::vector<Pin> out;
+  for (const auto& c : pattern.children)
+    if (c.tag == "POSITION" && c.attribute("type") == "pin")
+      out.push_back({std::string(c.id()), parse_double(c.attribute("x")).value_or(0),
+                     parse_double(c.attribute("y")).value_or(0)});
+  return out;
+}
+
 Node arrangement_node(const Arrangement& a) {
   Node n{"POSITION", {{"type", "arrangement"}, {"x", format_double(a.x)}, {"y", format_double(a.y)}}, {}};
   if (a.angle_deg != 0) n.set_attribute("angle", format_double(a.angle_deg));

@@ -249,6 +249,8 @@ class Checker {
         if (sheets > 1) error(it, "a PATTERN has one sheet position, not " + std::to_string(sheets));
       }
     }
+    if (n.attribute("type") == "pin" && (!it.pattern || (it.parent && it.parent->tag != "PATTERN")))
+      error(it, "a pin belongs inside a PATTERN");
     if (arrangement) {
       if (!it.pattern || (it.parent && it.parent->tag != "PATTERN")) error(it, "an arrangement belongs inside a PATTERN");
       for (const char* a : {"segment", "side", "height"})

@@ -491,6 +491,35 @@ std::string AddNotch::apply(Editor& edit) {
   return id;
 }
 
+// ---- AddPin -----------------------------------------------------------------------
+
+AddPin::AddPin(std::string pattern_id, std::array<double, 2> at) : pattern_(std::move(pattern_id)), at_(at) {}
+
+std::string AddPin::label() const { return "Pin " + pattern_; }
+
+std::string AddPin::apply(Editor& edit) {
+  const Document& doc = edit.document();
+  const NodePath path = require(doc, pattern_, "PATTERN");
+  const Vec2 q(at_[0], at_[1]);
+  if (!q.allFinite()) throw Error(doc.name(), pattern_, "a pin's point must be finite");
+  const auto outline = to_piece(doc, pattern_).boundary;
+  if (!pattern::point_in_outline(outline, q) && pattern::nearest_edge(outline, q).distance > 1e-3)
+    throw Error(doc.name(), pattern_,
+                "the pin's point (" + format_double(q.x()) + ", " + format_double(q.y()) + ") m lies " +
+                    format_double(1000 * pattern::nearest_edge(outline, q).distance) + " mm outside the piece " +
+                    pattern_ + ": a pin holds the piece's own cloth");
+  Node p = doc.at(path);
+  std::size_t at = 0;  // after the pattern's sequences, annotations and positions
+  for (std::size_t i = 0; i < p.children.size(); ++i)
+    if (p.children[i].tag == "C2DSEQ" || p.children[i].tag == "ANNOTATION" || p.children[i].tag == "POSITION") at = i + 1;
+  detail::IdMaker ids(doc);
+  Node pin{"POSITION", {{"id", ids.make("pos")}, {"type", "pin"}, {"x", format_double(q.x())}, {"y", format_double(q.y())}}, {}};
+  const std::string id(pin.id());
+  p.children.insert(p.children.begin() + static_cast<std::ptrdiff_t>(at), std::move(pin));
+  edit.replace(path, std::move(p));
+  return id;
+}
+
 // ---- SetGrainLine -----------------------------------------------------------------
 
 SetGrainLine::SetGrainLine(std::string pattern_id, std::array<double, 2> a, std::array<double, 2> b)

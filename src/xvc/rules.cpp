@@ -53,7 +53,7 @@ std::vector<ElementRule> make_rules() {
        {}},
       {"POSITION", "pos",
        {kId,
-        {"type", VT::choice, true, {"notch", "drill", "placement", "arrangement", "sheet"}},
+        {"type", VT::choice, true, {"notch", "drill", "placement", "arrangement", "sheet", "pin"}},
         {"x", VT::finite, true},
         {"y", VT::finite, true},
         {"angle", VT::finite},

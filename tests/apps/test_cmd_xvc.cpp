@@ -8,6 +8,7 @@
 #include "support/run_vgd.hpp"
 #include "xvc/fixtures.hpp"
 #include "vgd/core/file.hpp"
+#include "vgd/xvc/arrangement.hpp"
 
 using namespace vgd::xvc;
 using namespace vgd::xvc::test;
@@ -121,6 +122,33 @@ TEST(CliEdit, RefusedEditWritesNothing) {
   const auto unit = vgd_run(dir, "edit g.xvc -o out.xvc --set-parameter mesh.spacing=3deg");
   EXPECT_EQ(unit.code, 1);
   EXPECT_NE(unit.err.find("mesh.spacing is in m, not deg"), std::string::npos) << unit.err;
+}
+
+// --pin PATTERN=X,Y[UNIT]: a pin at the point, in metres or the unit given;
+// a point off the piece or no point at all is refused and nothing written.
+TEST(CliEdit, PinsAPieceAtAPointInTheUnitGiven) {
+  const auto dir = with_document("edit_pin");
+  const auto piece = to_piece(full_document(), "pattern1");
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const auto& p : piece.boundary) c += p.p;
+  c /= static_cast<double>(piece.boundary.size());
+  const std::string cm = std::to_string(100 * c.x()) + "," + std::to_string(100 * c.y()) + "cm";
+  const auto r = vgd_run(dir, "edit g.xvc -o out.xvc --pin pattern1=" + cm);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto pins = pins_of(*load_file(dir / "out.xvc").find("pattern1"));
+  ASSERT_EQ(pins.size(), 1u);
+  EXPECT_NEAR(pins[0].x, c.x(), 1e-6);
+  EXPECT_NEAR(pins[0].y, c.y(), 1e-6);
+  const auto off = vgd_run(dir, "edit g.xvc -o off.xvc --pin pattern1=" + std::to_string(c.x() + 5) + ",0");
+  EXPECT_EQ(off.code, 1);
+  EXPECT_NE(off.err.find("outside the piece pattern1"), std::string::npos) << off.err;
+  EXPECT_FALSE(fs::exists(dir / "off.xvc"));
+  const auto bad = vgd_run(dir, "edit g.xvc -o bad.xvc --pin pattern1=here");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("PATTERN=X,Y[UNIT]"), std::string::npos) << bad.err;
+  const auto unit = vgd_run(dir, "edit g.xvc -o bad.xvc --pin pattern1=0,0deg");
+  EXPECT_EQ(unit.code, 1);
+  EXPECT_NE(unit.err.find("is not a length"), std::string::npos) << unit.err;
 }
 
 TEST(CliEdit, OutputIsRequiredAndMayBeTheInput) {

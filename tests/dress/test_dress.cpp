@@ -6,6 +6,8 @@
 #include "vgd/dress/drape.hpp"
 #include "vgd/dress/dress.hpp"
 #include "vgd/scene/build.hpp"
+#include "vgd/sim/integrator.hpp"
+#include "vgd/sim/run.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
@@ -13,6 +15,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 namespace vgd::dress {
@@ -104,6 +108,68 @@ TEST(DressBuild, APieceCutFromItsOwnFabricWeighsWhatItsDensitySays) {
       EXPECT_NEAR(after.at(key), m, 1e-15);
     }
   }
+}
+
+// A pin in the document (POSITION type="pin", seed 000's constriction): the
+// skirt's front held at the middle of its hem, where the arrangement put it.
+// After half a second of sewing and falling the pinned particle has not moved
+// while the rest of the front has; a pin off the piece is refused, naming it.
+TEST(DressBuild, ADocumentPinHoldsItsClothWhereTheArrangementPutIt) {
+  const auto dir = std::filesystem::temp_directory_path() / ("vgd-dress-pin-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  xvc::Document doc = xvc::load_file(vgd::test::source_dir() / "data/garments/a-line-skirt.xvc");
+  // FRONT_38: its hem runs along y = 0, centred on x = 0.
+  xvc::AddPin pin("pattern7", {0.0, 0.0});
+  const std::string id = xvc::execute(doc, pin);
+  const auto file = dir / "pinned.xvc";
+  xvc::save_file(doc, file);
+
+  DrapeOptions d;
+  d.garment = file;
+  d.spacing = 0.03;
+  d.time_limit = 0.5;
+  scene::SceneDef def = drape_scene(d);
+  scene::Scene s = dress::build(def);
+  ASSERT_EQ(s.pinned.size(), 1u);
+  const int held = s.pinned.front();
+  const scene::PieceInfo* front = nullptr;
+  for (const auto& p : s.pieces)
+    if (p.name == "FRONT_38") front = &p;
+  ASSERT_NE(front, nullptr);
+  EXPECT_GE(held, front->first);
+  EXPECT_LT(held, front->first + front->count);
+  const sim::Model& m = s.system->model();
+  auto integ = sim::make_integrator(s.integrator);
+  sim::State st = sim::initial_state(m);
+  const sim::VecX start = s.system->expand(st.x);
+  sim::run(*s.system, *integ, st, s.run, {});
+  const sim::VecX end = s.system->expand(st.x);
+  EXPECT_LT((sim::at(end, held) - sim::at(start, held)).norm(), 1e-9) << "the pinned particle moved";
+  double moved = 0;
+  for (int i = front->first; i < front->first + front->count; ++i)
+    moved = std::max(moved, (sim::at(end, i) - sim::at(start, i)).norm());
+  EXPECT_GT(moved, 0.02) << "the rest of the front moved";
+
+  // A pin 5 cm below the hem is refused when the garment is dressed.
+  std::string text;
+  {
+    std::ifstream in(file);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string mine = "id=\"" + id + "\" type=\"pin\" x=\"0\" y=\"0\"";
+  const auto at = text.find(mine);
+  ASSERT_NE(at, std::string::npos) << "the pin as saved: " << mine;
+  text.replace(at, mine.size(), "id=\"" + id + "\" type=\"pin\" x=\"0\" y=\"-0.05\"");
+  std::ofstream(dir / "far.xvc") << text;
+  d.garment = dir / "far.xvc";
+  try {
+    dress::build(drape_scene(d));
+    ADD_FAILURE() << "a pin off the piece was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(id), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("from the cloth of FRONT"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -7,6 +8,7 @@
 #include "fixtures.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/pattern/contour.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/validate.hpp"
 
@@ -742,6 +744,60 @@ TEST(AddNotch, PutsANewNotchOnAVertexCuttingInwards) {
   stack.execute(std::make_unique<DeleteNode>(id));
   EXPECT_EQ(doc.find(id), nullptr);
   EXPECT_EQ(to_piece(doc, "pattern1").notches.size(), notches);
+  while (stack.can_undo()) stack.undo();
+  EXPECT_EQ(doc.root(), before.root());
+}
+
+// A pin (POSITION type="pin"): written at its point inside the piece, read
+// back by pins_of, valid against the schema and the rules, kept where the
+// piece's cloth is when the pattern turns; refused off the piece (naming the
+// pattern and how far off) and for a non-finite point; removed by DeleteNode.
+TEST(AddPin, HoldsAPointOfThePieceAndRefusesOneOffIt) {
+  Document doc = full_document();
+  const Document before = doc;
+  const Piece a = to_piece(doc, "pattern1");
+  Vec2 centre = Vec2::Zero();
+  for (const auto& c : a.boundary) centre += c.p;
+  centre /= static_cast<double>(a.boundary.size());
+  ASSERT_TRUE(vgd::pattern::point_in_outline(a.boundary, centre));
+  UndoStack stack(doc);
+  const std::string id = stack.execute(std::make_unique<AddPin>("pattern1", std::array{centre.x(), centre.y()}));
+  const Node* added = doc.find(id);
+  ASSERT_NE(added, nullptr);
+  EXPECT_EQ(added->attribute("type"), "pin");
+  EXPECT_NEAR((xy(*added) - centre).norm(), 0.0, 1e-12);
+  const auto pins = pins_of(*doc.find("pattern1"));
+  ASSERT_EQ(pins.size(), 1u);
+  EXPECT_EQ(pins[0].id, id);
+  EXPECT_NEAR(pins[0].x, centre.x(), 1e-12);
+  EXPECT_FALSE(check(doc).has_errors()) << dump(check(doc));
+  const auto valid = validate_string(save_string(doc), "pin.xvc", schema());
+  EXPECT_FALSE(valid.has_errors()) << dump(valid);
+  EXPECT_EQ(to_piece(doc, "pattern1").boundary.size(), a.boundary.size()) << "the outline is untouched";
+
+  // The point on an outline vertex is taken; 1 cm outside it is not.
+  const Vec2 v = a.boundary[0].p;
+  EXPECT_NO_THROW(stack.execute(std::make_unique<AddPin>("pattern1", std::array{v.x(), v.y()})));
+  const Vec2 out = v + 0.01 * (v - centre).normalized();
+  ASSERT_FALSE(vgd::pattern::point_in_outline(a.boundary, out));
+  try {
+    stack.execute(std::make_unique<AddPin>("pattern1", std::array{out.x(), out.y()}));
+    ADD_FAILURE() << "a pin off the piece was added";
+  } catch (const vgd::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pattern1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mm outside the piece"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(stack.execute(std::make_unique<AddPin>("pattern1", std::array{std::nan(""), 0.0})), vgd::Error);
+
+  // A quarter turn of the pattern turns its pin with it: still inside.
+  stack.execute(std::make_unique<RotatePattern>("pattern1", 90.0));
+  const Node* turned = doc.find(id);
+  ASSERT_NE(turned, nullptr);
+  EXPECT_TRUE(vgd::pattern::point_in_outline(to_piece(doc, "pattern1").boundary, xy(*turned)));
+  EXPECT_GT((xy(*turned) - centre).norm(), 1e-4) << "moved with the piece";
+
+  stack.execute(std::make_unique<DeleteNode>(id));
+  EXPECT_EQ(doc.find(id), nullptr);
   while (stack.can_undo()) stack.undo();
   EXPECT_EQ(doc.root(), before.root());
 }

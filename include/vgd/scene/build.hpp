@@ -69,6 +69,9 @@ struct MadePiece {
   std::string material;
   std::string pattern;  // the PATTERN it was cut from, in its garment document
   int copy = 0;         // which copy of that pattern (its arrangement's index)
+  // Particles (of this piece) its document pins where they were placed
+  // (xvc::Pin): held there by a pin group of their own.
+  std::vector<int> pinned;
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;

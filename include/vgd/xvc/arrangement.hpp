@@ -45,6 +45,17 @@ const std::vector<std::string_view>& arrangement_sides();
 
 // The arrangements stored in a PATTERN, in document order.
 std::vector<Arrangement> arrangements_of(const Node& pattern);
+
+// A pin (POSITION type="pin" in a PATTERN): the cloth at this point of the
+// piece (x, y: m, in the pattern's frame) is held where the arrangement puts
+// it while the garment drapes (seed 000's constrictions: a coat hanger, a
+// flagstaff). Each copy of the pattern is held at its own point.
+struct Pin {
+  std::string id;
+  double x = 0, y = 0;
+};
+// The pins stored in a PATTERN, in document order.
+std::vector<Pin> pins_of(const Node& pattern);
 // A POSITION element (no id: AddNode gives one).
 Node arrangement_node(const Arrangement& a);
 

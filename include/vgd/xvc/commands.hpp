@@ -422,6 +422,22 @@ class SetGrainLine : public Command {
 // or draping; rotating or mirroring the pattern keeps it, a copy has none.
 std::optional<std::array<double, 2>> sheet_position(const Node& pattern);
 
+// Adds a pin to a PATTERN (POSITION type="pin", arrangement.hpp): the cloth
+// at `at` (m, in the pattern's frame) is held where the arrangement puts it
+// while the garment drapes. Refused for a non-finite point or one more than
+// 1 mm outside the piece's outline. Returns the new pin's id (DeleteNode
+// removes it).
+class AddPin : public Command {
+ public:
+  AddPin(std::string pattern_id, std::array<double, 2> at);
+  std::string label() const override;
+  std::string apply(Editor& edit) override;
+
+ private:
+  std::string pattern_;
+  std::array<double, 2> at_;
+};
+
 // Undoable: sets the PATTERN's sheet position, or removes it (nullopt).
 // Refused for a non-finite coordinate. Returns the pattern id.
 class SetSheetPosition : public Command {
