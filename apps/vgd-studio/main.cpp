@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
   app.add_flag("--headless", o.headless, "No window: draw off-screen (OSMesa), for scripts and screenshots");
   app.add_option("--script", o.script,
                  "Run these studio commands, off-screen with --headless, else in a window (open, save, export-vrml, click, click-stretch, "
-                 "click-piece, drop-piece, drag-point, drag-arranged, key, type, frames, frames-timed, wait-drape, screenshot, "
+                 "click-piece, drop-piece, drag-point, drag-arranged, pin-arranged, key, type, frames, frames-timed, wait-drape, screenshot, "
                  "expect-status; docs/studio.md)")
       ->check(CLI::ExistingFile);
   app.add_option("--avatar", o.avatar, "Body to drape on (OBJ, PLY, STL, glTF/GLB, FBX, Collada) instead of the mannequin")

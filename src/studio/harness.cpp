@@ -345,6 +345,13 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         const auto r = studio().arranged_piece_on_screen(pattern_id);
         if (!r) fail(pattern_id + " cannot be taken in the 3-D view: it is not arranged (click Arrange first) or other pieces cover it from this view");
         drag(r->cx(), r->cy(), r->cx() + dx, r->cy() + dy, 8, how == "shift", how == "alt");
+      } else if (cmd == "pin-arranged") {
+        // pin-arranged PATTERN: an Alt+click on an arranged piece, where drag-arranged takes it.
+        const std::string pattern_id(trim(arg));
+        if (pattern_id.empty()) fail("give the pattern: pin-arranged pattern9");
+        const auto r = studio().arranged_piece_on_screen(pattern_id);
+        if (!r) fail(pattern_id + " cannot be taken in the 3-D view: it is not arranged (click Arrange first) or other pieces cover it from this view");
+        click_at(r->cx(), r->cy(), false, true);
       } else if (cmd == "key") {
         key(arg);
       } else if (cmd == "type") {
@@ -372,7 +379,7 @@ void Harness::run_script(const fs::path& script, std::ostream* report) {
         if (studio().status().find(arg) == std::string::npos)
           fail("the status bar says \"" + studio().status() + "\", not \"" + arg + "\"");
       } else {
-        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, drag-arranged, key, type, frames, "
+        fail("unknown command (open, save, export-vrml, click, click-stretch, click-piece, drop-piece, drag-point, drag-arranged, pin-arranged, key, type, frames, "
              "frames-timed, "
              "wait-drape, screenshot, expect-status)");
       }

@@ -29,6 +29,7 @@
 #include "vgd/core/units.hpp"
 #include "vgd/io/vrml/looks.hpp"
 #include "vgd/io/vrml/vrml.hpp"
+#include "vgd/mesh/mesh.hpp"
 #include "vgd/mesh/surface.hpp"
 #include "vgd/pattern/contour.hpp"
 #include "vgd/render/fit_map.hpp"
@@ -52,7 +53,8 @@ namespace {
 
 constexpr float kPickRadius = 8.0f;  // px: how near the mouse a stretch must be to pick it
 constexpr float kPointRadius = 6.0f;  // px: how near an outline point must be to grab it
-constexpr float kDropRadius = 18.0f;  // px: how near an arrangement point a piece must be let go to drop on it
+constexpr float kDropRadius = 18.0f;
+constexpr float kClickTravel = 3.0f;  // px: a press let go within this of where it was made is a click  // px: how near an arrangement point a piece must be let go to drop on it
 constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview renders
 
 // One stretch of a piece's outline as the pattern view draws it.
@@ -78,6 +80,7 @@ struct PieceView {
     double angle_deg = 0;  // the cut's direction
   };
   std::vector<NotchView> notches;
+  std::vector<pattern::Vec2> pins;  // m, laid out: its pins (xvc::Pin)
 };
 
 const char* kQualityNames[] = {"preview", "standard", "precise"};
@@ -292,6 +295,11 @@ struct Studio::Impl {
   std::vector<dress::ArrangementPoint> arrange_points;
   std::vector<std::pair<std::string, int>> arranged_pieces;  // per cloth piece: its PATTERN and copy
   std::vector<int> particle_piece;                           // per cloth particle: its piece
+  struct ArrangedPin {
+    int particle = -1;       // the cloth particle it holds
+    std::string pattern, id;  // its PATTERN and POSITION
+  };
+  std::vector<ArrangedPin> arranged_pins;  // the document's pins (xvc::Pin), on the arranged cloth
   std::optional<std::string> piece_drag;  // a piece dragged from the pattern view (moved on it, or dropped on the body)
   ImVec2 piece_drag_from;                 // where the drag started
   ImVec2 canvas_lo, canvas_hi;            // the pattern view on screen
@@ -301,6 +309,8 @@ struct Studio::Impl {
     // round the body to another side, Alt+drag moves it off the body (or nearer).
     enum class How { along, around, off } how = How::along;
     int piece = 0;
+    int particle = -1;   // the particle the press took
+    float travel = 0;    // px: the furthest the mouse went from the press (an Alt+click pins)
     ImVec2 from;
     double depth = 0;
     std::vector<std::array<float, 3>> start;  // the cloth's positions when it was taken
@@ -591,6 +601,7 @@ struct Studio::Impl {
           const auto x = parse_double(c.attribute("x")), y = parse_double(c.attribute("y"));
           if (x && y) r.view.notches.push_back({std::string(c.id()), pattern::Vec2(*x, *y), parse_double(c.attribute("angle")).value_or(0.0)});
         }
+      for (const auto& pin : xvc::pins_of(*p)) r.view.pins.emplace_back(pin.x, pin.y);
       raw.push_back(std::move(r));
     }
     if (raw.empty()) return;
@@ -630,6 +641,7 @@ struct Studio::Impl {
         if (raw[i].view.grain)
           for (auto& q : *raw[i].view.grain) q += shift;
         for (auto& nv : raw[i].view.notches) nv.at += shift;
+        for (auto& q : raw[i].view.pins) q += shift;
         raw[i].view.centre = 0.5 * (raw[i].lo + raw[i].hi) + shift;
         raw[i].view.shift = shift;
         x += raw[i].hi.x() - raw[i].lo.x() + gap;
@@ -1148,6 +1160,10 @@ struct Studio::Impl {
         }
         if (pv.grain) draw_grain(dl, pv, mouse);
         draw_notches(dl, pv, mouse);
+        for (const auto& q : pv.pins) {  // pins: dark red squares, as in the 3-D view
+          const ImVec2 c = to_screen(q);
+          dl->AddRectFilled({c.x - 3, c.y - 3}, {c.x + 3, c.y + 3}, rgb(170, 20, 30));
+        }
         const ImVec2 c = to_screen(pv.centre);
         const ImVec2 ts = ImGui::CalcTextSize(pv.name.c_str());
         dl->AddText({c.x - ts.x / 2, c.y - ts.y / 2}, rgb(90, 90, 90), pv.name.c_str());
@@ -2106,11 +2122,26 @@ struct Studio::Impl {
       LiveCloth c;
       arranged_pieces.clear();
       particle_piece.clear();
+      arranged_pins.clear();
       for (const auto& [index, mc] : made)
         for (const auto& mp : mc.pieces) {
           const int first = static_cast<int>(c.positions.size()), k = static_cast<int>(c.pieces.size());
           c.pieces.push_back(mp.name);
           arranged_pieces.emplace_back(mp.pattern, mp.copy);
+          // The document's pins on this piece: the particles the drape holds (dress_garments).
+          if (const xvc::Node* pat = arrange_doc.find(mp.pattern)) {
+            const auto pins = xvc::pins_of(*pat);
+            const mesh::MaterialFrame f =
+                pins.empty() ? mesh::MaterialFrame{} : mesh::material_frame(xvc::to_piece(arrange_doc, mp.pattern));
+            for (const auto& pin : pins) {
+              const pattern::Vec2 uv = mesh::to_material(f, pattern::Vec2(pin.x, pin.y));
+              int best = -1;
+              double d = 1e300;
+              for (int i = 0; i < static_cast<int>(mp.model.uv.size()); ++i)
+                if (const double e = (mp.model.uv[i] - uv).norm(); e < d) d = e, best = i;
+              if (best >= 0) arranged_pins.push_back({first + best, mp.pattern, pin.id});
+            }
+          }
           for (Eigen::Index i = 0; i + 2 < mp.model.x0.size(); i += 3) {
             c.positions.push_back({static_cast<float>(mp.model.x0[i]), static_cast<float>(mp.model.x0[i + 1]),
                                    static_cast<float>(mp.model.x0[i + 2])});
@@ -2191,6 +2222,7 @@ struct Studio::Impl {
     const ImGuiIO& io = ImGui::GetIO();
     l.how = io.KeyShift ? Lift::How::around : io.KeyAlt ? Lift::How::off : Lift::How::along;
     l.piece = particle_piece[static_cast<std::size_t>(hit->first)];
+    l.particle = hit->first;
     l.from = mouse;
     l.depth = hit->second;
     l.start = cloth.positions;
@@ -2199,6 +2231,8 @@ struct Studio::Impl {
 
   void follow_lift(const ImVec2& mouse, const ImVec2& origin) {
     Lift& l = *lifting;
+    l.travel = std::max(l.travel, std::hypot(mouse.x - l.from.x, mouse.y - l.from.y));
+    if (l.how == Lift::How::off && l.travel < kClickTravel) return;  // an Alt+click, so far
     const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
     const auto list = current_arrangements(pattern_id);
     if (static_cast<std::size_t>(copy) >= list.size() || !arrange_body) return;
@@ -2242,6 +2276,11 @@ struct Studio::Impl {
   void drop_lift() {
     const Lift l = *lifting;
     lifting.reset();
+    if (l.how == Lift::How::off && l.travel < kClickTravel) {
+      cloth.positions = l.start;
+      preview_dirty = true;
+      return toggle_document_pin(l.particle);
+    }
     const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
     auto list = current_arrangements(pattern_id);
     if (l.how != Lift::How::along && l.to && static_cast<std::size_t>(copy) < list.size() && doc.find(pattern_id)) {
@@ -2269,6 +2308,41 @@ struct Studio::Impl {
     run(std::make_unique<xvc::SetArrangements>(pattern_id, list));
     say(std::string(doc.find(pattern_id)->attribute("piece")) + " moved along the " + a.segment + " from " +
         format_fixed(before, 3) + " to " + format_fixed(a.height, 3) + " m.");
+  }
+
+  // An Alt+click on an arranged piece: a pin in the document at the point of
+  // the piece the click took (xvc::AddPin: the cloth there is held where it
+  // is arranged while the garment drapes); on one of its pins, drawn within
+  // 8 px, that pin removed. One undo step either way.
+  void toggle_document_pin(int particle) {
+    if (particle < 0 || static_cast<std::size_t>(particle) >= particle_piece.size()) return;
+    const auto taken = particle_screen(particle);
+    for (const auto& pin : arranged_pins) {
+      const auto q = particle_screen(pin.particle);
+      if (!q || !taken || particle_piece[static_cast<std::size_t>(pin.particle)] != particle_piece[static_cast<std::size_t>(particle)] ||
+          std::hypot(q->x - taken->x, q->y - taken->y) > 8)
+        continue;
+      if (!doc.find(pin.id)) return say("This pin is not in the document (the drape made this piece from it).", true);
+      run(std::make_unique<xvc::DeleteNode>(pin.id));
+      return say("Pin " + pin.id + " removed from " + std::string(doc.find(pin.pattern)->attribute("piece")) + ".");
+    }
+    const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(particle_piece[static_cast<std::size_t>(particle)])];
+    if (!doc.find(pattern_id))
+      return say("This piece is made for the drape from the document's pieces (" + pattern_id +
+                     " is not in it): pin it on its own pattern.",
+                 true);
+    const mesh::MaterialFrame f = mesh::material_frame(xvc::to_piece(doc, pattern_id));
+    const auto& uv = cloth.uv[static_cast<std::size_t>(particle)];
+    const pattern::Vec2 p = f.origin + uv[0] * f.warp + uv[1] * f.weft;
+    try {
+      const std::string id = undo->execute(std::make_unique<xvc::AddPin>(pattern_id, std::array{p.x(), p.y()}));
+      changed();
+      say(std::string(doc.find(pattern_id)->attribute("piece")) + " pinned at (" + format_fixed(100 * p.x(), 1) + ", " +
+          format_fixed(100 * p.y(), 1) + ") cm of its pattern (" + id +
+          "): held where it is arranged while the garment drapes. Alt+click the pin to remove it.");
+    } catch (const std::exception& e) {
+      say(std::string("Pin not added: ") + e.what(), true);
+    }
   }
 
   void toggle_pause() {
@@ -2390,6 +2464,12 @@ struct Studio::Impl {
       dl->AddCircleFilled(c, hot ? 8.0f : 5.0f, hot ? rgb(240, 150, 20) : rgb(30, 160, 150));
       dl->AddCircle(c, hot ? 8.0f : 5.0f, rgb(20, 60, 60), 0, 1.5f);
     }
+    // The document's pins: dark red squares, as a drape's pins are drawn.
+    for (const auto& pin : arranged_pins)
+      if (const auto q = particle_screen(pin.particle)) {
+        const ImVec2 c{origin.x + static_cast<float>(q->x), origin.y + static_cast<float>(q->y)};
+        dl->AddRectFilled({c.x - 3, c.y - 3}, {c.x + 3, c.y + 3}, rgb(170, 20, 30));
+      }
     if (piece_drag) drop_target = near;
     if (near) {
       const xvc::Node* dragged = piece_drag ? doc.find(*piece_drag) : nullptr;

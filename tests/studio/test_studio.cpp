@@ -673,6 +673,43 @@ TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
   EXPECT_TRUE(h.studio().document() == original);
 }
 
+// Pins in the document while arranging: an Alt+click on the arranged front
+// (a click, not a drag: the clearance stays) adds a POSITION type="pin" at
+// the point of the pattern the click took, inside the front's outline; the
+// drape then holds that particle where it is arranged. An Alt+click on the
+// pin removes it; each is one undo step.
+TEST(Studio, ADocumentPinIsAddedAndRemovedWhileArranging) {
+  TestHarness h;
+  const auto [front, original] = arrange_the_tshirt(h);
+  ASSERT_FALSE(front.empty()) << h.studio().status();
+  const auto at = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(at.has_value());
+  const auto clearance = vgd::xvc::arrangements_of(*h.studio().document().find(front)).at(0).clearance;
+
+  h.click_at(at->cx(), at->cy(), false, /*alt=*/true);
+  h.frames(2);
+  const auto pins = vgd::xvc::pins_of(*h.studio().document().find(front));
+  ASSERT_EQ(pins.size(), 1u) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("pinned at"), std::string::npos) << h.studio().status();
+  const auto outline = vgd::xvc::to_piece(h.studio().document(), front).boundary;
+  EXPECT_TRUE(vgd::pattern::point_in_outline(outline, {pins[0].x, pins[0].y}));
+  EXPECT_DOUBLE_EQ(vgd::xvc::arrangements_of(*h.studio().document().find(front)).at(0).clearance, clearance)
+      << "a click is not a move off the body";
+  ASSERT_TRUE(h.studio().arranging()) << h.studio().status();
+
+  h.click_at(at->cx(), at->cy(), false, /*alt=*/true);
+  h.frames(2);
+  EXPECT_TRUE(vgd::xvc::pins_of(*h.studio().document().find(front)).empty()) << h.studio().status();
+  EXPECT_NE(h.studio().status().find("removed"), std::string::npos) << h.studio().status();
+
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_EQ(vgd::xvc::pins_of(*h.studio().document().find(front)).size(), 1u);
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
+}
+
 // Pulling the cloth by hand: Ctrl+press on the skirt's front hem in the 3-D
 // view while it drapes takes hold of a particle there; the mouse moved 60 px
 // to the right and held for half a second of simulated time drags that
