@@ -4,6 +4,8 @@
 // checks the drape's figures against their limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -385,6 +387,46 @@ TEST(CliDrape, TShirtOnAnImportedBodyFindsItsArms) {
   EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
   EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
   EXPECT_TRUE(c["passed"].get<bool>());
+}
+
+// MakeHuman's body from Debian's assimp-testmodels (a Collada export it was
+// not written for: helper parts, arms hanging forward and out): the skirt
+// rests on it with every check passed, on its hips. The T-shirt sews onto
+// it, its sleeves on the arms, and is not passed yet: a sleeve crumples
+// through itself as it is sewn onto an arm held in front of the trunk (as
+// on the mannequin with its arms swung forward; docs/avatar.md). Listed so
+// that a change either way shows here.
+TEST(CliDrape, GarmentsOnMakeHumansBody) {
+  const std::filesystem::path body = "/usr/share/assimp/models/Collada/human.zae";
+  if (!std::filesystem::exists(body)) GTEST_SKIP() << body << " not installed (Debian package assimp-testmodels)";
+  const auto dir = scratch_dir("drape-makehuman");
+  const auto skirt = run_vgd({"--threads", "1", "drape", (source_dir() / "data/garments/a-line-skirt.xvc").string(),
+                              "--avatar", body.string(), "-o", (dir / "skirt").string()});
+  EXPECT_EQ(skirt.code, 0) << skirt.err;
+  EXPECT_NE(skirt.err.find("left out 4 loose parts"), std::string::npos) << skirt.err;
+  const json c = read_json(dir / "skirt" / "certificate.json");
+  EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
+  EXPECT_EQ(c["stop"]["reason"], "rest");
+  EXPECT_EQ(c["triangle_intersections"].get<int>(), 0);
+  for (const auto& p : c["placement"]) EXPECT_EQ(p["segment"], "hips") << p.dump();
+
+  const auto tee = run_vgd({"--threads", "1", "drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--avatar",
+                            body.string(), "-o", (dir / "tee").string(), "--time-limit", "3"});
+  EXPECT_EQ(tee.code, 3) << tee.err;
+  const json t = read_json(dir / "tee" / "certificate.json");
+  std::vector<std::string> segments;
+  for (const auto& p : t["placement"]) segments.push_back(p["segment"].get<std::string>());
+  std::sort(segments.begin(), segments.end());
+  EXPECT_EQ(segments, (std::vector<std::string>{"left-arm", "right-arm", "torso", "torso"}));
+  EXPECT_FALSE(t["passed"].get<bool>());
+  EXPECT_GT(t["triangle_intersections"].get<int>(), 0) << "the sleeve through itself";
+  for (const auto& f : t["failures"]) {
+    const std::string k = f["class"].get<std::string>();
+    EXPECT_TRUE(k == "no rest" || k == "seams open" || k == "penetration" || k == "self-intersection" ||
+                k == "over-stretched")
+        << f.dump();
+    if (k == "self-intersection") EXPECT_NE(f["detail"].get<std::string>().find("SLEEVE"), std::string::npos) << f.dump();
+  }
 }
 
 // Bodies in other poses as files bring them: vgd's size-38 mannequin in a
