@@ -27,8 +27,8 @@ vgd::cli::Registrar reg{"place", 36, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("-o,--output", o->output, "XVC file to write (atomically)");
   sub->add_flag("--auto", o->automatic, "Suggest an arrangement for every pattern from its name");
   sub->add_option("--set", o->sets,
-                  "PIECE_OR_PATTERN=SEGMENT:SIDE:HEIGHT[:CLEARANCE[:ANGLE[:flip]]], e.g. FRONT=torso:front:1.25:0.03 "
-                  "(a piece name sets it in every size)");
+                  "PIECE_OR_PATTERN=SEGMENT:SIDE[±DEG]:HEIGHT[:CLEARANCE[:ANGLE[:flip]]], e.g. FRONT=torso:front:1.25:0.03 "
+                  "or POCKET=torso:front+30:1.1 (30° further round, towards the left) (a piece name sets it in every size)");
   sub->add_option("--neck-height", o->heights.neck_point_height, "World height of the neck point, m (for --auto)")->capture_default_str();
   sub->add_option("--waist-height", o->heights.waist_height, "World height of the waist, m (for --auto)")->capture_default_str();
   sub->add_flag("--list", o->list, "Print each pattern's arrangements");
@@ -65,7 +65,8 @@ vgd::cli::Registrar reg{"place", 36, [](CLI::App& app, vgd::cli::Common& common)
       for (const auto* p : doc.patterns())
         for (const auto& a : vgd::xvc::arrangements_of(*p))
           std::cout << p->id() << "  " << p->attribute("piece") << " " << p->attribute("size") << "  " << a.segment << ":"
-                    << a.side << ":" << vgd::format_double(a.height) << ":" << vgd::format_double(a.clearance)
+                    << a.side << (a.around_deg > 0 ? "+" : "") << (a.around_deg != 0 ? vgd::format_double(a.around_deg) : "")
+                    << ":" << vgd::format_double(a.height) << ":" << vgd::format_double(a.clearance)
                     << (a.angle_deg != 0 ? ":" + vgd::format_double(a.angle_deg) : "") << (a.flip ? " flip" : "") << "\n";
     if (!o->output.empty()) {
       vgd::xvc::save_file(doc, o->output);

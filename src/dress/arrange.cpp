@@ -140,10 +140,9 @@ body::Vec3 side_direction(const xvc::Arrangement& a, const Avatar& avatar) {
   const body::Vec3 up = on_limb(a.segment) ? body::Vec3(-axis) : axis;  // the pattern's up, as place_piece has it
   const body::Vec3 e1 = (s->front - s->front.dot(axis) * axis).normalized();
   const body::Vec3 e2 = up.cross(e1).normalized();
-  if (a.side == "back") return -e1;
-  if (a.side == "left") return e2;
-  if (a.side == "right") return -e2;
-  return e1;
+  const body::Vec3 d = a.side == "back" ? body::Vec3(-e1) : a.side == "left" ? e2 : a.side == "right" ? body::Vec3(-e2) : e1;
+  const double t = a.around_deg * std::numbers::pi / 180.0;
+  return std::cos(t) * d + std::sin(t) * up.cross(d);
 }
 
 xvc::Arrangement turned_by(xvc::Arrangement a, const Avatar& avatar, double angle) {
@@ -154,13 +153,20 @@ xvc::Arrangement turned_by(xvc::Arrangement a, const Avatar& avatar, double angl
   const body::Vec3 to = std::cos(angle) * d + std::sin(angle) * up.cross(d);  // d is normal to up
   std::string best = a.side;
   double most = -2;
+  xvc::Arrangement plain = a;
+  plain.around_deg = 0;
   for (const char* side : {"front", "left", "back", "right"}) {
-    xvc::Arrangement t = a;
-    t.side = side;
-    const double c = to.dot(side_direction(t, avatar));
+    plain.side = side;
+    const double c = to.dot(side_direction(plain, avatar));
     if (c > most + 1e-12) most = c, best = side;
   }
+  // The rest of the turn past that side, within an eighth of a turn; a
+  // piece let go within kSnapToSide of a side faces it square.
+  plain.side = best;
+  const body::Vec3 sd = side_direction(plain, avatar);
+  const double rest = std::atan2(to.dot(up.cross(sd)), to.dot(sd)) * 180.0 / std::numbers::pi;
   a.side = best;
+  a.around_deg = std::abs(rest) < kSnapToSide ? 0.0 : rest;
   return a;
 }
 

@@ -250,6 +250,7 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   if (ar.side == "back") theta0 = M_PI;
   else if (ar.side == "left") theta0 = M_PI / 2;
   else if (ar.side == "right") theta0 = -M_PI / 2;
+  theta0 += ar.around_deg * M_PI / 180.0;
   // e2 = up × front: on the trunk the body's left. On a limb it is front × axis,
   // which turns with the limb: a left arm's outside (+X hanging down) is its
   // top in a T-pose (+Y), so a sleeve's cap stays on the shoulder's side from

@@ -2247,8 +2247,9 @@ struct Studio::Impl {
       const auto& c = *preview_camera;
       const body::Vec3 toward(c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]);
       l.to = dress::turned_by(a, *arrange_body, dress::drag_turn(a, *arrange_body, delta, toward.normalized()));
-      ImGui::SetTooltip("%s", (l.to->side == a.side ? std::string("Drag round the body to turn the piece to another side")
-                                                    : "Let go to turn it to the " + a.segment + "'s " + l.to->side)
+      const bool same = l.to->side == a.side && std::abs(l.to->around_deg - a.around_deg) < 0.5;
+      ImGui::SetTooltip("%s", (same ? std::string("Drag round the body to turn the piece")
+                                    : "Let go to turn it to the " + a.segment + "'s " + facing(*l.to))
                                   .c_str());
       return;
     }
@@ -2273,6 +2274,16 @@ struct Studio::Impl {
     preview_dirty = true;
   }
 
+  // The side a piece faces and how far past it: "left", "left turned 20° towards its back".
+  static std::string facing(const xvc::Arrangement& a) {
+    if (a.around_deg == 0) return a.side;
+    static const std::vector<std::string> order = {"front", "left", "back", "right"};
+    const auto at = std::find(order.begin(), order.end(), a.side);
+    const std::size_t k = at == order.end() ? 0 : static_cast<std::size_t>(at - order.begin());
+    return a.side + " turned " + format_fixed(std::abs(a.around_deg), 0) + "° towards its " +
+           order[(k + (a.around_deg > 0 ? 1 : 3)) % 4];
+  }
+
   void drop_lift() {
     const Lift l = *lifting;
     lifting.reset();
@@ -2286,11 +2297,12 @@ struct Studio::Impl {
     if (l.how != Lift::How::along && l.to && static_cast<std::size_t>(copy) < list.size() && doc.find(pattern_id)) {
       auto& a = list[static_cast<std::size_t>(copy)];
       const xvc::Arrangement before = a;
-      if (l.to->side != before.side || std::abs(l.to->clearance - before.clearance) >= 1e-3) {
+      if (l.to->side != before.side || std::abs(l.to->around_deg - before.around_deg) >= 0.5 ||
+          std::abs(l.to->clearance - before.clearance) >= 1e-3) {
         a = *l.to;
         run(std::make_unique<xvc::SetArrangements>(pattern_id, list));
         const std::string name(doc.find(pattern_id)->attribute("piece"));
-        say(l.how == Lift::How::around ? name + " turned round the " + a.segment + " from its " + before.side + " to its " + a.side + "."
+        say(l.how == Lift::How::around ? name + " turned round the " + a.segment + " from its " + facing(before) + " to its " + facing(a) + "."
                                        : name + " moved off the body: clearance " + format_fixed(100 * before.clearance, 1) +
                                              " to " + format_fixed(100 * a.clearance, 1) + " cm.");
         return;

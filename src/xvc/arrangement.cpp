@@ -117,6 +117,7 @@ std::vector<Arrangement> arrangements_of(const Node& pattern) {
     if (c.has_attribute("clearance")) a.clearance = parse_double(c.attribute("clearance")).value_or(0.03);
     a.angle_deg = parse_double(c.attribute("angle")).value_or(0);
     a.flip = c.attribute("flip") == "true" || c.attribute("flip") == "1";
+    a.around_deg = parse_double(c.attribute("around")).value_or(0);
     out.push_back(a);
   }
   return out;
@@ -139,6 +140,7 @@ Node arrangement_node(const Arrangement& a) {
   n.set_attribute("height", format_double(a.height));
   n.set_attribute("clearance", format_double(a.clearance));
   if (a.flip) n.set_attribute("flip", "true");
+  if (a.around_deg != 0) n.set_attribute("around", format_double(a.around_deg));
   return n;
 }
 
@@ -386,10 +388,17 @@ Arrangement parse_arrangement(std::string_view spec, const pattern::Piece& piece
   const auto parts = split(std::string(spec), ':');
   const std::string where = "arrangement '" + std::string(spec) + "'";
   if (parts.size() < 3 || parts.size() > 6)
-    throw Error("", where, "expected SEGMENT:SIDE:HEIGHT[:CLEARANCE[:ANGLE[:flip]]], e.g. torso:front:1.25:0.03");
+    throw Error("", where, "expected SEGMENT:SIDE[±DEG]:HEIGHT[:CLEARANCE[:ANGLE[:flip]]], e.g. torso:front:1.25:0.03 or torso:left-20:1.25");
   Arrangement a;
   a.segment = trim(parts[0]);
   a.side = trim(parts[1]);
+  // SIDE+DEG or SIDE-DEG: that far further round the segment (around).
+  if (const auto sign = a.side.find_first_of("+-"); sign != std::string::npos && sign > 0) {
+    const auto v = parse_double(a.side.substr(sign));
+    if (!v || !std::isfinite(*v)) throw Error("", where, "the turn past the side '" + a.side.substr(sign) + "' is not a number of degrees");
+    a.around_deg = *v;
+    a.side = a.side.substr(0, sign);
+  }
   const auto& segs = arrangement_segments();
   const auto& sides = arrangement_sides();
   if (std::find(segs.begin(), segs.end(), a.segment) == segs.end())

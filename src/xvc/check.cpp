@@ -256,7 +256,7 @@ class Checker {
       for (const char* a : {"segment", "side", "height"})
         if (!n.has_attribute(a)) error(it, std::string("an arrangement needs ") + a);
     } else {
-      for (const char* a : {"segment", "side", "height", "clearance", "flip"})
+      for (const char* a : {"segment", "side", "height", "clearance", "flip", "around"})
         if (n.has_attribute(a)) error(it, std::string(a) + " applies only to arrangements");
     }
     if (n.has_attribute("pattern"))

@@ -215,6 +215,28 @@ TEST(Arrange, ATurnedPieceGoesToTheSideItIsDraggedTo) {
     EXPECT_GT(off.normalized().dot(dress::side_direction(t, a)), 0.9) << side;
   }
   EXPECT_GT(dress::side_direction(dress::turned_by(front, a, q), a).x(), 0.9) << "the body's left is +x";
+  // The rest of the turn past the side is kept (around, degrees), within an
+  // eighth of a turn; within 5° of a side the piece faces it square.
+  const std::map<double, double> rest = {{0.0, 0.0}, {0.7, 0.7 * 180 / std::numbers::pi},
+                                         {0.8, 0.8 * 180 / std::numbers::pi - 90}, {q, 0.0}, {-2.4, 180 - 2.4 * 180 / std::numbers::pi},
+                                         {0.05, 0.0}, {q + 0.1, 0.1 * 180 / std::numbers::pi}};
+  for (const auto& [angle, deg] : rest) EXPECT_NEAR(dress::turned_by(front, a, angle).around_deg, deg, 1e-6) << angle;
+  // A turned piece lies that far round: its middle 40° from the front towards the left.
+  const auto part = dress::turned_by(front, a, 0.7);
+  const Vec3 d = dress::side_direction(part, a);
+  EXPECT_NEAR(std::acos(std::clamp(d.dot(dress::side_direction(front, a)), -1.0, 1.0)), 0.7, 1e-9);
+  EXPECT_GT(d.x(), 0.5) << "towards the body's left";
+  {
+    const auto placed = dress::place_piece(nodes, part, a);
+    Vec3 mid = Vec3::Zero();
+    for (const auto& p : placed.points) mid += p / static_cast<double>(placed.points.size());
+    Vec3 off = mid - placed.axis_point;
+    off -= off.dot(placed.axis) * placed.axis;
+    EXPECT_GT(off.normalized().dot(d), 0.97);
+  }
+  const auto again = dress::turned_by(part, a, -0.7);
+  EXPECT_EQ(again.side, "front");
+  EXPECT_EQ(again.around_deg, 0.0) << "turned back, it faces the front square";
 
   // Drags seen from the front (looking along -z; the view's right is +x): 10 cm to the right.
   const Vec3 view(0, 0, -1), move(0.10, 0.02, 0.0);

@@ -671,6 +671,25 @@ TEST(Studio, AnArrangedPieceIsTurnedRoundTheBodyAndMovedOffIt) {
   h.key("ctrl+z");
   h.frame();
   EXPECT_TRUE(h.studio().document() == original);
+
+  // A shorter drag turns it part of the way: still on the front, turned
+  // towards the left by what the mouse went round (around), and shown there.
+  const auto start = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(start.has_value());
+  h.drag(start->cx(), start->cy(), start->cx() + 15, start->cy(), 8, /*shift=*/true);
+  h.frames(2);
+  const auto part = vgd::xvc::arrangements_of(*h.studio().document().find(front));
+  ASSERT_EQ(part.size(), 1u);
+  EXPECT_EQ(part[0].side, "front") << h.studio().status();
+  EXPECT_GT(part[0].around_deg, 5.0) << h.studio().status();
+  EXPECT_LT(part[0].around_deg, 45.0);
+  EXPECT_NE(h.studio().status().find("from its front to its front turned"), std::string::npos) << h.studio().status();
+  const auto shown = h.studio().arranged_piece_on_screen(front);
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_GT(shown->cx(), start->cx() + 5);
+  h.key("ctrl+z");
+  h.frame();
+  EXPECT_TRUE(h.studio().document() == original);
 }
 
 // Pins in the document while arranging: an Alt+click on the arranged front

@@ -89,6 +89,32 @@ TEST(Arrangement, RulesRefuseIncompleteOrMisplacedArrangements) {
   EXPECT_TRUE(a.flip);
 }
 
+// A piece turned part of the way round its segment: SIDE±DEG on the command
+// line is `around`, written and read back, valid against the schema and the
+// rules; on a notch it is refused like every arrangement attribute; a turn
+// that is not a number is refused naming it.
+TEST(Arrangement, APieceTurnedPastItsSideKeepsTheTurn) {
+  Document doc = from_style(pattern::draft_tshirt_style({pattern::TShirtMeasurements{}}));
+  const std::string id(doc.patterns()[0]->id());
+  const auto piece = to_piece(doc, id);
+  const auto a = parse_arrangement("torso:left-20:1.3", piece);
+  EXPECT_EQ(a.side, "left");
+  EXPECT_DOUBLE_EQ(a.around_deg, -20.0);
+  EXPECT_DOUBLE_EQ(parse_arrangement("torso:front+32.5:1.3", piece).around_deg, 32.5);
+  EXPECT_DOUBLE_EQ(parse_arrangement("torso:front:1.3", piece).around_deg, 0.0);
+  EXPECT_THROW(parse_arrangement("torso:front+x:1.3", piece), Error);
+  execute(doc, *std::make_unique<SetArrangements>(id, std::vector{a}));
+  EXPECT_FALSE(check(doc).has_errors());
+  const auto text = save_string(doc);
+  EXPECT_EQ(validate_string(text, "turned.xvc", default_schema_path()).count(vgd::Severity::error), 0u);
+  const auto back = arrangements_of(*load_string(text, "turned.xvc").find(id));
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_DOUBLE_EQ(back[0].around_deg, -20.0);
+  EXPECT_EQ(back[0].side, "left");
+  Node notch{"POSITION", {{"type", "notch"}, {"x", "0"}, {"y", "0"}, {"around", "10"}}, {}};
+  EXPECT_THROW(execute(doc, *std::make_unique<AddNode>(id, notch)), Error);
+}
+
 // A sleeve cut in two: each half on its own side of each arm, and a back half
 // that reaches 5 cm above the top of the seam it shares with the front half
 // (a tab past the shoulder point, as in MEN_CLASSIC_TEE) goes 5 cm further up

@@ -63,16 +63,19 @@ xvc::Arrangement moved(xvc::Arrangement a, const body::Avatar& avatar, const bod
 // faces on its segment, as place_piece lays a piece out: front is the
 // segment's front; left is the pattern's up × front (the body's left on the
 // trunk; on a limb it turns with the limb, so an arm's outside stays its
-// outside from A- to T-pose); back and right the opposites. Throws
-// vgd::Error when the avatar lacks the segment.
+// outside from A- to T-pose); back and right the opposites; turned by
+// `around_deg` from there. Throws vgd::Error when the avatar lacks the
+// segment.
 body::Vec3 side_direction(const xvc::Arrangement& a, const body::Avatar& avatar);
 
 // `a` turned round its segment by `angle` (rad; positive turns its front
-// towards its left, counter-clockwise seen from the pattern's up end) and
-// set on the side (front, left, back or right) nearest that direction: a
-// drag round the body turns a piece a quarter at a time, each once it has
-// gone an eighth of a turn. Throws vgd::Error when the avatar lacks the
+// towards its left, counter-clockwise seen from the pattern's up end): set
+// on the side (front, left, back or right) nearest the direction it then
+// faces, and `around_deg` the rest of the turn past that side (at most an
+// eighth of a turn either way; 0 within kSnapToSide, so a piece let go
+// near a side faces it square). Throws vgd::Error when the avatar lacks the
 // segment.
+inline constexpr double kSnapToSide = 5.0;  // deg
 xvc::Arrangement turned_by(xvc::Arrangement a, const body::Avatar& avatar, double angle);
 
 // The turn (rad, for turned_by) that lets `a`'s piece follow a drag: the

@@ -15,6 +15,9 @@
 //   angle      deg, counter-clockwise rotation of the pattern about the reference point
 //              that turns its "up" (towards the neck, or the shoulder for sleeves) to +y
 //   flip       true: the piece is mirrored (cut face down): its copy for the other side
+//   around     deg, further round the segment from `side` (positive turns the piece's
+//              middle from front towards left, counter-clockwise seen from the
+//              pattern's up end; default 0: facing the side itself)
 // Units: metres and degrees.
 #include <optional>
 #include <string>
@@ -37,6 +40,7 @@ struct Arrangement {
   double clearance = 0.03;        // m
   double angle_deg = 0;           // deg
   bool flip = false;
+  double around_deg = 0;          // deg: further round the segment from `side`
 };
 
 // The names the schema admits.
@@ -109,7 +113,8 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
     const Document& doc, const ArrangementOptions& opts = {});
 
-// "SEGMENT:SIDE:HEIGHT[:CLEARANCE[:ANGLE[:flip]]]", e.g. "torso:front:1.25:0.03".
+// "SEGMENT:SIDE[±DEG]:HEIGHT[:CLEARANCE[:ANGLE[:flip]]]", e.g. "torso:front:1.25:0.03",
+// "torso:left-20:1.25" (20° back from the left towards the front: around -20).
 // The reference point is filled in from `piece` (top centre). Throws vgd::Error.
 Arrangement parse_arrangement(std::string_view spec, const pattern::Piece& piece);
 
