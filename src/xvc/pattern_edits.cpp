@@ -506,7 +506,7 @@ std::string AddPin::apply(Editor& edit) {
   if (!pattern::point_in_outline(outline, q) && pattern::nearest_edge(outline, q).distance > 1e-3)
     throw Error(doc.name(), pattern_,
                 "the pin's point (" + format_double(q.x()) + ", " + format_double(q.y()) + ") m lies " +
-                    format_double(1000 * pattern::nearest_edge(outline, q).distance) + " mm outside the piece " +
+                    format_fixed(1000 * pattern::nearest_edge(outline, q).distance, 1) + " mm outside the piece " +
                     pattern_ + ": a pin holds the piece's own cloth");
   Node p = doc.at(path);
   std::size_t at = 0;  // after the pattern's sequences, annotations and positions
