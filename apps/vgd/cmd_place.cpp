@@ -31,7 +31,7 @@ vgd::cli::Registrar reg{"place", 36, [](CLI::App& app, vgd::cli::Common& common)
                   "or POCKET=torso:front+30:1.1 (30° further round, towards the left) (a piece name sets it in every size)");
   sub->add_option("--neck-height", o->heights.neck_point_height, "World height of the neck point, m (for --auto)")->capture_default_str();
   sub->add_option("--waist-height", o->heights.waist_height, "World height of the waist, m (for --auto)")->capture_default_str();
-  sub->add_flag("--list", o->list, "Print each pattern's arrangements");
+  sub->add_flag("--list", o->list, "Print each pattern's pins and arrangements");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     auto doc = vgd::xvc::load_file(o->input);
     std::vector<std::unique_ptr<vgd::xvc::Command>> cmds;
@@ -62,12 +62,16 @@ vgd::cli::Registrar reg{"place", 36, [](CLI::App& app, vgd::cli::Common& common)
       vgd::xvc::execute(doc, batch);
     }
     if (o->list)
-      for (const auto* p : doc.patterns())
+      for (const auto* p : doc.patterns()) {
+        for (const auto& pin : vgd::xvc::pins_of(*p))
+          std::cout << p->id() << "  " << p->attribute("piece") << " " << p->attribute("size") << "  pin " << pin.id << " at ("
+                    << vgd::format_double(pin.x) << ", " << vgd::format_double(pin.y) << ") m\n";
         for (const auto& a : vgd::xvc::arrangements_of(*p))
           std::cout << p->id() << "  " << p->attribute("piece") << " " << p->attribute("size") << "  " << a.segment << ":"
                     << a.side << (a.around_deg > 0 ? "+" : "") << (a.around_deg != 0 ? vgd::format_double(a.around_deg) : "")
                     << ":" << vgd::format_double(a.height) << ":" << vgd::format_double(a.clearance)
                     << (a.angle_deg != 0 ? ":" + vgd::format_double(a.angle_deg) : "") << (a.flip ? " flip" : "") << "\n";
+      }
     if (!o->output.empty()) {
       vgd::xvc::save_file(doc, o->output);
       vgd::cli::say(common, "wrote " + o->output);

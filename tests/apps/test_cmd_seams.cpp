@@ -64,4 +64,18 @@ TEST(CliPlace, AutoAndSet) {
   r = vgd::test::run_vgd("place placed.xvc --set FRONT=torso:up:1.25 -o bad.xvc", dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("unknown side"), std::string::npos) << r.err;
+  // A turn past the side, and a pin: both listed.
+  r = vgd::test::run_vgd("place placed.xvc --set FRONT=torso:left-20:1.25 -o turned.xvc", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string front;
+  const auto turned = vgd::xvc::load_file(dir / "turned.xvc");
+  for (const auto* p : turned.patterns())
+    if (p->attribute("piece") == "FRONT") front = std::string(p->id());
+  ASSERT_FALSE(front.empty());
+  ASSERT_EQ(vgd::test::run_vgd("edit turned.xvc -o pinned.xvc --pin " + front + "=0,0.3", dir).code, 0);
+  r = vgd::test::run_vgd("place pinned.xvc --list", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("torso:left-20:1.25"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pin pos"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at (0, 0.3) m"), std::string::npos) << r.out;
 }
