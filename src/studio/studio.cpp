@@ -53,8 +53,8 @@ namespace {
 
 constexpr float kPickRadius = 8.0f;  // px: how near the mouse a stretch must be to pick it
 constexpr float kPointRadius = 6.0f;  // px: how near an outline point must be to grab it
-constexpr float kDropRadius = 18.0f;
-constexpr float kClickTravel = 3.0f;  // px: a press let go within this of where it was made is a click  // px: how near an arrangement point a piece must be let go to drop on it
+constexpr float kDropRadius = 18.0f;  // px: how near an arrangement point a piece must be let go to drop on it
+constexpr float kClickTravel = 3.0f;  // px: a press let go within this of where it was made is a click
 constexpr double kPreviewInterval = 0.25;  // s of UI time between live preview renders
 
 // One stretch of a piece's outline as the pattern view draws it.
