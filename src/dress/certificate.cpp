@@ -1,6 +1,7 @@
 #include "vgd/dress/certificate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <limits>
@@ -185,7 +186,8 @@ std::vector<Failure> Certificate::failures() const {
   for (const auto& s : seams)
     if (s.closed != s.pairs)
       out.push_back({"seams open", s.name + ": " + std::to_string(s.closed) + "/" + std::to_string(s.pairs) +
-                                       " pairs closed, widest gap " + format_fixed(1000 * s.max_gap, 1) + " mm"});
+                                       " pairs closed, widest gap " + format_fixed(1000 * s.max_gap, 1) + " mm" +
+                                       (s.body_between ? ", the body between its two sides there" : "")});
   for (const auto& o : open_sides)
     if (o.widest_deg > open_limit_deg)
       out.push_back({"open side", "the garment is open at the wearer's " + o.side + " side from " + format_fixed(o.top, 2) +
@@ -359,15 +361,21 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     st.name = sp.name;
     st.pairs = static_cast<int>(sp.pairs.size());
     double sum = 0;
+    std::array<int, 2> widest{-1, -1};
     for (const auto& [a, b] : sp.pairs) {
       const bool merged = !rep.empty() && rep[a] == rep[b];
       const double gap = merged ? 0.0 : (points[a] - points[b]).norm();
       st.closed += merged || gap <= merge_distance;
-      if (gap > st.max_gap) st.widest_at = 0.5 * (points[a] + points[b]);
+      if (gap > st.max_gap) st.widest_at = 0.5 * (points[a] + points[b]), widest = {a, b};
       st.max_gap = std::max(st.max_gap, gap);
       sum += gap;
     }
     st.mean_gap = st.pairs ? sum / st.pairs : 0.0;
+    if (scene.avatar && st.closed < st.pairs && st.max_gap > merge_distance && widest[0] >= 0) {
+      std::vector<Vec3> line;
+      for (int k = 1; k < 8; ++k) line.push_back(points[widest[0]] + (k / 8.0) * (points[widest[1]] - points[widest[0]]));
+      for (const double d : mesh::penetration_depths(scene.avatar->surface, line)) st.body_between |= d > 0.002;
+    }
     out.seams.push_back(st);
   }
 
@@ -477,6 +485,7 @@ std::string to_json(const Certificate& c) {
     seams.push_back({{"name", s.name}, {"pairs", s.pairs}, {"closed", s.closed}, {"max_gap_m", s.max_gap},
                      {"mean_gap_m", s.mean_gap}});
     if (s.max_gap > 0) seams.back()["widest_at_m"] = json::array({s.widest_at.x(), s.widest_at.y(), s.widest_at.z()});
+    if (s.body_between) seams.back()["body_between"] = true;
   }
   j["seams"] = seams;
   json strain = json::array();
@@ -659,6 +668,10 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
     s.max_gap = r.number(r.at(seams[i], "max_gap_m", p), p + ".max_gap_m");
     s.mean_gap = r.number(r.at(seams[i], "mean_gap_m", p), p + ".mean_gap_m");
     if (seams[i].contains("widest_at_m")) s.widest_at = r.vec3(seams[i]["widest_at_m"], p + ".widest_at_m");
+    if (seams[i].contains("body_between")) {
+      if (!seams[i]["body_between"].is_boolean()) r.fail(p + ".body_between", "expected true or false");
+      s.body_between = seams[i]["body_between"].get<bool>();
+    }
     c.seams.push_back(std::move(s));
   }
   const json& strain = r.array(r.at(j, "strain", ""), "strain");

@@ -60,6 +60,11 @@ TEST_P(RealGarments, DressAsListed) {
   if (!*g.segments) return;
   if (std::string(g.fails).find("seams open") == std::string::npos)
     for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
+  else {  // why such a garment's seams stay open: the body between a seam's sides
+    bool between = false;
+    for (const auto& s : c["seams"]) between = between || (s["closed"] != s["pairs"] && s.value("body_between", false));
+    EXPECT_TRUE(between) << c["seams"].dump();
+  }
   std::vector<std::string> segments;
   for (const auto& p : c["placement"]) segments.push_back(p["segment"].get<std::string>());
   std::sort(segments.begin(), segments.end());

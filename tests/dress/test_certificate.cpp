@@ -67,6 +67,10 @@ TEST(Certificate, EachFailureIsNamedWithItsFigures) {
   c.crossings_by_pieces["BACK_38 / FRONT_38"] = 7;
   EXPECT_EQ(classes(c), "no rest|seams open|penetration|self-intersection|");
   EXPECT_NE(c.failures()[1].detail.find("left side seam: 12/30"), std::string::npos) << c.failures()[1].detail;
+  EXPECT_EQ(c.failures()[1].detail.find("the body between"), std::string::npos) << c.failures()[1].detail;
+  c.seams.front().body_between = true;  // a foot between an outseam's two sides at the hem
+  EXPECT_NE(c.failures()[1].detail.find(", the body between its two sides there"), std::string::npos)
+      << c.failures()[1].detail;
 
   c = good();
   c.open_sides.push_back({"left", 1.06, 0.92, 51.0});  // front and back hanging apart
@@ -144,7 +148,7 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   c.body_through_cloth = 3, c.max_body_through = 0.002, c.body_through_by_piece = {{"FRONT_38", 3}};
   c.body_through_opening = 0;
   c.crossings_by_pieces = {};
-  c.seams.push_back({"right side seam", 30, 12, 0.04, 0.01, Vec3(-0.2, 1.0, 0.0)});
+  c.seams.push_back({"right side seam", 30, 12, 0.04, 0.01, Vec3(-0.2, 1.0, 0.0), true});
   c.open_sides.push_back({"right", 1.1, 0.9, 41.5});
   c.contact = {120, 0.05, 3.5, {0.1, 1, 2, 3, 4}};
   c.times = {0.0, 0.04, 0.08}, c.kinetic_energy = {1e-3, 5e-4, 1e-7};
@@ -156,6 +160,8 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   EXPECT_EQ(classes(back), "seams open|open side|");
   EXPECT_EQ(back.seam_totals().closed, 42);
   EXPECT_EQ(back.seams[1].widest_at.x(), -0.2);
+  EXPECT_TRUE(back.seams[1].body_between);
+  EXPECT_FALSE(back.seams[0].body_between);
 }
 
 TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {

@@ -42,6 +42,10 @@ struct SeamState {
   int pairs = 0, closed = 0;  // closed: merged, or within the merge distance
   double max_gap = 0, mean_gap = 0;  // m over all pairs
   Vec3 widest_at = Vec3::Zero();     // m: midpoint of the pair with the largest gap (where to look)
+  // The body lies between the two sides of its widest open pair (a point of
+  // the straight line between them more than 2 mm inside it): the sides are
+  // held apart by the body, not by the cloth.
+  bool body_between = false;
 };
 
 struct ContactState {
