@@ -356,6 +356,8 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
   // Seams: a pair is closed when its two particles are one (merged) or as close.
   out.seams.clear();
   const auto& rep = scene.system->representative();
+  std::vector<Vec3> between;              // points between open seams' sides
+  std::vector<std::size_t> between_seam;  // the seam each is of
   for (const auto& sp : scene.seams) {
     SeamState st;
     st.name = sp.name;
@@ -371,12 +373,18 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
       sum += gap;
     }
     st.mean_gap = st.pairs ? sum / st.pairs : 0.0;
-    if (scene.avatar && st.closed < st.pairs && st.max_gap > merge_distance && widest[0] >= 0) {
-      std::vector<Vec3> line;
-      for (int k = 1; k < 8; ++k) line.push_back(points[widest[0]] + (k / 8.0) * (points[widest[1]] - points[widest[0]]));
-      for (const double d : mesh::penetration_depths(scene.avatar->surface, line)) st.body_between |= d > 0.002;
-    }
+    // Seven points of the straight line between the widest open pair, looked
+    // up in the body with every other open seam's (one query).
+    if (scene.avatar && st.closed < st.pairs && st.max_gap > merge_distance && widest[0] >= 0)
+      for (int k = 1; k < 8; ++k) {
+        between.push_back(points[widest[0]] + (k / 8.0) * (points[widest[1]] - points[widest[0]]));
+        between_seam.push_back(out.seams.size());
+      }
     out.seams.push_back(st);
+  }
+  if (!between.empty()) {
+    const std::vector<double> depth = mesh::penetration_depths(scene.avatar->surface, between);
+    for (std::size_t i = 0; i < depth.size(); ++i) out.seams[between_seam[i]].body_between |= depth[i] > 0.002;
   }
 
   // Strain per piece.

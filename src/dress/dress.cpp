@@ -100,8 +100,9 @@ namespace {
 // The mesh nodes the PATTERN's pins hold (xvc::Pin): each pin's nearest node,
 // which must lie within 2 cm of it (the mesh resamples the outline, so a pin
 // on the cut edge is a few millimetres from the nearest node).
-std::vector<int> pinned_nodes(const std::string& file, const xvc::Document& doc, const GarmentPiece& gp, Diagnostics& diag) {
-  std::vector<int> out;
+std::vector<std::pair<int, std::string>> pinned_nodes(const std::string& file, const xvc::Document& doc,
+                                                     const GarmentPiece& gp, Diagnostics& diag) {
+  std::vector<std::pair<int, std::string>> out;
   for (const auto& pin : xvc::pins_of(*doc.find(gp.pattern_id))) {
     const pattern::Vec2 q(pin.x, pin.y);
     int best = -1;
@@ -113,12 +114,10 @@ std::vector<int> pinned_nodes(const std::string& file, const xvc::Document& doc,
                   "the pin at (" + format_fixed(pin.x, 3) + ", " + format_fixed(pin.y, 3) + ") m is " +
                       (best < 0 ? std::string("on a piece with no cloth") : format_fixed(100 * d, 1) + " cm from the cloth of " + gp.name) +
                       ": move it onto the piece or delete it (vgd edit --delete-node " + pin.id + ")");
-    out.push_back(best);
+    out.emplace_back(best, pin.id);
     diag.info(file, pin.id, "pin: " + gp.name + " held at (" + format_fixed(pin.x, 3) + ", " + format_fixed(pin.y, 3) +
                                 ") m where its arrangement puts it");
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

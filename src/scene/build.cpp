@@ -519,10 +519,12 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
     for (const auto& info : s.pieces) {
       if (info.cloth != ci) continue;
       if (k < static_cast<int>(cloth.pieces.size()))
-        for (const int i : cloth.pieces[k].pinned) document_pins.push_back(info.first + i);
+        for (const auto& [i, id] : cloth.pieces[k].pinned) document_pins.push_back(info.first + i);
       ++k;
     }
   }
+  std::sort(document_pins.begin(), document_pins.end());
+  document_pins.erase(std::unique(document_pins.begin(), document_pins.end()), document_pins.end());
   s.pinned.insert(s.pinned.end(), document_pins.begin(), document_pins.end());
   std::sort(s.pinned.begin(), s.pinned.end());
   s.pinned.erase(std::unique(s.pinned.begin(), s.pinned.end()), s.pinned.end());

@@ -2129,19 +2129,7 @@ struct Studio::Impl {
           c.pieces.push_back(mp.name);
           arranged_pieces.emplace_back(mp.pattern, mp.copy);
           // The document's pins on this piece: the particles the drape holds (dress_garments).
-          if (const xvc::Node* pat = arrange_doc.find(mp.pattern)) {
-            const auto pins = xvc::pins_of(*pat);
-            const mesh::MaterialFrame f =
-                pins.empty() ? mesh::MaterialFrame{} : mesh::material_frame(xvc::to_piece(arrange_doc, mp.pattern));
-            for (const auto& pin : pins) {
-              const pattern::Vec2 uv = mesh::to_material(f, pattern::Vec2(pin.x, pin.y));
-              int best = -1;
-              double d = 1e300;
-              for (int i = 0; i < static_cast<int>(mp.model.uv.size()); ++i)
-                if (const double e = (mp.model.uv[i] - uv).norm(); e < d) d = e, best = i;
-              if (best >= 0) arranged_pins.push_back({first + best, mp.pattern, pin.id});
-            }
-          }
+          for (const auto& [node, id] : mp.pinned) arranged_pins.push_back({first + node, mp.pattern, id});
           for (Eigen::Index i = 0; i + 2 < mp.model.x0.size(); i += 3) {
             c.positions.push_back({static_cast<float>(mp.model.x0[i]), static_cast<float>(mp.model.x0[i + 1]),
                                    static_cast<float>(mp.model.x0[i + 2])});

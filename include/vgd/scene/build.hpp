@@ -69,9 +69,10 @@ struct MadePiece {
   std::string material;
   std::string pattern;  // the PATTERN it was cut from, in its garment document
   int copy = 0;         // which copy of that pattern (its arrangement's index)
-  // Particles (of this piece) its document pins where they were placed
-  // (xvc::Pin): held there by a pin group of their own.
-  std::vector<int> pinned;
+  // The particles (of this piece) its document's pins hold where they were
+  // placed (xvc::Pin), each with its POSITION's id: held there by a pin
+  // group of their own.
+  std::vector<std::pair<int, std::string>> pinned;
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;
