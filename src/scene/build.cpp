@@ -13,6 +13,7 @@
 #include "vgd/sim/effects/bending.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
 #include "vgd/sim/effects/seam.hpp"
+#include "vgd/sim/effects/strain_limit.hpp"
 #include "vgd/sim/effects/strain_rosette.hpp"
 #include "vgd/xvc/document.hpp"
 #include "vgd/xvc/io.hpp"
@@ -459,6 +460,14 @@ std::vector<std::string> effect_names(const SceneDef& def) {
   if (ms) names.push_back("mass-spring");
   if (sr) names.push_back("strain-rosette");
   if (bend) names.push_back("bending");
+  // The yarns' lock of a fabric given by value (a fabric read from an XVC
+  // document is known when the scene is built).
+  for (const auto& c : def.cloth)
+    if (const auto m = def.materials.find(c.material);
+        m != def.materials.end() && m->second.xvc.empty() && m->second.values.strain_limit > 0.0) {
+      names.push_back("strain-limit");
+      break;
+    }
   const auto& e = def.effects;
   if (e.gravity) names.push_back("gravity");
   if (e.viscosity) names.push_back("viscosity");
@@ -562,6 +571,14 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
       sim::BendingOptions bo;
       bo.definite_jacobian = definite;
       if (def.cloth.front().bending) effects.push_back(sim::make_bending(model, per_piece, bo));
+    }
+    // The yarns' lock, where a fabric states one: after the cloth model's own
+    // hooks, before seams and contacts, which have the last word.
+    if (std::any_of(s.pieces.begin(), s.pieces.end(), [](const PieceInfo& p) { return p.material.strain_limit > 0.0; })) {
+      sim::StrainLimitDef sl;
+      for (const auto& p : s.pieces) sl.limit.push_back(p.material.strain_limit);
+      sl.fixed = s.pinned;
+      effects.push_back(sim::make_strain_limit(model, sl));
     }
     const auto& e = def.effects;
     if (e.gravity) effects.push_back(sim::make_gravity(*e.gravity));

@@ -15,7 +15,7 @@ namespace vgd::scene {
 
 namespace {
 
-constexpr std::array<MaterialParameter, 20> kParameters{{
+constexpr std::array<MaterialParameter, 21> kParameters{{
     {"density", dim::areal_density, "kg/m2",
      "areal density: lumped particle masses are triangle area x density / 3 (cotton shirting ~0.12 kg/m2); "
      "kg/m3 is multiplied by thickness"},
@@ -30,6 +30,9 @@ constexpr std::array<MaterialParameter, 20> kParameters{{
     {"spring.damping", dim::damping, "kg/s", "mass-spring: damping k_d of every spring, N.s/m (seed: 0.1)"},
     {"spring.max_strain", dim::none, "1",
      "mass-spring: Provot's limit, warp and weft springs never stretch beyond (1 + max_strain) x rest (0 = off)"},
+    {"strain_limit", dim::none, "1",
+     "either model: after each step no triangle stretches along the warp or the weft beyond (1 + strain_limit) x "
+     "rest, where the yarns lock (wovens ~0.05-0.1; 0 = none)"},
     {"E_warp", dim::stiffness, "N/m",
      "strain rosette: sheet Young's modulus along the warp (1e3-2e4 N/m); Pa is multiplied by thickness"},
     {"E_weft", dim::stiffness, "N/m", "strain rosette: sheet Young's modulus along the weft (1e3-2e4 N/m)"},
@@ -106,6 +109,7 @@ void set_material_parameter(MaterialDef& m, std::string_view name, double v, con
   else if (name == "spring.bend_weft") non_negative(), springs(m).bend_weft = v;
   else if (name == "spring.damping") non_negative(), springs(m).damping = v;
   else if (name == "spring.max_strain") non_negative(), springs(m).max_strain = v;
+  else if (name == "strain_limit") non_negative(), m.strain_limit = v;
   else if (name == "E_warp") positive(), membrane(m).E_warp = v;
   else if (name == "E_weft") positive(), membrane(m).E_weft = v;
   else if (name == "G") positive(), membrane(m).G = v;

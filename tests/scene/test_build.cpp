@@ -122,6 +122,13 @@ TEST(SceneBuild, TheProfileListsExactlyTheScenesEffects) {
   EXPECT_EQ(profile_names(*few.system), (std::vector<std::string>{"mass-spring", "gravity", "pins"}));
   EXPECT_EQ(few.system->effects().size(), 3u);
 
+  // A fabric that states its yarns' lock adds the strain limit after the cloth model.
+  j["materials"]["cloth"]["strain_limit"] = 0.1;
+  EXPECT_EQ(profile_names(*build(parse(j)).system),
+            (std::vector<std::string>{"mass-spring", "strain-limit", "gravity", "viscosity", "damping", "wind", "pins"}));
+  EXPECT_EQ(effect_names(parse(j)), profile_names(*build(parse(j)).system));
+  j["materials"]["cloth"].erase("strain_limit");
+
   // Strain rosette: membrane and bending effects, bending only when asked.
   j["cloth"][0]["model"] = "strain-rosette";
   EXPECT_EQ(profile_names(*build(parse(j)).system),

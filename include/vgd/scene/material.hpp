@@ -38,6 +38,9 @@ struct MaterialDef {
   double density = 0.0;        // kg/m², areal density (masses = triangle area × density / 3); 0 = not given
   double particle_mass = 0.0;  // kg per particle, mass-spring only (seed 000's particle_mass); 0 = not given
   double thickness = 0.0;      // m; needed only to convert values given per volume (Pa, kg/m³); 0 = not given
+  // Largest warp and weft strain the yarns allow (sim/effects/strain_limit.hpp),
+  // either cloth model; dimensionless, 0 = none.
+  double strain_limit = 0.0;
   std::optional<sim::MassSpringMaterial> mass_spring;  // set when any spring.* parameter is given
   // Set when any membrane or bending parameter (E_warp, G, B_warp, ...) is
   // given; its density and thickness are the ones above.
