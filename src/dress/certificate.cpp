@@ -50,6 +50,7 @@ PieceStrain piece_strain(const sim::Model& m, const scene::PieceInfo& p, const s
   PieceStrain s;
   s.piece = p.name;
   s.fabric = p.material.name;
+  s.fabric_limit = p.material.strain_limit;
   s.warp = percentiles(warp);
   s.weft = percentiles(weft);
   s.shear_deg = percentiles(shear);
@@ -212,11 +213,14 @@ std::vector<Failure> Certificate::failures() const {
     for (const auto& [pieces, n] : crossings_by_pieces) where += (where.empty() ? "" : ", ") + pieces + " " + std::to_string(n);
     out.push_back({"self-intersection", std::to_string(triangle_intersections) + " crossing triangle pairs (" + where + ")"});
   }
-  for (const auto& s : strain)
+  for (const auto& s : strain) {
+    // A fabric that states where its yarns lock cannot be stretched further.
+    const double limit = s.fabric_limit > 0.0 ? s.fabric_limit : strain_limit;
     for (const auto& [dir, p] : {std::pair{"warp", s.warp}, {"weft", s.weft}})
-      if (p.p95 > strain_limit)
-        out.push_back({"over-stretched", s.piece + ": " + dir + " strain p95 " + pct(p.p95) + " (limit " +
-                                             pct(strain_limit) + ")"});
+      if (p.p95 > limit)
+        out.push_back({"over-stretched", s.piece + ": " + dir + " strain p95 " + pct(p.p95) + " (limit " + pct(limit) +
+                                             (s.fabric_limit > 0.0 ? ", the fabric's strain_limit" : "") + ")"});
+  }
   for (const auto& w : placement)
     if (w.moved.norm() > displacement_limit)
       out.push_back({"displaced", w.piece + ": its centre moved " + format_fixed(100 * w.moved.norm(), 1) + " cm (" +
@@ -497,9 +501,11 @@ std::string to_json(const Certificate& c) {
   }
   j["seams"] = seams;
   json strain = json::array();
-  for (const auto& s : c.strain)
+  for (const auto& s : c.strain) {
     strain.push_back({{"piece", s.piece}, {"fabric", s.fabric}, {"warp", to_json(s.warp)}, {"weft", to_json(s.weft)},
                       {"shear_deg", to_json(s.shear_deg)}});
+    if (s.fabric_limit > 0.0) strain.back()["fabric_strain_limit"] = s.fabric_limit;
+  }
   j["strain"] = strain;
   json where = json::array();
   for (const auto& w : c.placement)
@@ -690,6 +696,8 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
                         r.percentiles(r.at(strain[i], "warp", p), p + ".warp"),
                         r.percentiles(r.at(strain[i], "weft", p), p + ".weft"),
                         r.percentiles(r.at(strain[i], "shear_deg", p), p + ".shear_deg")});
+    if (strain[i].contains("fabric_strain_limit"))
+      c.strain.back().fabric_limit = r.number(strain[i]["fabric_strain_limit"], p + ".fabric_strain_limit");
   }
   const json& where = r.array(r.at(j, "placement", ""), "placement");
   for (std::size_t i = 0; i < where.size(); ++i) {

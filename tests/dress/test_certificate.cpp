@@ -128,6 +128,35 @@ TEST(Certificate, LimitsAreInclusive) {
   EXPECT_EQ(classes(c), "over-stretched|");
 }
 
+// A fabric that states where its yarns lock (MATERIAL strain_limit) is held
+// to it instead of the certificate's own bound: a woven locked at 10 % with
+// a sleeve at 45 % weft p95 is over-stretched, the same sleeve in a fabric
+// that states none is not; the fabric's limit is said and read back.
+TEST(Certificate, AFabricsOwnStrainLimitIsTheBoundForItsPieces) {
+  Certificate c = good();
+  PieceStrain sleeve;
+  sleeve.piece = "LEFT_SLEEVE_38";
+  sleeve.fabric = "locked woven";
+  sleeve.weft.p95 = 0.45;
+  c.strain.push_back(sleeve);
+  EXPECT_TRUE(c.passed()) << classes(c);
+  c.strain.back().fabric_limit = 0.10;
+  auto f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].kind, "over-stretched");
+  EXPECT_EQ(f[0].detail, "LEFT_SLEEVE_38: weft strain p95 45 % (limit 10 %, the fabric's strain_limit)");
+  c.strain.back().weft.p95 = 0.10;  // inclusive, as the certificate's own
+  EXPECT_TRUE(c.passed()) << classes(c);
+  c.strain.back().weft.p95 = 0.45;
+  const std::string text = to_json(c);
+  EXPECT_NE(text.find("\"fabric_strain_limit\": 0.1"), std::string::npos);
+  const Certificate back = certificate_from_json(text, "certificate.json");
+  EXPECT_EQ(back.strain.back().fabric_limit, 0.10);
+  EXPECT_EQ(back.strain.front().fabric_limit, 0.0);
+  EXPECT_EQ(classes(back), "over-stretched|");
+  EXPECT_EQ(to_json(back), text);
+}
+
 // certificate.json read back (the studio reads the server's): every field
 // to_json writes comes back, so writing the read certificate gives the same
 // text, and its verdict is the same.
@@ -194,18 +223,22 @@ TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {
 // so every particle presses ρ g on the body (areal density 0.1 kg/m²:
 // 0.981 Pa), a corner with a quarter of an inner particle's cloth as much as
 // the inner one, and the body carries the sheet's weight. Particles beyond
-// the contact distance press nothing.
+// the contact distance press nothing. The piece above is cut from a fabric
+// that states its strain limit, and its strain says so.
 TEST(Certificate, ASheetLyingFlatPressesItsWeightPerAreaEverywhere) {
   const std::string scene_json = R"({
     "version": 1, "name": "lying",
     "materials": { "cloth": { "density": 0.1, "spring.warp": 100, "spring.weft": 100, "spring.shear": 20,
-                              "spring.bend_warp": 5, "spring.bend_weft": 5, "spring.damping": 0.01 } },
+                              "spring.bend_warp": 5, "spring.bend_weft": 5, "spring.damping": 0.01 },
+                   "locked": { "density": 0.1, "spring.warp": 100, "spring.weft": 100, "spring.shear": 20,
+                               "spring.bend_warp": 5, "spring.bend_weft": 5, "spring.damping": 0.01,
+                               "strain_limit": 0.05 } },
     "cloth": [ { "name": "sheet", "grid": { "particles": [7, 5], "size": [0.3, 0.2] },
                  "placement": { "origin": [-0.15, 0.802, -0.1], "u": [1, 0, 0], "v": [0, 0, 1] },
                  "model": "mass-spring", "material": "cloth" },
                { "name": "above", "grid": { "particles": [3, 3], "size": [0.1, 0.1] },
                  "placement": { "origin": [-0.05, 0.9, -0.05], "u": [1, 0, 0], "v": [0, 0, 1] },
-                 "model": "mass-spring", "material": "cloth" } ],
+                 "model": "mass-spring", "material": "locked" } ],
     "avatar": { "cylinder": { "base": [0, 0, 0], "radius": 0.4, "height": 0.8 } },
     "effects": { "gravity": {}, "collision": {} },
     "integrator": { "method": "euler", "step": 0.001 },
@@ -224,6 +257,10 @@ TEST(Certificate, ASheetLyingFlatPressesItsWeightPerAreaEverywhere) {
   EXPECT_NEAR(c.contact.force, 0.3 * 0.2 * rho_g, 1e-9);
   EXPECT_NEAR(c.contact.area, 0.3 * 0.2, 1e-12);
   EXPECT_NEAR(c.contact.pressure.p50, rho_g, 1e-9);
+  // Each piece's strain carries its fabric's own limit, where it states one.
+  ASSERT_EQ(c.strain.size(), 2u);
+  EXPECT_EQ(c.strain[0].fabric_limit, 0.0);
+  EXPECT_EQ(c.strain[1].fabric_limit, 0.05);
 }
 
 }  // namespace

@@ -35,6 +35,10 @@ struct PieceStrain {
   std::string fabric;      // the name of the MATERIAL the piece was draped in ("" in older certificates)
   Percentiles warp, weft;  // engineering strain, dimensionless (0.01 = 1 %)
   Percentiles shear_deg;   // change of the warp–weft angle, degrees
+  // The fabric's own lock (MATERIAL strain_limit): its p95 along the warp or
+  // the weft beyond it is over-stretched; 0 = the fabric states none and
+  // Certificate::strain_limit applies.
+  double fabric_limit = 0.0;
 };
 
 struct SeamState {
