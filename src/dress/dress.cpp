@@ -1,10 +1,12 @@
 #include "vgd/dress/dress.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <filesystem>
 #include <tuple>
 
+#include "vgd/body/landmarks.hpp"
 #include "vgd/body/mannequin.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/strings.hpp"
@@ -40,6 +42,17 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
                                        const Avatar& avatar, const std::vector<Underlayer>& under, double nest) {
+  // Every piece `lift` m higher than its arrangement says: a limb's height
+  // runs along its axis (down a hanging leg), the trunk's is a world height.
+  const auto raised = [&](xvc::Arrangement a, double lift) {
+    if (lift == 0.0) return a;
+    const body::BodySegment* seg = avatar.segment(a.segment);
+    const bool limb = a.segment.find("arm") != std::string::npos || a.segment.find("leg") != std::string::npos;
+    if (!limb) a.height += lift;
+    else if (seg && seg->axis.normalized().y() < -0.1) a.height -= lift / -seg->axis.normalized().y();
+    return a;
+  };
+  const auto place_all = [&](double lift) {
   std::vector<PlacedPiece> out;
   for (const auto& gp : garment.pieces) {
     const auto it = arrangements.find(gp.pattern_id);
@@ -48,7 +61,7 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
                   "piece " + gp.name + " has no arrangement (where it goes round the body) and none can be "
                                        "suggested from its name: set one with 'vgd place --set " +
                       gp.name + "=torso:front:1.25'");
-    const xvc::Arrangement& a = it->second[gp.copy];
+    const xvc::Arrangement a = raised(it->second[gp.copy], lift);
     PiecePlacement p;
     try {
       p = place_piece(gp.mesh.nodes, a, avatar, under, nest);
@@ -61,9 +74,53 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
     pp.segment = a.segment;
     pp.arrangement = a.segment + " " + a.side + " at " + format_fixed(a.height, 3) + " m, " +
                      format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
+    pp.lifted = lift;
     out.push_back(std::move(pp));
   }
   return out;
+  };
+  std::vector<PlacedPiece> out = place_all(0.0);
+  if (avatar.surface.vertices.empty()) return out;
+  const auto lowest = [](const std::vector<PlacedPiece>& pieces) {
+    double y = std::numeric_limits<double>::infinity();
+    for (const auto& p : pieces)
+      for (const auto& q : p.positions) y = std::min(y, q.y());
+    return y;
+  };
+  double soles = std::numeric_limits<double>::infinity();
+  for (const auto& v : avatar.surface.vertices) soles = std::min(soles, v.y());
+  if (!(lowest(out) < soles + kAboveSoles - 1e-3)) return out;
+  // At most the feet's height (the ankles above the soles): longer than that,
+  // the garment would start with its top far above where it is worn and its
+  // crotch above the body's; it falls apart on the way down (test trousers
+  // needing 11.6 cm on a body with 10.7 cm feet: inseams held open at the
+  // crotch, the body through them; 8.0 cm on the same feet rests clean). It
+  // is placed as arranged, and said.
+  // The ankle as found on the surface (the legs' thinnest slice above the
+  // foot, a height above the soles), on a mannequin too: its own ankle
+  // landmark is the joint, 3 cm lower. Not found: the legs' last rings.
+  double feet = avatar.landmarks ? avatar.landmarks->ankle : body::measure_body(avatar.surface).landmarks.ankle;
+  if (!(feet > 0.0))
+    for (const auto& seg : avatar.segments)
+      if (seg.name.find("leg") != std::string::npos && !seg.rings.empty())
+        feet = std::max(feet, seg.rings.back().centre.y() - soles);
+  if (!(feet > 0.0)) return out;
+  // Raised, a piece is wrapped on the body's rings at its new heights (round
+  // less of the foot), so its lowest point may move by other than the lift:
+  // a few rounds bring it to kAboveSoles.
+  std::vector<PlacedPiece> raised_out = out;
+  double lift = 0.0;
+  for (int round = 0; round < 4; ++round) {
+    const double short_by = soles + kAboveSoles - lowest(raised_out);
+    if (!(short_by > 1e-3)) break;
+    lift += short_by;
+    if (lift > feet) {
+      for (auto& p : out) p.too_long = lift;
+      return out;
+    }
+    raised_out = place_all(lift);
+  }
+  return raised_out;
 }
 
 void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
@@ -170,6 +227,19 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     // one curve start a contact radius and a half apart where they overlap.
     const double nest = def.effects.contact ? 1.5 * def.effects.contact->radius : 0.0;
     const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under, nest);
+    if (!placed.empty() && placed.front().too_long > 0.0)
+      out.diagnostics.warn(file.string(), "",
+                           "it reaches the body's soles and would have to start more than the feet's height higher "
+                           "(" + format_fixed(100 * placed.front().too_long, 1) +
+                               " cm) to clear them: longer than the body is by more than vgd drapes (the hems are "
+                               "placed round the feet and held open there); choose a taller body (--body-size) or "
+                               "shorten the legs");
+    if (!placed.empty() && placed.front().lifted > 0.0)
+      out.diagnostics.warn(file.string(), "",
+                           "placed " + format_fixed(100 * placed.front().lifted, 1) +
+                               " cm higher than arranged: it reaches the body's soles (longer than the body is), where "
+                               "its hems would be held open round the feet; it starts " +
+                               format_fixed(100 * kAboveSoles, 0) + " cm above them and falls to its length");
     {
       std::vector<std::string> segments;
       for (const auto& p : placed) segments.push_back(p.segment);

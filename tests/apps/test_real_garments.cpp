@@ -154,16 +154,13 @@ INSTANTIATE_TEST_SUITE_P(
                     "left-arm right-arm torso torso torso",
                     "block BACKPANEL is half a piece (cut once, no side or fold line in the file, a straight 70.5 cm "
                     "centre edge): unfolded"},
-        // Not yet: each with the reason vgd gives.
-        // Cut as half legs: in place, on the men's body its hip fits; cut to
-        // the floor, the legs start round the feet (not through them) and
-        // every seam closes but the outseams' last few pairs at the hem, held
-        // apart under the feet's widest part; nothing crosses, nothing is in
-        // the body.
-        RealGarment{"valentina_trousers", "Valentina_Trousers_ASTM_R12.dxf", "", 3,
+        // Valentina's trousers: cut as half legs, in place on the men's body
+        // its hip fits; cut to the floor, longer than the body's legs, they
+        // start 3 cm above the soles instead of held open round the feet, and
+        // fall to their length with every seam closed.
+        RealGarment{"valentina_trousers", "Valentina_Trousers_ASTM_R12.dxf", "", 0,
                     "left-leg left-leg right-leg right-leg",
-                    "piece FRONT_PLEATS (leg) left out: an alternative to the leg FRONT_NO_POCKET",
-                    "no rest, seams open"}),
+                    "cm higher than arranged: it reaches the body's soles (longer than the body is)"}),
     [](const ::testing::TestParamInfo<RealGarment>& p) { return std::string(p.param.name); });
 
 // The tights' crotch without the body kept out of the cloth between

@@ -28,6 +28,12 @@ struct PlacedPiece {
   bool flipped = false;         // the placement mirrored the piece: its triangles must be reversed
   std::string arrangement;      // how it was placed, for reports ("torso front 1.25 m, 30 mm clear, suggested")
   std::string segment;          // the body segment it was placed on (for garments worn over it)
+  // m: how much higher than its arrangement says the whole garment was placed
+  // so that it starts above the body's soles (place_garment); 0 mostly.
+  double lifted = 0.0;
+  // m: the lift the garment would have needed when that is more than the
+  // feet's height, and it was placed as arranged instead; 0 mostly.
+  double too_long = 0.0;
 };
 
 // Every PATTERN's arrangements: those stored in the document, else vgd's
@@ -42,6 +48,15 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 // pattern's k-th arrangement. Throws vgd::Error naming the document and the
 // PATTERN when a piece has no arrangement, or names a segment the avatar lacks.
 // `under`: the cloth of garments already placed that this one is worn over.
+// A garment that would start below the body's soles or within kAboveSoles of
+// them (trousers cut to the floor, wrapped round the feet) is placed higher as
+// a whole, every piece by the same height, until its lowest point is
+// kAboveSoles above them: it falls back to its length under gravity, its hems
+// closed round the ankles instead of held open by the feet. By at most the
+// feet's height (the ankles above the soles): a garment that would
+// need more is placed as arranged and its pieces say so (too_long;
+// docs/placement.md, "Feet").
+constexpr double kAboveSoles = 0.03;  // m
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
                                        const body::Avatar& avatar, const std::vector<Underlayer>& under = {},
