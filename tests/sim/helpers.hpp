@@ -8,6 +8,7 @@
 #include "vgd/sim/effect.hpp"
 #include "vgd/sim/model.hpp"
 #include "vgd/sim/effects/mass_spring.hpp"
+#include "vgd/sim/integrator.hpp"
 #include "vgd/sim/system.hpp"
 
 namespace vgd::sim::test {
@@ -61,6 +62,22 @@ inline VecX forces(Effect& e, const Model& m, const VecX& x, const VecX& v, doub
   return f;
 }
 inline VecX forces(Effect& e, const Model& m, const VecX& x) { return forces(e, m, x, m.v0); }
+
+// `steps` steps of h seconds from the model's start with the default
+// integrator, calling after(k, state) after step k (1-based); stops early
+// when it returns false.
+template <class After>
+void step_through(System& sys, double h, int steps, After&& after) {
+  IntegratorSettings st;
+  st.step = h;
+  auto integ = make_integrator(st);
+  State s = initial_state(sys.model());
+  integ->prepare(sys, s);
+  for (int k = 1; k <= steps; ++k) {
+    integ->advance(sys, s, k * h);
+    if (!after(k, s)) return;
+  }
+}
 
 // A figure for the test report (--gtest_output=xml).
 inline std::string sci(double v) {
