@@ -233,7 +233,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
                            "(" + format_fixed(100 * placed.front().too_long, 1) +
                                " cm) to clear them: longer than the body is by more than vgd drapes (the hems are "
                                "placed round the feet and held open there); choose a taller body (--body-size) or "
-                               "shorten the legs");
+                               "shorten it");
     if (!placed.empty() && placed.front().lifted > 0.0)
       out.diagnostics.warn(file.string(), "",
                            "placed " + format_fixed(100 * placed.front().lifted, 1) +
