@@ -90,12 +90,13 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
   double soles = std::numeric_limits<double>::infinity();
   for (const auto& v : avatar.surface.vertices) soles = std::min(soles, v.y());
   if (!(lowest(out) < soles + kAboveSoles - 1e-3)) return out;
-  // At most the feet's height (the ankles above the soles): longer than that,
-  // the garment would start with its top far above where it is worn and its
-  // crotch above the body's; it falls apart on the way down (test trousers
-  // needing 11.6 cm on a body with 10.7 cm feet: inseams held open at the
-  // crotch, the body through them; 8.0 cm on the same feet rests clean). It
-  // is placed as arranged, and said.
+  // At most three quarters of the feet's height (the ankles above the
+  // soles): raised further, the garment's crotch starts above the body's and
+  // does not survive the fall (Valentina's trousers raised 9.1 cm on the men's
+  // 50, whose feet are 10.7 cm high: the front rise and inseams held open at
+  // the crotch, the body through them; 8.0 cm raised the test trousers clean
+  // on the same feet). A garment that needs more is raised that much, and
+  // its pieces say what it needed.
   // The ankle as found on the surface (the legs' thinnest slice above the
   // foot, a height above the soles), on a mannequin too: its own ankle
   // landmark is the joint, 3 cm lower. Not found: the legs' last rings.
@@ -105,22 +106,24 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
       if (seg.name.find("leg") != std::string::npos && !seg.rings.empty())
         feet = std::max(feet, seg.rings.back().centre.y() - soles);
   if (!(feet > 0.0)) return out;
+  const double most = kMostOfTheFeet * feet;
   // Raised, a piece is wrapped on the body's rings at its new heights (round
   // less of the foot), so its lowest point may move by other than the lift:
   // a few rounds bring it to kAboveSoles.
-  std::vector<PlacedPiece> raised_out = out;
   double lift = 0.0;
   for (int round = 0; round < 4; ++round) {
-    const double short_by = soles + kAboveSoles - lowest(raised_out);
+    const double short_by = soles + kAboveSoles - lowest(out);
     if (!(short_by > 1e-3)) break;
-    lift += short_by;
-    if (lift > feet) {
-      for (auto& p : out) p.too_long = lift;
-      return out;
+    if (lift + short_by > most) {
+      const double needed = lift + short_by;
+      if (lift < most) out = place_all(most);
+      for (auto& p : out) p.too_long = needed;
+      break;
     }
-    raised_out = place_all(lift);
+    lift += short_by;
+    out = place_all(lift);
   }
-  return raised_out;
+  return out;
 }
 
 void check_fit(const std::string& document, const std::string& size, const std::vector<std::string>& segments,
@@ -227,19 +230,20 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     // one curve start a contact radius and a half apart where they overlap.
     const double nest = def.effects.contact ? 1.5 * def.effects.contact->radius : 0.0;
     const std::vector<PlacedPiece> placed = place_garment(doc, g, arrangements, avatar, under, nest);
-    if (!placed.empty() && placed.front().too_long > 0.0)
-      out.diagnostics.warn(file.string(), "",
-                           "it reaches the body's soles and would have to start more than the feet's height higher "
-                           "(" + format_fixed(100 * placed.front().too_long, 1) +
-                               " cm) to clear them: longer than the body is by more than vgd drapes (the hems are "
-                               "placed round the feet and held open there); choose a taller body (--body-size) or "
-                               "shorten it");
-    if (!placed.empty() && placed.front().lifted > 0.0)
-      out.diagnostics.warn(file.string(), "",
-                           "placed " + format_fixed(100 * placed.front().lifted, 1) +
-                               " cm higher than arranged: it reaches the body's soles (longer than the body is), where "
-                               "its hems would be held open round the feet; it starts " +
-                               format_fixed(100 * kAboveSoles, 0) + " cm above them and falls to its length");
+    if (!placed.empty() && placed.front().lifted > 0.0) {
+      const PlacedPiece& p = placed.front();
+      out.diagnostics.warn(
+          file.string(), "",
+          "placed " + format_fixed(100 * p.lifted, 1) +
+              " cm higher than arranged: it reaches the body's soles (longer than the body is), where its hems would "
+              "be held open round the feet; " +
+              (p.too_long > 0.0
+                   ? "it needed " + format_fixed(100 * p.too_long, 1) +
+                         " cm to start " + format_fixed(100 * kAboveSoles, 0) +
+                         " cm above them, more than vgd raises a garment on these feet, and may not close round them: "
+                         "choose a taller body (--body-size) or shorten it"
+                   : "it starts " + format_fixed(100 * kAboveSoles, 0) + " cm above them and falls to its length"));
+    }
     {
       std::vector<std::string> segments;
       for (const auto& p : placed) segments.push_back(p.segment);

@@ -31,8 +31,8 @@ struct PlacedPiece {
   // m: how much higher than its arrangement says the whole garment was placed
   // so that it starts above the body's soles (place_garment); 0 mostly.
   double lifted = 0.0;
-  // m: the lift the garment would have needed when that is more than the
-  // feet's height, and it was placed as arranged instead; 0 mostly.
+  // m: the lift the garment needed when that was more than place_garment
+  // raises one (it was raised by `lifted`, the most); 0 mostly.
   double too_long = 0.0;
 };
 
@@ -52,11 +52,12 @@ std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const 
 // them (trousers cut to the floor, wrapped round the feet) is placed higher as
 // a whole, every piece by the same height, until its lowest point is
 // kAboveSoles above them: it falls back to its length under gravity, its hems
-// closed round the ankles instead of held open by the feet. By at most the
-// feet's height (the ankles above the soles): a garment that would
-// need more is placed as arranged and its pieces say so (too_long;
-// docs/placement.md, "Feet").
-constexpr double kAboveSoles = 0.03;  // m
+// closed round the ankles instead of held open by the feet. By at most
+// kMostOfTheFeet times the feet's height (the ankles above the soles): a
+// garment that needs more is raised that much and its pieces say what it
+// needed (too_long; docs/placement.md, "Feet").
+constexpr double kAboveSoles = 0.05;     // m
+constexpr double kMostOfTheFeet = 0.75;  // of the ankles' height above the soles
 std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& garment,
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
                                        const body::Avatar& avatar, const std::vector<Underlayer>& under = {},
