@@ -1,9 +1,9 @@
 #include "vgd/dress/dress.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <tuple>
 
 #include "vgd/body/landmarks.hpp"
@@ -43,7 +43,8 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
                                        const std::map<std::string, std::vector<xvc::Arrangement>>& arrangements,
                                        const Avatar& avatar, const std::vector<Underlayer>& under, double nest) {
   // Every piece `lift` m higher than its arrangement says: a limb's height
-  // runs along its axis (down a hanging leg), the trunk's is a world height.
+  // runs along its axis (down a hanging leg), the trunk's is a world height;
+  // a piece on a limb held level (an arm in a T-pose) keeps its place.
   const auto raised = [&](xvc::Arrangement a, double lift) {
     if (lift == 0.0) return a;
     const body::BodySegment* seg = avatar.segment(a.segment);
@@ -53,31 +54,31 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
     return a;
   };
   const auto place_all = [&](double lift) {
-  std::vector<PlacedPiece> out;
-  for (const auto& gp : garment.pieces) {
-    const auto it = arrangements.find(gp.pattern_id);
-    if (it == arrangements.end() || gp.copy >= static_cast<int>(it->second.size()))
-      throw Error(doc.name(), gp.pattern_id,
-                  "piece " + gp.name + " has no arrangement (where it goes round the body) and none can be "
-                                       "suggested from its name: set one with 'vgd place --set " +
-                      gp.name + "=torso:front:1.25'");
-    const xvc::Arrangement a = raised(it->second[gp.copy], lift);
-    PiecePlacement p;
-    try {
-      p = place_piece(gp.mesh.nodes, a, avatar, under, nest);
-    } catch (const Error& e) {
-      throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
+    std::vector<PlacedPiece> out;
+    for (const auto& gp : garment.pieces) {
+      const auto it = arrangements.find(gp.pattern_id);
+      if (it == arrangements.end() || gp.copy >= static_cast<int>(it->second.size()))
+        throw Error(doc.name(), gp.pattern_id,
+                    "piece " + gp.name + " has no arrangement (where it goes round the body) and none can be "
+                                         "suggested from its name: set one with 'vgd place --set " +
+                        gp.name + "=torso:front:1.25'");
+      const xvc::Arrangement a = raised(it->second[gp.copy], lift);
+      PiecePlacement p;
+      try {
+        p = place_piece(gp.mesh.nodes, a, avatar, under, nest);
+      } catch (const Error& e) {
+        throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
+      }
+      PlacedPiece pp;
+      pp.positions = std::move(p.points);
+      pp.flipped = p.reverses_winding;
+      pp.segment = a.segment;
+      pp.arrangement = a.segment + " " + a.side + " at " + format_fixed(a.height, 3) + " m, " +
+                       format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
+      pp.lifted = lift;
+      out.push_back(std::move(pp));
     }
-    PlacedPiece pp;
-    pp.positions = std::move(p.points);
-    pp.flipped = p.reverses_winding;
-    pp.segment = a.segment;
-    pp.arrangement = a.segment + " " + a.side + " at " + format_fixed(a.height, 3) + " m, " +
-                     format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
-    pp.lifted = lift;
-    out.push_back(std::move(pp));
-  }
-  return out;
+    return out;
   };
   std::vector<PlacedPiece> out = place_all(0.0);
   if (avatar.surface.vertices.empty()) return out;
