@@ -401,7 +401,7 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     if (p.segment.empty() || p.count == 0) continue;
     Vec3 then = Vec3::Zero(), now = Vec3::Zero();
     for (int i = p.first; i < p.first + p.count; ++i) then += sim::at(m.x0, i), now += points[i];
-    out.placement.push_back({p.name, p.segment, (now - then) / p.count});
+    out.placement.push_back({p.name, p.segment, (now - then) / p.count, p.raised});
   }
 
   out.open_sides = open_sides(scene, points, out.open_limit_deg);
@@ -508,9 +508,11 @@ std::string to_json(const Certificate& c) {
   }
   j["strain"] = strain;
   json where = json::array();
-  for (const auto& w : c.placement)
+  for (const auto& w : c.placement) {
     where.push_back({{"piece", w.piece}, {"segment", w.segment},
                      {"moved_m", json::array({w.moved.x(), w.moved.y(), w.moved.z()})}});
+    if (w.raised > 0.0) where.back()["raised_m"] = w.raised;
+  }
   j["placement"] = where;
   json open = json::array();
   for (const auto& o : c.open_sides)
@@ -705,6 +707,7 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
     c.placement.push_back({r.text(r.at(where[i], "piece", p), p + ".piece"),
                            r.text(r.at(where[i], "segment", p), p + ".segment"),
                            r.vec3(r.at(where[i], "moved_m", p), p + ".moved_m")});
+    if (where[i].contains("raised_m")) c.placement.back().raised = r.number(where[i]["raised_m"], p + ".raised_m");
   }
   const json& open = r.array(r.at(j, "open_sides", ""), "open_sides");
   for (std::size_t i = 0; i < open.size(); ++i) {

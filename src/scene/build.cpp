@@ -297,6 +297,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     const MaterialDef& m = in.material(c.material, c.model);
     std::vector<std::pair<std::string, sim::Model>> parts;
     std::vector<std::string> segments;  // per part, made cloth only
+    std::vector<double> raised;         // per part, made cloth only (MadePiece::raised)
     std::vector<const MaterialDef*> own;  // per part, made cloth only: a piece's own fabric, else nullptr
     const MadeCloth* mine = nullptr;
     if (c.grid) {
@@ -318,6 +319,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
         set_masses(mp, pm ? *pm : m, c.model);
         parts.emplace_back(piece.name, std::move(mp));
         segments.push_back(piece.segment);
+        raised.push_back(piece.raised);
         own.push_back(pm);
       }
     }
@@ -327,6 +329,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       PieceInfo info;
       info.name = name;
       if (k < segments.size()) info.segment = segments[k];
+      if (k < raised.size()) info.raised = raised[k];
       info.cloth = ci;
       info.first = model.num_particles();
       info.count = part.num_particles();

@@ -182,6 +182,7 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   c.contact = {120, 0.05, 3.5, {0.1, 1, 2, 3, 4}};
   c.times = {0.0, 0.04, 0.08}, c.kinetic_energy = {1e-3, 5e-4, 1e-7};
   c.strain.back().shear_deg = {-3, -1, 0.5, 2, 4};
+  c.placement.push_back({"BACK_38", "left-leg", Vec3(0, -0.05, 0), 0.078});
   const std::string text = to_json(c);
   const Certificate back = certificate_from_json(text, "certificate.json");
   EXPECT_EQ(to_json(back), text);
@@ -191,6 +192,8 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   EXPECT_EQ(back.seams[1].widest_at.x(), -0.2);
   EXPECT_TRUE(back.seams[1].body_between);
   EXPECT_FALSE(back.seams[0].body_between);
+  EXPECT_EQ(back.placement.back().raised, 0.078);
+  EXPECT_EQ(back.placement.front().raised, 0.0);
 }
 
 TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {

@@ -218,12 +218,16 @@ TEST(DressBuild, TrousersLongerThanTheLegsStartAboveTheSoles) {
     for (const auto& v : s.avatar->surface.vertices) soles = std::min(soles, v.y());
     const sim::Model& m = s.system->model();
     for (int i = 0; i < m.num_particles(); ++i) lowest = std::min(lowest, sim::at(m.x0, i).y());
+    // Every piece raised by the same height, said in the certificate's placement.
+    for (const auto& p : s.pieces) EXPECT_EQ(p.raised, s.pieces.front().raised) << p.name;
     if (!*k.says) {
+      EXPECT_EQ(s.pieces.front().raised, 0.0);
       EXPECT_EQ(said.find("soles"), std::string::npos) << said;
       EXPECT_GT(lowest - soles, kAboveSoles + 0.05);  // cropped: well above the feet
       continue;
     }
     EXPECT_NE(said.find(k.says), std::string::npos) << said;
+    EXPECT_GT(s.pieces.front().raised, 0.03);
     EXPECT_LT(lowest - soles, kAboveSoles + 1e-3);
     if (k.inseam < 0.8) EXPECT_GT(lowest - soles, 0.03);  // as drawn it reaches below the soles
   }

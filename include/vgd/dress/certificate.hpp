@@ -69,6 +69,7 @@ struct PieceWhere {
   std::string piece;
   std::string segment;            // the body segment it was placed on
   Vec3 moved = Vec3::Zero();      // m: final centre − placed centre
+  double raised = 0.0;            // m: placed this much higher than arranged (its garment reached the soles)
 };
 
 // A reason a drape is not passed: a class from a short fixed list and the

@@ -34,6 +34,7 @@ struct PieceInfo {
   ClothModel model = ClothModel::mass_spring;
   MaterialDef material;
   std::string segment;         // made cloth: the body segment it was placed on ("" otherwise)
+  double raised = 0.0;         // made cloth: m its garment was placed higher than arranged (MadePiece::raised)
 };
 
 // A scene ready to run.
@@ -73,6 +74,9 @@ struct MadePiece {
   // placed (xvc::Pin), each with its POSITION's id: held there by a pin
   // group of their own.
   std::vector<std::pair<int, std::string>> pinned;
+  // m: how much higher than arranged its garment was placed (a garment that
+  // reaches the body's soles, dress::place_garment); 0 mostly.
+  double raised = 0.0;
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;
