@@ -13,9 +13,10 @@ namespace vgd::dress {
 using body::Avatar;
 using body::BodySegment;
 
+bool on_limb(const std::string& segment) { return segment.find("-arm") != std::string::npos || segment.find("-leg") != std::string::npos; }
+
 namespace {
 
-bool on_limb(const std::string& segment) { return segment.find("-arm") != std::string::npos || segment.find("-leg") != std::string::npos; }
 bool on_left(const std::string& segment) { return segment.rfind("left-", 0) == 0; }
 
 // The same limb on the body's other side.

@@ -48,8 +48,7 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
   const auto raised = [&](xvc::Arrangement a, double lift) {
     if (lift == 0.0) return a;
     const body::BodySegment* seg = avatar.segment(a.segment);
-    const bool limb = a.segment.find("arm") != std::string::npos || a.segment.find("leg") != std::string::npos;
-    if (!limb) a.height += lift;
+    if (!on_limb(a.segment)) a.height += lift;
     else if (seg && seg->axis.normalized().y() < -0.1) a.height -= lift / -seg->axis.normalized().y();
     return a;
   };

@@ -55,6 +55,10 @@ EngineRecord run_engine(const scene::SceneDef& def, sim::Method method, int thre
   }
   auto& sys = *s.system;
   r.particles = sys.model().num_particles();
+  // What was built: a fabric read from a garment's document may add effects
+  // (its strain limit) that the scene file does not list.
+  r.effects.clear();
+  for (const auto& e : sys.effects()) r.effects.emplace_back(e->name());
   sim::State st = sim::initial_state(sys.model());
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();

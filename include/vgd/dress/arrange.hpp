@@ -51,6 +51,10 @@ std::vector<xvc::Arrangement> put_on(std::vector<xvc::Arrangement> current, cons
 // vgd::Error when the avatar lacks the segment.
 body::Vec3 height_direction(const xvc::Arrangement& a, const body::Avatar& avatar);
 
+// A segment that is a limb ("left-arm", "right-leg", ...): its pieces' heights run
+// along its axis from the joint, not up the body.
+bool on_limb(const std::string& segment);
+
 // `a` moved by the world displacement `delta` (m) along its segment: on the
 // neck, torso and hips its height changes by delta's vertical part, on an arm
 // or a leg by delta's part along the limb's axis (down the limb). Heights
