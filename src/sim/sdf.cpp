@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <utility>
@@ -160,10 +161,25 @@ SignedDistanceGrid::SignedDistanceGrid(const mesh::SurfaceMesh& m, const SdfOpti
       const int k1 = std::min(slab_hi, static_cast<int>(std::floor(thi.z() * inv_h_)));
       if (k0 > k1) continue;
       const Vec3& fn = normals.face_normal(t);
+      // The triangle lies in the ball about its box's centre through the box's
+      // corners: a node farther than that radius plus the band from the
+      // centre is beyond the band (1 µm spared for rounding), and so are the
+      // rest of its row once the row has passed the centre. Only nodes the
+      // test below would reject are skipped: the grid is the same, bit for bit.
+      const Vec3 centre = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c));
+      const double reach = 0.5 * (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).norm() + band_ + 1e-6;
+      const double reach2 = reach * reach;
       for (int k = k0; k <= k1; ++k)
         for (int j = j0; j <= j1; ++j) {
           const std::size_t row = (static_cast<std::size_t>(k) * ny_ + j) * nx_;
-          for (int i = i0; i <= i1; ++i) {
+          // The row's nodes within the ball: |x − cx| ≤ sqrt(reach² − r⊥²).
+          const double dy = origin_.y() + h_ * j - centre.y(), dz = origin_.z() + h_ * k - centre.z();
+          const double across = reach2 - dy * dy - dz * dz;
+          if (across <= 0.0) continue;
+          const double half = std::sqrt(across);
+          const int ia = std::max(i0, static_cast<int>(std::floor((centre.x() - half - origin_.x()) * inv_h_)));
+          const int ib = std::min(i1, static_cast<int>(std::ceil((centre.x() + half - origin_.x()) * inv_h_)));
+          for (int i = ia; i <= ib; ++i) {
             const Vec3 p = origin_ + h_ * Vec3(i, j, k);
             // The plane distance bounds the triangle distance from below: a cheap rejection.
             const double plane = std::abs((p - a).dot(fn));
@@ -184,30 +200,35 @@ SignedDistanceGrid::SignedDistanceGrid(const mesh::SurfaceMesh& m, const SdfOpti
   // least one cell thick wherever the surface passes, so nothing leaks.
   phi_.assign(count, 0.0f);
   std::vector<signed char> far(count, 0);  // 0 unknown, 1 outside
-  std::vector<std::size_t> stack;
-  auto idx = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * ny_ + j) * nx_ + i; };
-  auto seed = [&](int i, int j, int k) {
-    const std::size_t n = idx(i, j, k);
+  std::vector<std::uint32_t> stack;        // node indices (count < 2³¹)
+  const std::uint32_t sx = 1, sy = static_cast<std::uint32_t>(nx_),
+                      sz = static_cast<std::uint32_t>(nx_) * static_cast<std::uint32_t>(ny_);
+  auto seed = [&](std::uint32_t n) {
     if (sign[n] == 0 && !far[n]) {
       far[n] = 1;
       stack.push_back(n);
     }
   };
+  // The box's six faces (the reachable set does not depend on the order).
   for (int k = 0; k < nz_; ++k)
-    for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i)
-        if (i == 0 || j == 0 || k == 0 || i == nx_ - 1 || j == ny_ - 1 || k == nz_ - 1) seed(i, j, k);
+    for (int j = 0; j < ny_; ++j) {
+      const bool face = k == 0 || j == 0 || k == nz_ - 1 || j == ny_ - 1;
+      const std::uint32_t row = k * sz + j * sy;
+      if (face)
+        for (int i = 0; i < nx_; ++i) seed(row + i);
+      else
+        seed(row), seed(row + nx_ - 1);
+    }
   while (!stack.empty()) {
-    const std::size_t n = stack.back();
+    const std::uint32_t n = stack.back();
     stack.pop_back();
-    const int i = static_cast<int>(n % nx_), j = static_cast<int>((n / nx_) % ny_),
-              k = static_cast<int>(n / (static_cast<std::size_t>(nx_) * ny_));
-    if (i > 0) seed(i - 1, j, k);
-    if (i < nx_ - 1) seed(i + 1, j, k);
-    if (j > 0) seed(i, j - 1, k);
-    if (j < ny_ - 1) seed(i, j + 1, k);
-    if (k > 0) seed(i, j, k - 1);
-    if (k < nz_ - 1) seed(i, j, k + 1);
+    const std::uint32_t k = n / sz, rem = n - k * sz, j = rem / sy, i = rem - j * sy;
+    if (i > 0) seed(n - sx);
+    if (static_cast<int>(i) < nx_ - 1) seed(n + sx);
+    if (j > 0) seed(n - sy);
+    if (static_cast<int>(j) < ny_ - 1) seed(n + sy);
+    if (k > 0) seed(n - sz);
+    if (static_cast<int>(k) < nz_ - 1) seed(n + sz);
   }
   for (std::size_t n = 0; n < count; ++n) {
     if (sign[n] != 0) {
