@@ -146,7 +146,7 @@ struct MannequinFunction {
     double dip = 0.0;       // the limb's smooth minima dip at most this far below their parts
     double lower(const Vec3& p) const;
   };
-  LimbBound arm_bound[2], leg_bound[2];
+  LimbBound arm_bound[2], leg_bound[2], head_bound;  // the head: the neck's cone and the head's ellipsoid
 
   void build();
   void bound_limbs();
@@ -157,7 +157,9 @@ struct MannequinFunction {
   double leg(const Vec3& p, int side) const;
   Vec3 calf(int s) const { return knee[s] + 0.35 * (ankle[s] - knee[s]); }  // the calf's fullest girth
   double operator()(const Vec3& p) const;
-  double body(const Vec3& p, bool with_arms) const;
+  // every_part: evaluate every part, none skipped by its bound (the
+  // definition the skipping must equal bit for bit; tests).
+  double body(const Vec3& p, bool with_arms, bool every_part = false) const;
   double girth_at(double y) const;
   double crotch_height() const;
   double half_width_at(double y) const;
@@ -347,6 +349,11 @@ void MannequinFunction::bound_limbs() {
     b.caps = 0.0;
     for (const auto& [x, r] : balls) b.caps = std::max(b.caps, (x - b.c).norm() + r);
   };
+  capsules(head_bound, {{neck_a, std::max(r_neck_base, r_neck_top)}, {neck_b, std::max(r_neck_base, r_neck_top)}});
+  head_bound.e = head_c;
+  head_bound.e_max = head_r.maxCoeff();
+  head_bound.e_min = head_r.minCoeff();
+  head_bound.dip = 0.25 * 0.03;
   for (int s = 0; s < 2; ++s) {
     LimbBound& a = arm_bound[s];
     capsules(a, {{shoulder_joint[s], r_upper_arm}, {elbow[s], std::max(r_upper_arm, r_elbow)},
@@ -391,22 +398,25 @@ double MannequinFunction::leg(const Vec3& p, int s) const {
 
 double MannequinFunction::operator()(const Vec3& p) const { return body(p, true); }
 
-double MannequinFunction::body(const Vec3& p, bool with_arms) const {
+double MannequinFunction::body(const Vec3& p, bool with_arms, bool every_part) const {
   // Each limb is blended into the trunk, never into its twin (the thighs and the
   // arm and the flank stay apart); the floor cuts the soles flat.
   double d = trunk(p);
-  const double neck = round_cone(p, neck_a, neck_b, r_neck_base, r_neck_top);
-  const double head = ellipsoid(p, head_c, head_r, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ());
-  d = smin(d, smin(neck, head, 0.03), 0.03);
-  // A limb whose lower bound is past the blend with d leaves smin(d, ·)
-  // equal to d, bit for bit (h = 0): it is not evaluated (1 µm of margin
-  // for the rounding of the bound). With the limb of the other side, the
-  // same: min(l0, l1) blends to d whenever the skipped one is past it.
+  // A part (the neck with the head, each limb) whose lower bound is past its
+  // blend with d leaves smin(d, ·) equal to d, bit for bit (h = 0): it is not
+  // evaluated (1 µm of margin for the rounding of the bound).
   constexpr double kRounding = 1e-6;
+  if (every_part || head_bound.lower(p) < d + 0.03 + kRounding) {
+    const double neck = round_cone(p, neck_a, neck_b, r_neck_base, r_neck_top);
+    const double head = ellipsoid(p, head_c, head_r, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ());
+    d = smin(d, smin(neck, head, 0.03), 0.03);
+  }
+  // A limb skipped beside the other side's: min(l0, l1) blends to d
+  // whenever the skipped one is past it, so the blend is the other's.
   auto limbs = [&](const LimbBound* bound, double k, auto&& limb) {
     double v = std::numeric_limits<double>::infinity();
     for (int s = 0; s < 2; ++s)
-      if (bound[s].lower(p) < d + k + kRounding) v = std::min(v, limb(s));
+      if (every_part || bound[s].lower(p) < d + k + kRounding) v = std::min(v, limb(s));
     return std::isinf(v) ? d : smin(d, v, k);
   };
   d = limbs(leg_bound, 0.03, [&](int s) { return leg(p, s); });
@@ -545,6 +555,7 @@ MannequinSdf::~MannequinSdf() = default;
 MannequinSdf::MannequinSdf(MannequinSdf&&) noexcept = default;
 MannequinSdf& MannequinSdf::operator=(MannequinSdf&&) noexcept = default;
 double MannequinSdf::operator()(const Vec3& p) const { return (*f_)(p); }
+double MannequinSdf::every_part(const Vec3& p) const { return f_->body(p, true, true); }
 const MannequinLandmarks& MannequinSdf::landmarks() const { return f_->lm; }
 double MannequinSdf::girth_at(double y) const { return f_->girth_at(y); }
 

@@ -5,8 +5,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
+#include <vector>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/mesh/surface.hpp"
@@ -234,6 +236,37 @@ TEST(MannequinGeneration, IsDeterministic) {
   ASSERT_EQ(a.surface.vertices.size(), b.surface.vertices.size());
   ASSERT_EQ(a.surface.triangles, b.surface.triangles);
   for (std::size_t i = 0; i < a.surface.vertices.size(); ++i) ASSERT_EQ(a.surface.vertices[i], b.surface.vertices[i]);
+}
+
+// The body's value skips the neck with the head and each limb where a lower
+// bound shows the part cannot change it: the skipping must give the value of
+// every part evaluated, bit for bit, anywhere round the body (near the
+// surface, where the mesher and the calibration look, and away from it), in
+// every pose the options allow.
+TEST(MannequinGeneration, SkippingFarPartsLeavesTheValueBitForBit) {
+  std::vector<std::pair<BodyMeasurements, MannequinOptions>> bodies;
+  for (const auto& m : {women38(), men50(), women46()}) bodies.push_back({m, {}});
+  MannequinOptions t_pose, forward;
+  t_pose.arm_angle_deg = 90;
+  forward.arm_forward_deg = 45;
+  bodies.push_back({women38(), t_pose});
+  bodies.push_back({men50(), forward});
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // xorshift64*: the same points on every machine
+    state ^= state >> 12, state ^= state << 25, state ^= state >> 27;
+    return static_cast<double>((state * 2685821657736338717ull) >> 11) * 0x1.0p-53;
+  };
+  for (const auto& [m, o] : bodies) {
+    const MannequinSdf sdf(m, o);
+    int near = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 p(-0.9 + 1.8 * uniform(), -0.05 + 2.0 * uniform(), -0.4 + 0.8 * uniform());
+      const double v = sdf(p), all = sdf.every_part(p);
+      ASSERT_EQ(v, all) << m.sex << " " << m.label << " at (" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+      near += std::abs(v) < 0.03;
+    }
+    EXPECT_GT(near, 200) << "points near the surface were tried";
+  }
 }
 
 TEST(MannequinGeneration, TriangleTargetIsFollowed) {

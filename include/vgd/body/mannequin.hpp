@@ -70,6 +70,10 @@ class MannequinSdf {
   MannequinSdf(MannequinSdf&&) noexcept;
   MannequinSdf& operator=(MannequinSdf&&) noexcept;
   double operator()(const Vec3& p) const;
+  // The same value with every part of the body evaluated: operator() skips
+  // the neck, the head or a limb where a lower bound shows it cannot change
+  // the value, and must equal this bit for bit.
+  double every_part(const Vec3& p) const;
   const MannequinLandmarks& landmarks() const;
   // Girth (m) of the trunk's slice at height y: convex-hull perimeter of the
   // loop around the trunk's centre line.
