@@ -69,6 +69,40 @@ double pattern_girth(const xvc::Document& doc, const std::vector<const xvc::Node
   }
   return girth;
 }
+
+// Why no seam vgd suggests sews a piece of this role: what its seam rules
+// (xvc/seams.hpp) sew and what they do not yet, and what the designer can do.
+std::string not_sewn_why(pattern::Role role, bool half_legs) {
+  using pattern::Role;
+  const std::string r(pattern::role_name(role));
+  std::string why;
+  switch (role) {
+    case Role::collar:
+    case Role::collar_stand:
+    case Role::neckband:
+    case Role::hood:
+      why = "vgd does not yet suggest the seam that sews a " + r + " to the neckline";
+      break;
+    case Role::cuff:
+      why = "vgd does not yet suggest the seam that sews a cuff to a sleeve's hem";
+      break;
+    case Role::waistband:
+      why = half_legs ? "vgd sews a waistband to a skirt's waist or to the waist of whole legs (leggings), not yet to "
+                        "trousers cut as half legs"
+                      : "no waist vgd found (a skirt's front and back, or whole legs) fits its length";
+      break;
+    case Role::binding:
+    case Role::facing:
+    case Role::belt_loop:
+    case Role::fly:
+      why = "vgd does not yet suggest the seams of a " + r;
+      break;
+    default:
+      why = "none of the seams vgd suggests fits it";
+  }
+  return why + "; sew it with 'vgd seams add' and arrange it with 'vgd place', then dress the document again";
+}
+
 }  // namespace
 
 std::string size_table_from_name(const std::string& style_name) {
@@ -342,6 +376,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       if (const auto* p = doc.find(id)) arranged.insert(std::string(p->attribute("piece")));
   for (const auto* p : mine)
     if (!xvc::arrangements_of(*p).empty()) arranged.insert(std::string(p->attribute("piece")));
+  // Trousers cut as half legs (the waistband rules sew skirts and whole legs).
+  const bool half_legs = std::any_of(mine.begin(), mine.end(), [&](const xvc::Node* p) {
+    const auto& g = roles[std::string(p->attribute("piece"))];
+    return g.role == pattern::Role::leg && g.half != pattern::Half::none;
+  });
   for (const auto* p : mine) {
     const std::string name(p->attribute("piece"));
     const pattern::Role role = roles[name].role;
@@ -374,7 +413,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         leave("an alternative to the " + std::string(pattern::role_name(role)) + " " +
               std::string((*alt)->attribute("piece")) + ", whose seams fit the garment's other pieces better");
       else
-        leave("no seam sews it");
+        leave("no seam sews it: " + not_sewn_why(role, half_legs));
     } else if (!arranged.count(name)) {
       leave("no rule places it round the body (give it an arrangement with 'vgd place --set \"" + name +
             "=SEGMENT:SIDE:HEIGHT\"')");

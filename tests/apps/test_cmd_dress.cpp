@@ -223,6 +223,29 @@ TEST(CliDress, ASeamFileSewsADxfInsteadOfTheSuggestions) {
 // no MATERIAL in the document and none given, the shipped knit is written in
 // the document it saves and said with both girths; a fabric given with
 // --material is kept, and trousers with ease stay in the woven.
+// A piece left out because no suggested seam sews it says which seam vgd
+// does not suggest yet, and what the designer can do about it.
+TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-not-sewn");
+  const auto shirt = run_vgd({"dress", shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf").string(), "-o",
+                              (out / "s").string(), "--no-previews", "--time-limit", "0.05"});
+  for (const char* says :
+       {"piece COLLAR (collar) left out: no seam sews it: vgd does not yet suggest the seam that sews a collar to the "
+        "neckline; sew it with 'vgd seams add' and arrange it with 'vgd place', then dress the document again",
+        "piece COLLARBASE (collar stand) left out: no seam sews it: vgd does not yet suggest the seam that sews a "
+        "collar stand to the neckline"})
+    EXPECT_NE(shirt.err.find(says), std::string::npos) << says << "\n" << shirt.err;
+  const auto trousers = run_vgd({"dress", shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "-o",
+                                 (out / "t").string(), "--no-previews", "--time-limit", "0.05"});
+  for (const char* band : {"WAISTBAND1", "WAISTBAND2"}) {
+    const std::string says = std::string("piece ") + band +
+                             " (waistband) left out: no seam sews it: vgd sews a waistband to a skirt's waist or to "
+                             "the waist of whole legs (leggings), not yet to trousers cut as half legs";
+    EXPECT_NE(trousers.err.find(says), std::string::npos) << says << "\n" << trousers.err;
+  }
+}
+
 TEST(CliDress, LegsWithNegativeEaseAreDrapedInTheShippedKnit) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("dress-knit");
