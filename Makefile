@@ -74,7 +74,7 @@ asan:
 fuzz: deps
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVGD_FUZZ=ON -DVGD_BUILD_BENCHMARKS=OFF > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target vgd_fuzz_dxf_import vgd_fuzz_scene_files vgd_fuzz_trj_files vgd_fuzz_avatar_files vgd_fuzz_piece_names \
-		vgd_fuzz_xvc_files vgd_fuzz_png_files vgd_fuzz_lab_csv
+		vgd_fuzz_xvc_files vgd_fuzz_png_files vgd_fuzz_lab_csv vgd_fuzz_mannequin_cache
 
 bench: build
 	@$(BUILD)/tests/bench/vgd_bench

@@ -69,6 +69,8 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
   sub->add_flag("--json", o->json, "Print the report as JSON on stdout");
   sub->footer("Without --size the body starts from the default (EN 13402-3 women's 38 on 1.68 m) and the measurements\n"
               "given replace its values; measurements not given are derived (data/bodies/README.md).\n"
+              "A body meshed once is kept in the cache ($VGD_CACHE_DIR, else $XDG_CACHE_HOME/vgd or ~/.cache/vgd;\n"
+              "VGD_CACHE_DIR=off keeps none) and read back from it, the same mesh (docs/avatar.md, \"The cache\").\n"
               "Exit codes: 0 ok, 1 bad measurements or write failure, 2 usage.");
   return vgd::cli::Command{sub, [o, &common]() -> int {
     if (o->list) {

@@ -13,10 +13,13 @@
 #include <initializer_list>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/mesh/implicit_surface.hpp"
+#include "mannequin_cache.hpp"
 
 namespace vgd::body {
 
@@ -653,10 +656,21 @@ Avatar make_mannequin(const BodyMeasurements& m, const MannequinOptions& options
     c.angle_deg = 25.0;
     return mesh::mesh_implicit_surface([&f](const Vec3& p) { return f(p); }, box, c, inside);
   };
-  mesh::SurfaceMesh surface = run(size);
-  if (options.facet_size <= 0) {
-    const double ratio = static_cast<double>(surface.num_triangles()) / target;
-    if (ratio < 0.8 || ratio > 1.2) surface = run(size * std::sqrt(ratio));
+  // Meshing is most of a mannequin's time: a surface meshed before for the
+  // same measurements and options comes from the cache (mannequin_cache.hpp).
+  const std::string key = options.cache ? detail::mannequin_cache_key(m, options) : std::string();
+  std::optional<mesh::SurfaceMesh> cached = detail::read_cached_surface(key);
+  mesh::SurfaceMesh surface;
+  if (cached) {
+    surface = std::move(*cached);
+  } else {
+    surface = run(size);
+    if (options.facet_size <= 0) {
+      const double ratio = static_cast<double>(surface.num_triangles()) / target;
+      if (ratio < 0.8 || ratio > 1.2) surface = run(size * std::sqrt(ratio));
+    }
+    detail::count_meshing();
+    detail::write_cached_surface(key, surface);
   }
   // Feet on the floor and centred on the Y axis (bounding box centre).
   const mesh::Box3 b = mesh::bounding_box(surface);

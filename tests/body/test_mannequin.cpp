@@ -7,12 +7,18 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/mesh/surface.hpp"
 #include "vgd/body/mannequin.hpp"
+#include "support/test_paths.hpp"
 
 using namespace vgd;
 using namespace vgd::body;
@@ -267,6 +273,123 @@ TEST(MannequinGeneration, SkippingFarPartsLeavesTheValueBitForBit) {
     }
     EXPECT_GT(near, 200) << "points near the surface were tried";
   }
+}
+
+// The cache (docs/avatar.md, "The cache"): a mannequin made again for the
+// same measurements and options takes its surface from the file the first
+// one left, the same bit for bit and without meshing; a file that does not
+// read back whole is meshed again and replaced; "off" keeps nothing.
+class MannequinCache : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("vgd-mannequin-cache-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    ::setenv("VGD_CACHE_DIR", dir_.c_str(), 1);
+    o_.target_triangles = 5000;
+  }
+  void TearDown() override {
+    ::unsetenv("VGD_CACHE_DIR");
+    std::filesystem::remove_all(dir_);
+  }
+  std::vector<std::filesystem::path> files() const {
+    std::vector<std::filesystem::path> out;
+    if (std::filesystem::exists(dir_))
+      for (const auto& e : std::filesystem::directory_iterator(dir_)) out.push_back(e.path());
+    return out;
+  }
+  static void expect_same(const Avatar& a, const Avatar& b) {
+    ASSERT_EQ(a.surface.triangles, b.surface.triangles);
+    ASSERT_EQ(a.surface.vertices.size(), b.surface.vertices.size());
+    for (std::size_t i = 0; i < a.surface.vertices.size(); ++i) ASSERT_EQ(a.surface.vertices[i], b.surface.vertices[i]);
+    ASSERT_EQ(a.triangle_segment, b.triangle_segment);
+    ASSERT_EQ(a.segments.size(), b.segments.size());
+    for (std::size_t s = 0; s < a.segments.size(); ++s) EXPECT_EQ(a.segments[s].start, b.segments[s].start);
+  }
+  std::filesystem::path dir_;
+  MannequinOptions o_;
+};
+
+TEST_F(MannequinCache, ASecondMannequinComesFromTheCacheBitForBit) {
+  ASSERT_EQ(mannequin_cache_dir(), dir_);
+  const long before = mannequin_meshings();
+  const Avatar first = make_mannequin(women38(), o_);
+  EXPECT_EQ(mannequin_meshings(), before + 1);
+  ASSERT_EQ(files().size(), 1u) << "the surface kept";
+  const Avatar second = make_mannequin(women38(), o_);
+  EXPECT_EQ(mannequin_meshings(), before + 1) << "taken from the cache, not meshed";
+  expect_same(first, second);
+  // Not asked to use it: meshed, the same.
+  MannequinOptions fresh = o_;
+  fresh.cache = false;
+  expect_same(first, make_mannequin(women38(), fresh));
+  EXPECT_EQ(mannequin_meshings(), before + 2);
+  // Another body, or the same one in another pose, is another file.
+  MannequinOptions t_pose = o_;
+  t_pose.arm_angle_deg = 90;
+  make_mannequin(women38(), t_pose);
+  make_mannequin(men50(), o_);
+  EXPECT_EQ(files().size(), 3u);
+  EXPECT_EQ(mannequin_meshings(), before + 4);
+}
+
+TEST_F(MannequinCache, AFileThatDoesNotReadBackWholeIsMeshedAgainAndReplaced) {
+  const Avatar made = make_mannequin(women38(), o_);
+  ASSERT_EQ(files().size(), 1u);
+  const auto file = files().front();
+  const std::string whole = vgd::read_file(file);
+  auto flipped = [&](std::size_t at) {
+    std::string b = whole;
+    b[at] = static_cast<char>(b[at] ^ 0x10);
+    return b;
+  };
+  const std::vector<std::string> damaged = {whole.substr(0, whole.size() / 2),  // cut short
+                                            flipped(40),                        // its key changed
+                                            flipped(whole.size() / 2),          // a coordinate changed
+                                            ""};
+  for (const auto& bad : damaged) {
+    vgd::write_file_atomic(file, bad);
+    const long before = mannequin_meshings();
+    expect_same(made, make_mannequin(women38(), o_));
+    EXPECT_EQ(mannequin_meshings(), before + 1) << "meshed again";
+    EXPECT_EQ(vgd::read_file(file), whole) << "and the file replaced";
+  }
+}
+
+TEST_F(MannequinCache, OffKeepsNothing) {
+  ::setenv("VGD_CACHE_DIR", "off", 1);
+  EXPECT_TRUE(mannequin_cache_dir().empty());
+  const long before = mannequin_meshings();
+  make_mannequin(women38(), o_);
+  make_mannequin(women38(), o_);
+  EXPECT_EQ(mannequin_meshings(), before + 2);
+  EXPECT_TRUE(files().empty());
+}
+
+// The file format on its own: a surface written reads back the same; any
+// byte cut off or changed, or another key, reads back nothing.
+TEST(MannequinCacheFile, ReadsBackWhatWasWrittenAndNothingElse) {
+  mesh::SurfaceMesh s;
+  s.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const std::string bytes = mannequin_cache_file(s, "key 1\n");
+  const auto back = read_mannequin_cache_file(bytes, "key 1\n");
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->vertices, s.vertices);
+  EXPECT_EQ(back->triangles, s.triangles);
+  EXPECT_FALSE(read_mannequin_cache_file(bytes, "key 2\n").has_value());
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut)
+    EXPECT_FALSE(read_mannequin_cache_file(bytes.substr(0, cut), "key 1\n").has_value()) << cut;
+  for (std::size_t at = 0; at < bytes.size(); ++at) {
+    std::string changed = bytes;
+    changed[at] = static_cast<char>(changed[at] ^ 0x10);
+    EXPECT_FALSE(read_mannequin_cache_file(changed, "key 1\n").has_value()) << at;
+  }
+  // The fuzz target's seed of a whole file (after its mode byte) is this tetrahedron.
+  const std::string seed = vgd::read_file(vgd::test::source_dir() / "tests/fuzz/corpus/mannequin/raw-tetrahedron.bin");
+  const auto tetra = read_mannequin_cache_file(std::string_view(seed).substr(1), "fuzz\n");
+  ASSERT_TRUE(tetra.has_value());
+  EXPECT_EQ(tetra->vertices, s.vertices);
+  EXPECT_EQ(tetra->triangles, s.triangles);
 }
 
 TEST(MannequinGeneration, TriangleTargetIsFollowed) {

@@ -11,11 +11,15 @@
 // what a tape measures) until bust, under-bust, waist and hip match, and the
 // crotch and shoulder points are moved to the inseam and shoulder width. The
 // zero level set is meshed by CGAL (mesh/implicit_surface.hpp).
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vgd/body/avatar.hpp"
+#include "vgd/mesh/surface.hpp"
 
 namespace vgd::body {
 
@@ -26,7 +30,28 @@ struct MannequinOptions {
   double arm_angle_deg = 45.0;   // angle between each arm and the vertical: 45 an A-pose, 90 a T-pose; opened up to 50° when the chest needs it
   double arm_forward_deg = 0.0;  // arms swung forward about the shoulders' x axis, 0–60: 0 in the frontal plane
   bool calibrate = true;         // false: girths from the closed-form ellipse estimate only (±2–3 %)
+  // Keep the meshed surface in the cache and take it from there when it holds
+  // it (mannequin_cache_dir()): the same mesh bit for bit, without its meshing.
+  bool cache = true;
 };
+
+// Where mannequins' surfaces are kept between runs: $VGD_CACHE_DIR, else
+// $XDG_CACHE_HOME/vgd, else ~/.cache/vgd; empty (no cache) when VGD_CACHE_DIR
+// is "off" or no home is known. Each file holds one surface, keyed by the
+// measurements, the options and the executable that meshed it (a rebuilt vgd
+// meshes anew); a file that does not read back whole is replaced.
+std::filesystem::path mannequin_cache_dir();
+
+// Surfaces this process has meshed (not taken from the cache), for tests.
+long mannequin_meshings();
+
+// A cache file's bytes for `surface` kept under `key`, and the surface read
+// back from such bytes: nullopt unless the bytes are whole (their header names
+// `key`, their counts fit their length, their checksum matches, every
+// coordinate is finite and every corner a vertex). The format, for tests and
+// the fuzz target; docs/avatar.md, "The cache".
+std::string mannequin_cache_file(const mesh::SurfaceMesh& surface, std::string_view key);
+std::optional<mesh::SurfaceMesh> read_mannequin_cache_file(std::string_view bytes, std::string_view key);
 
 // Heights of the landmarks the mannequin is built on, m above the floor, and
 // where the girths are measured (the calibration and the tests use the same).
