@@ -11,9 +11,10 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +22,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 #include "vgd/core/file.hpp"
 
@@ -30,6 +33,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::string_view kMagic = "vgd mannequin surface 1\n";
+constexpr std::size_t kMaxFiles = 64;  // surfaces kept at most (about 15 MB at 10 000 triangles)
 
 std::atomic<long> meshings{0};
 
@@ -164,7 +168,24 @@ void write_cached_surface(const std::string& key, const mesh::SurfaceMesh& surfa
     write_file_atomic(file, mannequin_cache_file(surface, key));
   } catch (const std::exception&) {
     // A cache that cannot be written (read-only home, disk full) costs the next run its meshing only.
+    return;
   }
+  // At most kMaxFiles surfaces: each build of vgd keys its own, so the
+  // oldest written go (another process may be removing them too: errors are
+  // ignored).
+  std::error_code ec;
+  std::vector<std::pair<fs::file_time_type, fs::path>> kept;
+  for (fs::directory_iterator it(file.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("mannequin-", 0) != 0 || it->path().extension() != ".bin") continue;
+    std::error_code te;
+    const auto t = fs::last_write_time(it->path(), te);
+    if (!te) kept.emplace_back(t, it->path());
+  }
+  if (kept.size() <= kMaxFiles) return;
+  std::sort(kept.begin(), kept.end());
+  for (std::size_t i = 0; i + kMaxFiles < kept.size(); ++i)
+    if (kept[i].second != file) fs::remove(kept[i].second, ec);
 }
 
 }  // namespace detail

@@ -365,6 +365,28 @@ TEST_F(MannequinCache, OffKeepsNothing) {
   EXPECT_TRUE(files().empty());
 }
 
+// The cache keeps 64 surfaces at most: writing one removes the oldest
+// others beyond that, never the one just written.
+TEST_F(MannequinCache, KeepsTheNewestSurfacesOnly) {
+  std::filesystem::create_directories(dir_);
+  const auto old = std::filesystem::file_time_type::clock::now() - std::chrono::hours(24);
+  for (int i = 0; i < 70; ++i) {
+    const auto f = dir_ / ("mannequin-old" + std::to_string(i) + ".bin");
+    vgd::write_file_atomic(f, "old");
+    std::filesystem::last_write_time(f, old + std::chrono::seconds(i));
+  }
+  vgd::write_file_atomic(dir_ / "notes.txt", "not the cache's");
+  make_mannequin(women38(), o_);
+  const auto left = files();
+  EXPECT_EQ(left.size(), 65u) << "64 surfaces and the file that is not one";
+  int olds = 0;
+  for (const auto& f : left) olds += f.filename().string().rfind("mannequin-old", 0) == 0;
+  EXPECT_EQ(olds, 63) << "the seven oldest removed";
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "mannequin-old69.bin"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "mannequin-old0.bin"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "notes.txt"));
+}
+
 // The file format on its own: a surface written reads back the same; any
 // byte cut off or changed, or another key, reads back nothing.
 TEST(MannequinCacheFile, ReadsBackWhatWasWrittenAndNothingElse) {
