@@ -69,6 +69,20 @@ fs::path file_for(const std::string& key) {
   return dir / name;
 }
 
+// A file the cache wrote: "mannequin-" and 16 hex digits ".bin", beginning
+// with the format's first line.
+bool is_cache_file(const fs::path& p) {
+  const std::string name = p.filename().string();
+  constexpr std::string_view prefix = "mannequin-", suffix = ".bin";
+  if (name.size() != prefix.size() + 16 + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0 ||
+      name.find_first_not_of("0123456789abcdef", prefix.size()) != prefix.size() + 16)
+    return false;
+  std::ifstream in(p, std::ios::binary);
+  std::string head(kMagic.size(), '\0');
+  return in.read(head.data(), static_cast<std::streamsize>(head.size())) && head == kMagic;
+}
+
 }  // namespace
 
 fs::path mannequin_cache_dir() {
@@ -172,12 +186,12 @@ void write_cached_surface(const std::string& key, const mesh::SurfaceMesh& surfa
   }
   // At most kMaxFiles surfaces: each build of vgd keys its own, so the
   // oldest written go (another process may be removing them too: errors are
-  // ignored).
+  // ignored). Only the cache's own files: named as file_for names them and
+  // beginning with kMagic; anything else in the folder is never touched.
   std::error_code ec;
   std::vector<std::pair<fs::file_time_type, fs::path>> kept;
   for (fs::directory_iterator it(file.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.rfind("mannequin-", 0) != 0 || it->path().extension() != ".bin") continue;
+    if (!is_cache_file(it->path())) continue;
     std::error_code te;
     const auto t = fs::last_write_time(it->path(), te);
     if (!te) kept.emplace_back(t, it->path());

@@ -163,9 +163,9 @@ SignedDistanceGrid::SignedDistanceGrid(const mesh::SurfaceMesh& m, const SdfOpti
       const Vec3& fn = normals.face_normal(t);
       // The triangle lies in the ball about its box's centre through the box's
       // corners: a node farther than that radius plus the band from the
-      // centre is beyond the band (1 µm spared for rounding), and so are the
-      // rest of its row once the row has passed the centre. Only nodes the
-      // test below would reject are skipped: the grid is the same, bit for bit.
+      // centre is beyond the band (1 µm spared for rounding), so each row is
+      // visited only where it crosses the grown ball. Only nodes the test
+      // below would reject are skipped: the grid is the same, bit for bit.
       const Vec3 centre = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c));
       const double reach = 0.5 * (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).norm() + band_ + 1e-6;
       const double reach2 = reach * reach;

@@ -365,26 +365,36 @@ TEST_F(MannequinCache, OffKeepsNothing) {
   EXPECT_TRUE(files().empty());
 }
 
-// The cache keeps 64 surfaces at most: writing one removes the oldest
-// others beyond that, never the one just written.
-TEST_F(MannequinCache, KeepsTheNewestSurfacesOnly) {
+// The cache keeps 64 surfaces at most: writing one removes the oldest of
+// its own files beyond that, never the one just written, and never a file
+// it did not write (another name, or a cache-like name without its format).
+TEST_F(MannequinCache, KeepsTheNewestSurfacesOnlyAndNothingElseIsRemoved) {
   std::filesystem::create_directories(dir_);
   const auto old = std::filesystem::file_time_type::clock::now() - std::chrono::hours(24);
+  mesh::SurfaceMesh tiny;
+  tiny.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tiny.triangles = {{0, 1, 2}};
+  auto name = [](int i) {
+    char n[40];
+    std::snprintf(n, sizeof n, "mannequin-%016x.bin", 0xabc000 + i);
+    return std::string(n);
+  };
   for (int i = 0; i < 70; ++i) {
-    const auto f = dir_ / ("mannequin-old" + std::to_string(i) + ".bin");
-    vgd::write_file_atomic(f, "old");
+    const auto f = dir_ / name(i);
+    vgd::write_file_atomic(f, mannequin_cache_file(tiny, "old " + std::to_string(i) + "\n"));
     std::filesystem::last_write_time(f, old + std::chrono::seconds(i));
   }
-  vgd::write_file_atomic(dir_ / "notes.txt", "not the cache's");
+  // Older than all of them, but not the cache's: kept.
+  const auto mine = dir_ / name(999), notes = dir_ / "notes.txt";
+  vgd::write_file_atomic(mine, "a file of the user's own, named like the cache's");
+  vgd::write_file_atomic(notes, "not the cache's");
+  std::filesystem::last_write_time(mine, old - std::chrono::hours(1));
+  std::filesystem::last_write_time(notes, old - std::chrono::hours(1));
   make_mannequin(women38(), o_);
-  const auto left = files();
-  EXPECT_EQ(left.size(), 65u) << "64 surfaces and the file that is not one";
-  int olds = 0;
-  for (const auto& f : left) olds += f.filename().string().rfind("mannequin-old", 0) == 0;
-  EXPECT_EQ(olds, 63) << "the seven oldest removed";
-  EXPECT_TRUE(std::filesystem::exists(dir_ / "mannequin-old69.bin"));
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "mannequin-old0.bin"));
-  EXPECT_TRUE(std::filesystem::exists(dir_ / "notes.txt"));
+  EXPECT_EQ(files().size(), 66u) << "64 surfaces and the two files that are not the cache's";
+  for (int i = 0; i < 70; ++i) EXPECT_EQ(std::filesystem::exists(dir_ / name(i)), i >= 7) << i;
+  EXPECT_EQ(vgd::read_file(mine), "a file of the user's own, named like the cache's");
+  EXPECT_TRUE(std::filesystem::exists(notes));
 }
 
 // The file format on its own: a surface written reads back the same; any
