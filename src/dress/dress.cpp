@@ -268,7 +268,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
       mine.push_back(Underlayer{placed[k].segment, placed[k].positions});
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
       out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment,
-                            xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.pattern_id, gp.copy,
+                            xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.layers, gp.pattern_id, gp.copy,
                             pinned_nodes(file.string(), doc, gp, out.diagnostics), placed[k].lifted});
       first[k] = count;
       count += n;

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/seams.hpp"
@@ -178,6 +179,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
   std::vector<std::vector<xvc::Stretch>> stretches;  // per pattern kept
   std::vector<std::vector<int>> copies;              // per pattern kept: its pieces
   std::set<std::string> left_out;                    // stretches of this size's patterns left out
+  std::vector<bool> folded;                          // per pattern kept: cut double, folded lengthwise
   for (const auto* p : patterns) {
     if (std::string(p->attribute("size")) != g.size) continue;
     GarmentPiece gp;
@@ -194,6 +196,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       continue;
     }
     stretches.push_back(xvc::boundary_stretches(*p));
+    folded.push_back(xvc::folded_attribute(*p).value_or(false));
     copies.emplace_back();
     const auto listed = options.copies.find(gp.pattern_id);
     const int n = std::max<int>(1, listed != options.copies.end() ? listed->second
@@ -248,6 +251,34 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
         continue;
       }
       raw.push_back(std::move(seam));
+    }
+  }
+
+  // A piece cut double and folded lengthwise (a rib) hangs as the half beside
+  // the longest edge a seam sews (both raw edges are sewn there together), in
+  // two layers: pattern::fold_lengthwise about that edge's chord.
+  for (int pi = 0; pi < static_cast<int>(stretches.size()); ++pi) {
+    if (!folded[pi]) continue;
+    const auto& st = stretches[pi];
+    const auto& bd = g.pieces[copies[pi][0]].piece.boundary;
+    const int n = static_cast<int>(bd.size());
+    double longest = 0;
+    std::pair<int, int> edge{-1, -1};
+    for (const auto& seam : raw)
+      for (const auto& h : seam.hems) {
+        if (h.pat != pi || n < 3) continue;
+        const int a = static_cast<int>(st[h.from].first), b = static_cast<int>(st[(h.to + 1) % st.size()].first);
+        const double len = polyline_length(span_points(bd, a, b));
+        if (a != b && len > longest) longest = len, edge = {a, b};
+      }
+    const std::string& name = g.pieces[copies[pi][0]].name;
+    if (edge.first < 0)
+      throw Error(file, g.pieces[copies[pi][0]].pattern_id,
+                  "piece " + name + " is folded (folded=\"true\"), but no seam sews it: the fold is about the edge sewn");
+    const Vec2 a = bd[edge.first].p, b = bd[edge.second].p;
+    for (const int c : copies[pi]) {
+      pattern::fold_lengthwise(g.pieces[c].piece, a, b - a);
+      g.pieces[c].layers = 2;
     }
   }
 

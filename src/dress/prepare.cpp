@@ -79,9 +79,11 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
   switch (role) {
     case Role::collar:
     case Role::collar_stand:
-    case Role::neckband:
     case Role::hood:
       why = "vgd does not yet suggest the seam that sews a " + r + " to the neckline";
+      break;
+    case Role::neckband:
+      why = "no neckline vgd found (a front's and a back's outline between their shoulder seams) fits its length";
       break;
     case Role::cuff:
       why = "vgd does not yet suggest the seam that sews a cuff to a sleeve's hem";
@@ -326,6 +328,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     out.decisions.push_back("seams from " + options.seams_file + ": " + std::to_string(plans.size()) + " seams (" +
                             std::to_string(n) + " SEAMs over the sizes); none suggested");
   }
+  std::map<std::string, double> band_to_neckline;  // neckband piece -> its length over the neckline's (suggested)
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
     so.size = !sample.empty() && !patterns_of(sample).empty() ? sample : out.size;
@@ -342,6 +345,9 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.decisions.push_back("seam '" + s.name + "' suggested at size " + so.size + ": " + hems + ", ease " +
                               format_fixed(1000 * s.ease, 1) + " mm, score " + format_fixed(s.score, 2));
     }
+    for (const auto& s : suggested)
+      if (s.name == "neck seam" && s.length_b > 0)
+        if (const auto* p = doc.find(s.hems[0].pattern)) band_to_neckline[std::string(p->attribute("piece"))] = s.length_a / s.length_b;
     if (!nodes.empty()) xvc::execute(doc, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
     out.seams_added = static_cast<int>(suggested.size());
     if (suggested.empty())
@@ -515,6 +521,59 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.decisions.push_back("each pattern's role and whether it is draped written in the document (PATTERN "
                               "attributes role and drape): correct one there and run again");
     }
+  }
+
+  // A neckband is cut double and folded lengthwise (a crew neck's rib, both
+  // raw edges sewn to the neckline together): it drapes as the half beside
+  // the neckline, in two layers (PATTERN folded="true", written where the
+  // document says nothing). One cut shorter than its neckline is stretched
+  // onto it, as a rib knit is: unless the designer chose the fabric
+  // (--material) or the piece has its own, it is cut from the shipped rib
+  // (a piece MATERIAL).
+  for (const auto& name : out.pieces) {
+    if (roles[name].role != pattern::Role::neckband) continue;
+    std::vector<std::unique_ptr<xvc::Command>> set;
+    const xvc::Node* here = nullptr;
+    for (const auto* p : doc.patterns()) {
+      if (p->attribute("piece") != name) continue;
+      if (p->attribute("size") == out.size) here = p;
+      if (!p->has_attribute("folded")) set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "folded", "true"));
+    }
+    if (!here) continue;
+    const bool said = !set.empty();
+    if (said) xvc::execute(doc, *std::make_unique<xvc::Batch>("neckband folded", std::move(set)));
+    const pattern::Piece piece = xvc::to_piece(doc, std::string(here->id()));
+    double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
+    for (const auto& c : piece.boundary)
+      w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
+    const double width = std::min(w1 - w0, h1 - h0);
+    if (said && xvc::folded_attribute(*doc.find(std::string(here->id()))).value_or(false))
+      out.decisions.push_back("piece " + name + " (neckband) read as cut double and folded lengthwise (folded=\"true\" "
+                              "written in the document): it drapes as the half beside the neckline, " +
+                              format_fixed(50 * width, 1) + " of its " + format_fixed(100 * width, 1) +
+                              " cm, in two layers");
+    const auto ratio = band_to_neckline.find(name);
+    if (options.fabric_given || ratio == band_to_neckline.end() || ratio->second > 0.98 ||
+        !xvc::piece_material(doc, *here).empty())
+      continue;
+    const xvc::Document kdoc = xvc::load_file(data_file("materials/cotton-rib.xvc"));
+    const auto* kmats = kdoc.container("MATERIALS");
+    if (!kmats || kmats->children.empty()) continue;
+    const xvc::Node rib = xvc::copy_node(kdoc, kmats->children.front().id());
+    if (!doc.container("MATERIALS")) {
+      xvc::Node container;
+      container.tag = "MATERIALS";
+      xvc::execute(doc, *std::make_unique<xvc::AddNode>(std::string(doc.root().id()), container));
+    }
+    std::vector<std::unique_ptr<xvc::Command>> cut;
+    for (const auto* p : doc.patterns())
+      if (p->attribute("piece") == name && xvc::piece_material(doc, *p).empty())
+        cut.push_back(std::make_unique<xvc::SetPieceMaterial>(std::string(p->id()), rib));
+    xvc::execute(doc, *std::make_unique<xvc::Batch>("neckband cut from rib", std::move(cut)));
+    out.decisions.push_back("piece " + name + " (neckband) cut from the shipped rib " + std::string(rib.attribute("id")) +
+                            " (written in the document): it is " + format_fixed(100 * (1 - ratio->second), 0) +
+                            " % shorter than the neckline it is sewn to and is stretched onto it, as a rib knit is; "
+                            "choose another fabric for the piece in the document or with --material");
   }
 
   // The body: the size table from the style's name, the garment's size

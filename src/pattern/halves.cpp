@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
@@ -223,6 +224,28 @@ std::vector<std::string> describe(const TopHalves& h) {
                       : "sleeves " + list + " are cut twice, left and right: the file cuts them once and names no side");
   }
   return out;
+}
+
+void fold_lengthwise(Piece& piece, const Vec2& point, const Vec2& direction) {
+  const double len = direction.norm();
+  if (!(len > 0) || !std::isfinite(len)) throw std::invalid_argument("fold_lengthwise: the edge's direction is zero");
+  const Vec2 across(-direction.y() / len, direction.x() / len);
+  const auto fold = [&](Vec2& p) { p -= 0.5 * (p - point).dot(across) * across; };
+  // A direction is halved across too (the map is linear about `point`).
+  const auto fold_dir = [&](const Vec2& d) { return Vec2(d - 0.5 * d.dot(across) * across); };
+  for (auto& c : piece.boundary) fold(c.p);
+  for (auto& n : piece.notches) {
+    fold(n.position);
+    const double a = n.angle_deg * M_PI / 180.0;
+    const Vec2 d = fold_dir(Vec2(std::cos(a), std::sin(a)));
+    n.angle_deg = std::atan2(d.y(), d.x()) * 180.0 / M_PI;
+  }
+  for (auto* s : {&piece.grain_line, &piece.mirror_line, &piece.grade_reference})
+    if (*s) fold((*s)->a), fold((*s)->b);
+  for (auto* lines : {&piece.internal_lines, &piece.cutouts, &piece.sew_lines})
+    for (auto& l : *lines)
+      for (auto& p : l.points) fold(p);
+  for (auto& p : piece.drill_holes) fold(p);
 }
 
 }  // namespace vgd::pattern

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <map>
 
 #include "vgd/core/strings.hpp"
@@ -299,6 +300,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     std::vector<std::string> segments;  // per part, made cloth only
     std::vector<double> raised;         // per part, made cloth only (MadePiece::raised)
     std::vector<const MaterialDef*> own;  // per part, made cloth only: a piece's own fabric, else nullptr
+    std::deque<MaterialDef> layers_of;    // the fabrics of pieces in several layers (MadePiece::layers)
     const MadeCloth* mine = nullptr;
     if (c.grid) {
       parts.emplace_back(c.name.empty() ? cloth_path(ci) : c.name, grid_piece(c, m));
@@ -315,6 +317,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
         const MaterialDef* pm = piece.material.empty()
                                     ? nullptr
                                     : &in.xvc_material(c.garment->file, piece.material, c.model, cloth_path(ci) + ".garment.file");
+        if (piece.layers > 1) pm = &layers_of.emplace_back(layered(pm ? *pm : m, piece.layers));
         sim::Model mp = piece.model;
         set_masses(mp, pm ? *pm : m, c.model);
         parts.emplace_back(piece.name, std::move(mp));

@@ -186,6 +186,31 @@ std::string orthotropic_problem(const MaterialDef& m) {
   return all;
 }
 
+MaterialDef layered(const MaterialDef& m, int layers) {
+  MaterialDef out = m;
+  const double n = layers;
+  out.name = m.name + " (" + std::to_string(layers) + " layers)";
+  out.density *= n;
+  out.particle_mass *= n;
+  out.thickness *= n;
+  if (out.mass_spring) {
+    auto& s = *out.mass_spring;
+    s.warp *= n, s.weft *= n, s.shear *= n, s.bend_warp *= n, s.bend_weft *= n, s.damping *= n;
+  }
+  if (out.orthotropic) {
+    auto& o = *out.orthotropic;
+    // Unbonded plies twist each on its own: n times one ply's D66 (derived
+    // from the sum's G and thickness it would be n^3 times).
+    o.D_twist = n * sim::twist_rigidity(orthotropic_of(m));
+    o.E_warp *= n, o.E_weft *= n, o.G *= n, o.B_warp *= n, o.B_weft *= n;
+    for (auto* c : {&o.curve_warp, &o.curve_weft})
+      for (auto& v : c->stress) v *= n;
+    o.density *= n;
+    o.thickness *= n;
+  }
+  return out;
+}
+
 MaterialDef piece_fabric(const xvc::Document& garment, std::string_view piece, const MaterialDef& garment_fabric,
                          const std::string& file) {
   for (const xvc::Node* p : garment.patterns())

@@ -168,7 +168,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   using pattern::Role;
   Arrangement a;
   a.clearance = opts.clearance;
-  const bool band = role.role == Role::waistband;
+  const bool band = role.role == Role::waistband || role.role == Role::neckband;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -182,6 +182,21 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
     }
     box_h = piece.boundary.empty() ? 0 : hi - lo;
   }
+  // A band goes round the body lengthwise: one drawn upright is turned a
+  // quarter clockwise (its right edge to the bottom, as the seam suggestions
+  // expect).
+  const auto turn_band = [&] {
+    double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
+    for (const auto& c : piece.boundary)
+      w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
+    if (h1 - h0 > w1 - w0) {
+      a.angle_deg = -90;
+      const auto top = reference_point(piece, a.angle_deg);
+      a.x = top.x();
+      a.y = top.y();
+      box_h = w1 - w0;
+    }
+  };
   switch (role.role) {
     case Role::sleeve: {
       a.height = opts.sleeve_drop;  // the cap top this far down the arm from its shoulder end
@@ -266,26 +281,20 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       return piece.quantity >= 2 ? std::vector<Arrangement>{r, l} : std::vector<Arrangement>{r};
     }
     case Role::waistband: {
-      // Round the waist lengthwise: a band drawn upright is turned a quarter clockwise
-      // (its right edge to the bottom, as the seam suggestions expect).
-      double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
-      for (const auto& c : piece.boundary)
-        w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
-      if (h1 - h0 > w1 - w0) {
-        a.angle_deg = -90;
-        const auto top = reference_point(piece, a.angle_deg);
-        a.x = top.x();
-        a.y = top.y();
-        box_h = w1 - w0;
-      }
+      turn_band();
       a.segment = "hips";
       a.side = "front";
       a.height = opts.waist_height + 0.5 * box_h;  // folded lengthwise: the fold sits above the waist
       return {a};
     }
+    case Role::neckband:
+      turn_band();
+      a.segment = "neck";
+      a.side = "front";
+      a.height = opts.neck_point_height + box_h;  // its bottom edge, the one sewn, at the neck's base
+      return {a};
     case Role::collar:
     case Role::collar_stand:
-    case Role::neckband:
       a.segment = "neck";
       a.side = "front";
       a.height = opts.neck_point_height + box_h;

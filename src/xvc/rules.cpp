@@ -37,7 +37,7 @@ std::vector<ElementRule> make_rules() {
       {"PATTERN", "pattern",
        {kId, {"block"}, {"piece"}, {"size"}, {"quantity", VT::count}, {"flipped", VT::count}, {"category"},
         {"fabric"}, {"annotation"}, {"closed", VT::boolean}, {"self_intersecting", VT::boolean},
-        {"role", VT::choice, false, piece_roles}, {"drape", VT::boolean}},
+        {"role", VT::choice, false, piece_roles}, {"drape", VT::boolean}, {"folded", VT::boolean}},
        {{"ANNOTATION"}, {"C2DSEQ"}, {"POSITION"}, {"ASSOCIATION"}}},
       {"SEAM", "seam", {kId, {"name"}, {"type", VT::name}}, {{"HEM", 2, -1}, {"ASSOCIATION"}}},
       {"GRADATION", "grad", {kId, {"piece", VT::text, true}}, {{"SIZE"}}},

@@ -250,13 +250,14 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, leg, yoke };
+enum class Role { other, front, back, sleeve, waistband, neckband, leg, yoke };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
     case pattern::Role::leg: return Role::leg;
     case pattern::Role::sleeve: return Role::sleeve;
     case pattern::Role::waistband: return Role::waistband;
+    case pattern::Role::neckband: return Role::neckband;
     case pattern::Role::front: return Role::front;
     case pattern::Role::back: return Role::back;
     case pattern::Role::yoke: return Role::yoke;
@@ -305,6 +306,9 @@ constexpr double kYokeGathers = 0.15;
 // Relative length tolerance of a side seam (other seams: 0.02): a 2.5 % difference
 // still scores 0.67.
 constexpr double kSideSeamTolerance = 0.04;
+// How much shorter than its neckline a neckband may be cut (a rib is
+// stretched onto it: typically 10-20 %).
+constexpr double kRibShorter = 0.25;
 
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
                     const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
@@ -344,11 +348,12 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     if (o.size != size || o.quantity == 0 || o.stretches.empty()) continue;
     const Role r = role_of(o);
     if (r == Role::other) continue;
-    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband), {}};
+    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband), {}};
     pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
     ps.push_back(std::move(pi));
   }
   std::set<std::pair<const Outline*, std::size_t>> used;  // (pattern, edge index)
+  std::map<const Outline*, std::vector<std::pair<std::size_t, std::size_t>>> shoulders;  // stretch runs sewn as shoulders
   std::vector<SeamSuggestion> found;
   // A piece's copies: +1 the wearer's left, -1 the right (a piece cut twice: the right first).
   const auto copies_of = [](const Outline& o) {
@@ -723,6 +728,102 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     return std::pair{hem, waist};
   };
 
+  // A piece's top edge: of its edges across the middle, the highest.
+  const auto top_edge = [](const PieceInfo& p) -> std::optional<std::size_t> {
+    std::optional<std::size_t> t;
+    for (std::size_t i = 0; i < p.edges.size(); ++i)
+      if (p.edges[i].side == 0 && (!t || p.edges[i].v_mean > p.edges[*t].v_mean)) t = i;
+    return t;
+  };
+  // The runs (k0..k1, along the contour) of a front and a back round the
+  // body, for a band sewn there (a waistband to a waist, a neckband to a
+  // neckline): the back's from centre back (split at the stretch boundary
+  // nearest centre back when it has one, within 1 cm), the front's, the
+  // back's other half on to centre back; each reversed, running from the
+  // wearer's right to the left as a band's bottom edge does as it is
+  // arranged. Back's +u half (the wearer's right seen from behind) runs from
+  // the side to centre back along the contour; reversed it starts at centre
+  // back.
+  const auto split_round = [&](const PieceInfo& fr, std::pair<std::size_t, std::size_t> rf, const PieceInfo& bk,
+                               std::pair<std::size_t, std::size_t> rb) {
+    std::optional<std::size_t> split;
+    double best_d = 0.01;
+    for (std::size_t k = rb.first; k != rb.second; k = (k + 1) % bk.o->stretches.size()) {
+      const std::size_t next = (k + 1) % bk.o->stretches.size();
+      const Vec2 p = bk.o->shape.boundary[bk.o->stretches[next].first].p;
+      const double d = std::abs(p.dot(bk.frame.right) - bk.frame.u_centre);
+      if (d < best_d) {
+        best_d = d;
+        split = k;
+      }
+    }
+    if (split)
+      return std::vector<Part>{{bk.o, rb.first, *split, true},
+                               {fr.o, rf.first, rf.second, true},
+                               {bk.o, (*split + 1) % bk.o->stretches.size(), rb.second, true}};
+    return std::vector<Part>{{fr.o, rf.first, rf.second, true}, {bk.o, rb.first, rb.second, true}};
+  };
+  const auto round_top = [&](const PieceInfo& fr, const PieceInfo& bk) -> std::optional<std::vector<Part>> {
+    const auto tf = top_edge(fr), tb = top_edge(bk);
+    if (!tf || !tb) return std::nullopt;
+    return split_round(fr, {fr.edges[*tf].k0, fr.edges[*tf].k1}, bk, {bk.edges[*tb].k0, bk.edges[*tb].k1});
+  };
+  // A band's seam round the body: of the runs of stretches within one of the
+  // band's long edges (those at least half as long as its longest; a button
+  // stand split off by a turn point stays open), the one that best fits
+  // `parts` (parts[0] is replaced by the run). Of runs scoring alike, the one
+  // on the band's bottom edge as it is arranged round the body
+  // (xvc/arrangement.hpp: a band drawn upright is turned a quarter clockwise,
+  // its right edge to the bottom): that edge runs from the wearer's right to
+  // the left as the parts round the body do.
+  const auto sew_band = [&](const PieceInfo& band, std::vector<Part> parts, const std::string& name,
+                            const std::string& reason, double ease_lo, double ease_hi,
+                            double tolerance) -> std::optional<SeamSuggestion> {
+    std::optional<SeamSuggestion> best;
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    double longest = 0;
+    double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
+    for (const auto& e : band.edges) longest = std::max(longest, e.length);
+    for (const auto& c : band.o->shape.boundary)
+      w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
+    const bool upright = h1 - h0 > w1 - w0;
+    std::vector<double> bottomness;  // per run
+    for (const auto& r : stretch_runs_of(band)) {
+      const Edge& e = band.edges[r.edge];
+      if (e.length < 0.5 * longest) continue;
+      runs.emplace_back(r.k0, r.k1);
+      bottomness.push_back(upright ? e.u_mid : -e.v_mean);
+    }
+    std::optional<double> best_bottom;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      parts[0] = {band.o, runs[r].first, runs[r].second, false};
+      auto s = make(name, size, parts, 1.0, reason, ease_lo, ease_hi, tolerance);
+      const bool alike = best && std::abs(s.score - best->score) < 1e-6;
+      if (!best || (!alike && s.score > best->score) || (alike && bottomness[r] > *best_bottom)) {
+        best = s;
+        best_bottom = bottomness[r];
+      }
+    }
+    if (!best || best->score < opts.min_score) return std::nullopt;
+    return best;
+  };
+  // A band closed into a loop: its two ends, the edges shorter than half its
+  // longest, sewn to each other (at centre back, where it is arranged to
+  // meet). In contour order one end runs up and the other down, so the second
+  // is reversed: bottom corner to bottom corner.
+  const auto band_ends = [&](const PieceInfo& band, const std::string& name,
+                             const std::string& what) -> std::optional<SeamSuggestion> {
+    double longest = 0;
+    for (const auto& e : band.edges) longest = std::max(longest, e.length);
+    std::vector<const Edge*> ends;
+    for (const auto& e : band.edges)
+      if (e.length < 0.5 * longest) ends.push_back(&e);
+    if (ends.size() != 2) return std::nullopt;
+    auto s = make(name, size, {{band.o, ends[0]->k0, ends[0]->k1, false}, {band.o, ends[1]->k0, ends[1]->k1, true}},
+                  1.0, what + " closed into a loop: its two ends, at centre back", 0, 0, 0.02);
+    if (s.score < opts.min_score) return std::nullopt;
+    return s;
+  };
   // 2. Waistband to the skirt waist: the band's best-fitting edge to the fronts' and
   //    backs' top edges (the back split at centre back when it has a turn point there);
   //    without a front and a back, to the waists of a leg cut twice (leggings): the right
@@ -731,12 +832,6 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    hems are reversed.
   for (const auto& wb : ps) {
     if (wb.role != Role::waistband) continue;
-    auto top_edge = [](const PieceInfo& p) -> std::optional<std::size_t> {
-      std::optional<std::size_t> t;
-      for (std::size_t i = 0; i < p.edges.size(); ++i)
-        if (p.edges[i].side == 0 && (!t || p.edges[i].v_mean > p.edges[*t].v_mean)) t = i;
-      return t;
-    };
     const PieceInfo* fr = nullptr;
     const PieceInfo* bk = nullptr;
     for (const auto& p : ps) {
@@ -749,31 +844,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         lg = &p;
     std::vector<Part> parts{{wb.o, 0, 0, false}};
     if (fr && bk) {
-      const auto tf = top_edge(*fr), tb = top_edge(*bk);
-      if (!tf || !tb) continue;
-      const Edge &ef = fr->edges[*tf], &eb = bk->edges[*tb];
-      // Split the back's waist at the stretch boundary nearest to centre back.
-      std::optional<std::size_t> split;
-      double best_d = 0.01;
-      for (std::size_t k = eb.k0; k != eb.k1; k = (k + 1) % bk->o->stretches.size()) {
-        const std::size_t next = (k + 1) % bk->o->stretches.size();
-        const Vec2 p = bk->o->shape.boundary[bk->o->stretches[next].first].p;
-        const double d = std::abs(p.dot(bk->frame.right) - bk->frame.u_centre);
-        if (d < best_d) {
-          best_d = d;
-          split = k;
-        }
-      }
-      if (split) {
-        // Back's +u half (the wearer's right seen from behind) runs from the side to
-        // centre back along the contour; reversed it starts at centre back.
-        parts.push_back({bk->o, eb.k0, *split, true});
-        parts.push_back({fr->o, ef.k0, ef.k1, true});
-        parts.push_back({bk->o, (*split + 1) % bk->o->stretches.size(), eb.k1, true});
-      } else {
-        parts.push_back({fr->o, ef.k0, ef.k1, true});
-        parts.push_back({bk->o, eb.k0, eb.k1, true});
-      }
+      const auto top = round_top(*fr, *bk);
+      if (!top) continue;
+      parts.insert(parts.end(), top->begin(), top->end());
     } else if (lg) {
       const Edge& w = lg->edges[leg_ends(*lg).second];
       parts.push_back({lg->o, w.k0, w.k1, true});
@@ -781,56 +854,17 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     } else {
       continue;
     }
-    std::optional<SeamSuggestion> best;
-    // Any run of stretches within one of the band's long edges: a button stand split
-    // off by a turn point stays open.
-    std::vector<std::pair<std::size_t, std::size_t>> runs;
-    // The band's long edges, however it is drawn: those at least half as long as its
-    // longest. Of runs scoring alike, the one on the band's bottom edge as it is
-    // arranged round the body (xvc/arrangement.hpp: a band drawn upright is turned a
-    // quarter clockwise, its right edge to the bottom): that edge runs from the
-    // wearer's right to the left as the waist's parts do.
-    double longest = 0;
-    double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
-    for (const auto& e : wb.edges) longest = std::max(longest, e.length);
-    for (const auto& c : wb.o->shape.boundary)
-      w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
-    const bool upright = h1 - h0 > w1 - w0;
-    std::vector<double> bottomness;  // per run
-    for (const auto& r : stretch_runs_of(wb)) {
-      const Edge& e = wb.edges[r.edge];
-      if (e.length < 0.5 * longest) continue;
-      runs.emplace_back(r.k0, r.k1);
-      bottomness.push_back(upright ? e.u_mid : -e.v_mean);
-    }
-    std::optional<double> best_bottom;
-    for (std::size_t r = 0; r < runs.size(); ++r) {
-      parts[0] = {wb.o, runs[r].first, runs[r].second, false};
-      auto s = make("waist seam", size, parts, 1.0,
-                    "waistband " + wb.o->piece + " to the waist of " +
-                        (fr && bk ? bk->o->piece + " and " + fr->o->piece : "both copies of " + lg->o->piece),
-                    -0.01, 0.01, 0.03);
-      const bool alike = best && std::abs(s.score - best->score) < 1e-6;
-      if (!best || (!alike && s.score > best->score) || (alike && bottomness[r] > *best_bottom)) {
-        best = s;
-        best_bottom = bottomness[r];
-      }
-    }
-    if (!best || best->score < opts.min_score) continue;
+    const auto best = sew_band(wb, std::move(parts), "waist seam",
+                               "waistband " + wb.o->piece + " to the waist of " +
+                                   (fr && bk ? bk->o->piece + " and " + fr->o->piece : "both copies of " + lg->o->piece),
+                               -0.01, 0.01, 0.03);
+    if (!best) continue;
     found.push_back(*best);
     // On legs cut twice (leggings: no opening, pulled on), the band is a loop:
-    // its two ends, the edges shorter than half its longest, meet at centre
-    // back and are sewn to each other (left open, the body showed through a
-    // slit there). In contour order one end runs up and the other down, so
-    // the second is reversed: bottom corner to bottom corner.
+    // its two ends meet at centre back and are sewn to each other (left open,
+    // the body showed through a slit there).
     if ((fr && bk) || wb.o->quantity != 1) continue;  // sewn to a front and a back: it has an opening
-    std::vector<const Edge*> ends;
-    for (const auto& e : wb.edges)
-      if (e.length < 0.5 * longest) ends.push_back(&e);
-    if (ends.size() != 2) continue;
-    auto s = make("waistband ends", size, {{wb.o, ends[0]->k0, ends[0]->k1, false}, {wb.o, ends[1]->k0, ends[1]->k1, true}},
-                  1.0, "waistband " + wb.o->piece + " closed into a loop: its two ends, at centre back", 0, 0, 0.02);
-    if (s.score >= opts.min_score) found.push_back(s);
+    if (auto s = band_ends(wb, "waistband ends", "waistband " + wb.o->piece)) found.push_back(*s);
   }
 
   // 3. Legs cut twice (tights, leggings: one piece per leg, no side seam): the hem is
@@ -1037,6 +1071,67 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     used.insert(c.a.begin(), c.a.end());
     used.insert(c.b.begin(), c.b.end());
     found.push_back(c.s);
+    if (c.s.name.find("shoulder") != std::string::npos)
+      for (const auto* side : {&c.a, &c.b}) {
+        const Outline* o = side->front().first;
+        for (const auto& p : ps)
+          if (p.o == o) shoulders[o].push_back({p.edges[side->front().second].k0, p.edges[side->back().second].k1});
+      }
+  }
+
+  // 5. Neckband (a crew neck's rib) to the neckline: the band's best-fitting
+  //    long edge to the front's and the back's necklines, as a waistband to a
+  //    waist: from centre back (the back split at the stretch boundary nearest
+  //    it) round the front and back. A piece's neckline is the run of its
+  //    outline between its two shoulder seams, across its top. A rib is cut
+  //    shorter than the neckline it is stretched onto: up to a quarter
+  //    shorter scores alike. Round a closed neckline (a front cut once: a
+  //    pullover) its ends meet at centre back and are sewn to each other.
+  const auto neckline = [&](const PieceInfo& p) -> std::optional<std::pair<std::size_t, std::size_t>> {
+    const auto it = shoulders.find(p.o);
+    if (it == shoulders.end() || it->second.size() != 2) return std::nullopt;
+    const std::size_t ns = p.o->stretches.size();
+    const auto [a0, a1] = it->second[0];
+    const auto [b0, b1] = it->second[1];
+    std::optional<std::pair<std::size_t, std::size_t>> best;
+    double best_v = -1e300;
+    for (const auto& [from, to] : {std::pair{(a1 + 1) % ns, (b0 + ns - 1) % ns}, std::pair{(b1 + 1) % ns, (a0 + ns - 1) % ns}}) {
+      if (from == (to + 1) % ns) continue;  // the shoulders meet: no run between them
+      double v = 0;
+      int n = 0;
+      for (std::size_t k = from;; k = (k + 1) % ns) {
+        v += p.o->shape.boundary[p.o->stretches[k].first].p.dot(p.frame.up), ++n;
+        if (k == to) break;
+      }
+      if (v / n > best_v) best_v = v / n, best = std::pair{from, to};
+    }
+    return best;
+  };
+  for (const auto& nb : ps) {
+    if (nb.role != Role::neckband) continue;
+    for (const auto& fr : ps) {
+      if (fr.role != Role::front) continue;
+      const auto nf = neckline(fr);
+      for (const auto& bk : ps) {
+        if (bk.role != Role::back) continue;
+        const auto nbk = neckline(bk);
+        if (!nf || !nbk) continue;
+        std::vector<Part> parts{{nb.o, 0, 0, false}};
+        const auto around = split_round(fr, *nf, bk, *nbk);
+        parts.insert(parts.end(), around.begin(), around.end());
+        double length = 0;
+        for (std::size_t i = 1; i < parts.size(); ++i) length += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+        const auto best = sew_band(nb, std::move(parts), "neck seam",
+                                   "neckband " + nb.o->piece + " to the neckline of " + bk.o->piece + " and " + fr.o->piece,
+                                   -kRibShorter * length, 0.0, 0.03);
+        if (!best) continue;
+        found.push_back(*best);
+        if (fr.o->quantity == 1 && fr.o->role.side == pattern::Side::none && nb.o->quantity == 1)
+          if (auto e = band_ends(nb, "neckband ends", "neckband " + nb.o->piece)) found.push_back(*e);
+        goto next_band;
+      }
+    }
+  next_band:;
   }
   {
     std::set<std::string> sewn;

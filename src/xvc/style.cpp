@@ -257,6 +257,11 @@ std::optional<bool> drape_attribute(const Node& pattern) {
   return detail::parse_bool(pattern.attribute("drape"));
 }
 
+std::optional<bool> folded_attribute(const Node& pattern) {
+  if (!pattern.has_attribute("folded")) return std::nullopt;
+  return detail::parse_bool(pattern.attribute("folded"));
+}
+
 std::string piece_material(const Document& doc, const Node& pattern) {
   for (const auto& a : pattern.children)
     if (a.tag == "ASSOCIATION" && a.attribute("role") == "material")

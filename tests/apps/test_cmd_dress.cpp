@@ -1,8 +1,11 @@
 // vgd dress: a pattern file to a draped garment in one command.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 #include <map>
+#include <set>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "support/json_file.hpp"
@@ -244,6 +247,75 @@ TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
                              "the waist of whole legs (leggings), not yet to trousers cut as half legs";
     EXPECT_NE(trousers.err.find(says), std::string::npos) << says << "\n" << trousers.err;
   }
+}
+
+// A crew neck's rib (GMH1006F18's neck rib, 4 x 42.5 cm, 17 % shorter than
+// the neckline) is sewn round the neckline, read as cut double and folded
+// (written in the document), cut from the shipped rib, and drapes as the
+// 2 cm beside the neckline in two layers. A fabric given for the garment
+// (--material) is not replaced by the rib; the fold stays.
+TEST(CliDress, ACrewNecksRibIsFoldedAndCutFromRib) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-rib");
+  const auto r = run_vgd({"dress", shared_dxf("GMH1006F18_AAMA.DXF").string(), "-o", (out / "r").string(),
+                          "--no-previews", "--time-limit", "0.05"});
+  for (const char* says :
+       {"seam 'neck seam' suggested at size 50: GMH1006FNR to GMH1006FBK + GMH1006FFR + GMH1006FBK",
+        "seam 'neckband ends' suggested at size 50: GMH1006FNR to GMH1006FNR",
+        "piece GMH1006FNR (neckband) read as cut double and folded lengthwise (folded=\"true\" written in the "
+        "document): it drapes as the half beside the neckline, 2.0 of its 4.0 cm, in two layers",
+        "piece GMH1006FNR (neckband) cut from the shipped rib cotton-rib (written in the document): it is 17 % shorter "
+        "than the neckline it is sewn to"})
+    EXPECT_NE(r.err.find(says), std::string::npos) << says << "\n" << r.err;
+  const xvc::Document doc = xvc::load_file(out / "r" / "garment.xvc");
+  int ribs = 0;
+  for (const auto* p : doc.patterns()) {
+    if (p->attribute("piece") != "GMH1006FNR") continue;
+    ++ribs;
+    EXPECT_EQ(xvc::folded_attribute(*p), std::optional<bool>(true)) << p->id();
+    const auto* m = doc.find(xvc::piece_material(doc, *p));
+    ASSERT_NE(m, nullptr) << p->id();
+    EXPECT_EQ(m->attribute("name"), "cotton 1x1 rib (knit) (estimated values)");
+  }
+  EXPECT_EQ(ribs, 15);  // every size of the file
+  const json c = read_json(out / "r" / "certificate.json");
+  bool two_layers = false;
+  for (const auto& s : c["strain"])
+    if (s["piece"] == "GMH1006FNR_50") two_layers = s["fabric"].get<std::string>().find("(2 layers)") != std::string::npos;
+  EXPECT_TRUE(two_layers) << c["strain"].dump();
+  // The rib's particles in garment.obj: pattern coordinates (vt) 2 cm across, 42.5 cm along.
+  std::ifstream obj(out / "r" / "garment.obj");
+  std::string line, group;
+  std::vector<std::array<double, 2>> vt;
+  std::set<int> mine;
+  while (std::getline(obj, line)) {
+    if (line.rfind("vt ", 0) == 0) {
+      std::istringstream in(line.substr(3));
+      std::array<double, 2> t{};
+      in >> t[0] >> t[1];
+      vt.push_back(t);
+    } else if (line.rfind("g ", 0) == 0) {
+      group = line.substr(2);
+    } else if (line.rfind("f ", 0) == 0 && group == "GMH1006FNR_50") {
+      std::istringstream in(line.substr(2));
+      std::string corner;
+      while (in >> corner) mine.insert(std::stoi(corner.substr(corner.find('/') + 1)) - 1);
+    }
+  }
+  ASSERT_FALSE(mine.empty());
+  double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+  for (const int t : mine)
+    for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], vt[t][k]), hi[k] = std::max(hi[k], vt[t][k]);
+  const double across = std::min(hi[0] - lo[0], hi[1] - lo[1]), along = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  EXPECT_NEAR(across, 0.020, 2e-4);
+  EXPECT_NEAR(along, 0.425, 2e-3);
+
+  const auto given = run_vgd({"dress", shared_dxf("GMH1006F18_AAMA.DXF").string(), "-o", (out / "g").string(),
+                              "--no-previews", "--time-limit", "0.05", "--material",
+                              (source_dir() / "data/materials/cotton-jersey.xvc").string()});
+  EXPECT_NE(given.err.find("piece GMH1006FNR (neckband) read as cut double and folded lengthwise"), std::string::npos)
+      << given.err;
+  EXPECT_EQ(given.err.find("cut from the shipped rib"), std::string::npos) << given.err;
 }
 
 TEST(CliDress, LegsWithNegativeEaseAreDrapedInTheShippedKnit) {

@@ -306,4 +306,46 @@ TEST(Garment, APatternMarkedNotToDrapeIsLeftOut) {
   EXPECT_EQ(assemble_garment(doc, opt, listed).pieces.size(), 2u);
 }
 
+// A piece marked folded (cut double and folded lengthwise, a rib) hangs as
+// the half beside the longest edge a seam sews, in two layers: BACK (0.34 m
+// wide) sewn by its left side is meshed 0.17 m wide, from x = 1.0 to 1.17,
+// its seam as long as before. Folded with no seam on it, it is refused
+// naming the piece.
+TEST(Garment, AFoldedPieceHangsAsTheHalfBesideItsSeamInTwoLayers) {
+  const xvc::Document probe = two_panels({});
+  const auto f = stretch_ids(probe, 0), b = stretch_ids(probe, 1);
+  xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "side"}, {"type", "plain"}},
+                 {hem("hem1", f[1], f[1], "forward"), hem("hem2", b[3], b[3], "reverse")}};
+  const auto folded = [](xvc::Node root) {
+    for (auto& c : root.children)
+      if (c.tag == "PATTERNS") c.children[1].set_attribute("folded", "true");
+    return xvc::Document(std::move(root), "panels.xvc");
+  };
+  Diagnostics diag;
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  const Garment plain = assemble_garment(two_panels({seam}), opt, diag);
+  const Garment g = assemble_garment(folded(two_panels({seam}).root()), opt, diag);
+  ASSERT_EQ(g.pieces.size(), 2u);
+  EXPECT_EQ(plain.pieces[1].layers, 1);
+  EXPECT_EQ(g.pieces[0].layers, 1);
+  EXPECT_EQ(g.pieces[1].layers, 2);
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (const auto& n : g.pieces[1].mesh.nodes)
+    x0 = std::min(x0, n.x()), x1 = std::max(x1, n.x()), y0 = std::min(y0, n.y()), y1 = std::max(y1, n.y());
+  EXPECT_NEAR(x0, 1.0, 1e-12);
+  EXPECT_NEAR(x1, 1.17, 1e-12);
+  EXPECT_NEAR(y1 - y0, 0.53, 1e-12);
+  ASSERT_EQ(g.seams.size(), 1u);
+  EXPECT_NEAR(g.seams[0].length_b, 0.53, 1e-12);
+  EXPECT_EQ(g.seams[0].pairs.size(), plain.seams[0].pairs.size());
+  try {
+    assemble_garment(folded(two_panels({}).root()), opt, diag);
+    FAIL() << "a folded piece no seam sews was assembled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("piece BACK is folded (folded=\"true\"), but no seam sews it"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace vgd::dress

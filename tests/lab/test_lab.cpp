@@ -228,9 +228,9 @@ TEST(Lab, MassSpringShortfallIsReported) {
 
 // ---- the shipped fabrics ----
 
-TEST(LabMaterials, EightFabricsLoadWithBothModelsAndPassTheTensileTarget) {
-  for (const char* name :
-       {"shirting", "denim", "silk-crepe", "wool-suiting", "linen", "polyester", "cotton-jersey", "chiffon"}) {
+TEST(LabMaterials, NineFabricsLoadWithBothModelsAndPassTheTensileTarget) {
+  for (const char* name : {"shirting", "denim", "silk-crepe", "wool-suiting", "linen", "polyester", "cotton-jersey",
+                           "cotton-rib", "chiffon"}) {
     SCOPED_TRACE(name);
     const MaterialDef m = lab_material(name);
     EXPECT_GT(m.density, 0.0);

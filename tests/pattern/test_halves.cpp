@@ -272,3 +272,42 @@ TEST(SewLines, APieceIsSewnOnItsSewLineAndTheAllowanceIsCutOff) {
     EXPECT_NEAR(signed_area(q->boundary), 0.30 * 0.40, 1e-12);  // unchanged
   }
 }
+
+// A rib 4 cm x 40 cm drawn upright, cut double: folded about its right edge
+// (the one sewn), it is the 2 cm beside that edge, every point's distance
+// across halved and nothing moved along it; its vertices, their order and
+// its turn stay.
+TEST(FoldLengthwise, TheHalfBesideTheSewnEdgeIsKept) {
+  Piece p;
+  const double pts[][2] = {{0.10, 0.00}, {0.14, 0.00}, {0.14, 0.40}, {0.10, 0.40}};
+  for (const auto& q : pts) p.boundary.push_back({Vec2(q[0], q[1])});
+  p.notches.push_back({Vec2(0.12, 0.0), -90.0});   // the fold's mark on an end
+  p.notches.push_back({Vec2(0.10, 0.2), 135.0});   // a cut slanting across
+  p.grain_line = Segment{Vec2(0.105, 0.2), Vec2(0.135, 0.2)};
+  p.internal_lines.push_back({{Vec2(0.10, 0.1), Vec2(0.14, 0.3)}, false});
+  const double area = signed_area(p.boundary);
+  ASSERT_GT(area, 0.0);
+  fold_lengthwise(p, Vec2(0.14, 0.0), Vec2(0.0, 0.4));
+  const double want[][2] = {{0.12, 0.00}, {0.14, 0.00}, {0.14, 0.40}, {0.12, 0.40}};
+  ASSERT_EQ(p.boundary.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(p.boundary[i].p.x(), want[i][0], 1e-12) << i;
+    EXPECT_NEAR(p.boundary[i].p.y(), want[i][1], 1e-12) << i;
+  }
+  EXPECT_NEAR(signed_area(p.boundary), 0.5 * area, 1e-12);  // still counter-clockwise
+  EXPECT_NEAR(p.notches[0].position.x(), 0.13, 1e-12);
+  EXPECT_NEAR(p.notches[0].angle_deg, -90.0, 1e-9);
+  EXPECT_NEAR(p.notches[1].position.x(), 0.12, 1e-12);
+  // (-1, 1) across halved: (-0.5, 1), atan2(1, -0.5).
+  EXPECT_NEAR(p.notches[1].angle_deg, std::atan2(1.0, -0.5) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(p.grain_line->a.x(), 0.1225, 1e-12);
+  EXPECT_NEAR(p.grain_line->b.x(), 0.1375, 1e-12);
+  EXPECT_NEAR(p.internal_lines[0].points[0].x(), 0.12, 1e-12);
+  EXPECT_NEAR(p.internal_lines[0].points[1].y(), 0.3, 1e-12);
+  // The edge given the other way round folds the same.
+  Piece q;
+  for (const auto& c : pts) q.boundary.push_back({Vec2(c[0], c[1])});
+  fold_lengthwise(q, Vec2(0.14, 0.4), Vec2(0.0, -1.0));
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(q.boundary[i].p.x(), want[i][0], 1e-12) << i;
+  EXPECT_THROW(fold_lengthwise(q, Vec2(0.14, 0.4), Vec2(0.0, 0.0)), std::invalid_argument);
+}

@@ -124,3 +124,28 @@ TEST(XvcMaterial, ShippedMaterialsServeBothModels) {
     EXPECT_EQ(orthotropic_problem(m), "") << name;
   }
 }
+
+// Two plies of a fabric (a rib cut double and folded): twice the mass and
+// every stiffness, one ply's twist rigidity twice (not the derived value of
+// a ply twice as thick), the ratios and the limit as they are.
+TEST(LayeredMaterial, TwoPliesHaveTwiceTheMassAndStiffness) {
+  const auto doc = vgd::xvc::load_file(vgd::test::source_dir() / "data/materials/cotton-rib.xvc");
+  const MaterialDef one = material_from_xvc(doc, "cotton-rib", "cotton-rib.xvc");
+  ASSERT_TRUE(one.mass_spring && one.orthotropic);
+  const MaterialDef two = layered(one, 2);
+  EXPECT_DOUBLE_EQ(two.density, 2 * one.density);
+  EXPECT_DOUBLE_EQ(two.thickness, 2 * one.thickness);
+  EXPECT_DOUBLE_EQ(two.mass_spring->warp, 2 * one.mass_spring->warp);
+  EXPECT_DOUBLE_EQ(two.mass_spring->weft, 2 * one.mass_spring->weft);
+  EXPECT_DOUBLE_EQ(two.mass_spring->shear, 2 * one.mass_spring->shear);
+  EXPECT_DOUBLE_EQ(two.mass_spring->bend_warp, 2 * one.mass_spring->bend_warp);
+  EXPECT_DOUBLE_EQ(two.mass_spring->damping, 2 * one.mass_spring->damping);
+  EXPECT_DOUBLE_EQ(two.orthotropic->E_warp, 2 * one.orthotropic->E_warp);
+  EXPECT_DOUBLE_EQ(two.orthotropic->E_weft, 2 * one.orthotropic->E_weft);
+  EXPECT_DOUBLE_EQ(two.orthotropic->G, 2 * one.orthotropic->G);
+  EXPECT_DOUBLE_EQ(two.orthotropic->B_weft, 2 * one.orthotropic->B_weft);
+  EXPECT_DOUBLE_EQ(two.orthotropic->nu_warp_weft, one.orthotropic->nu_warp_weft);
+  EXPECT_DOUBLE_EQ(vgd::sim::twist_rigidity(orthotropic_of(two)), 2 * vgd::sim::twist_rigidity(orthotropic_of(one)));
+  EXPECT_EQ(orthotropic_problem(two), "");
+  EXPECT_NE(two.name.find("2 layers"), std::string::npos);
+}

@@ -272,13 +272,72 @@ TEST(SeamSuggestions, EverySizeOfAGradedFileSewsAsTheSampleSize) {
       for (const auto& x : suggest_seams(doc, o)) {
         if (!compared(key(doc, x.hems))) continue;
         got.insert(key(doc, x.hems));
-        // Graded lengths differ from the sample's: the seam is measured on this size.
-        if (sample_length.count(x.name) && x.name.find("shoulder") == std::string::npos) {
+        // Graded lengths differ from the sample's: the seam is measured on this size
+        // (not the shoulders' and a band's ends: a rib is as wide in every size).
+        if (sample_length.count(x.name) && x.name.find("shoulder") == std::string::npos &&
+            x.name.find("ends") == std::string::npos) {
           EXPECT_NE(x.length_a, sample_length[x.name]) << size << " " << x.name;
         }
       }
       EXPECT_EQ(got, want) << "size " << size;
     }
+  }
+}
+
+// A crew neck's rib (cut double, 4 cm wide) is sewn by its long edge round
+// the neckline: from centre back along the back's half, the front's neckline,
+// the back's other half back to centre back, each the run of outline between
+// the piece's two shoulder seams; its two ends meet at centre back. Lengths
+// of the files' own outlines at the sample size.
+TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
+  VGD_REQUIRE_SHARED();
+  struct Case {
+    const char* file;
+    const char* rib;
+    double rib_length, neckline;  // m
+  };
+  for (const Case& c : {Case{"GMH1006F18_AAMA.DXF", "GMH1006FNR", 0.425, 0.5133},
+                        Case{"MEN_CLASSIC_TEE.DXF", "REGULAR TEECO", 0.390, 0.5193}}) {
+    SCOPED_TRACE(c.file);
+    dxf::ImportOptions unfold;
+    unfold.unfold_mirrored = true;
+    const auto imported = dxf::import_file(vgd::test::shared_dxf(c.file), unfold);
+    const Document doc = from_style(imported.style);
+    SeamOptions o;
+    o.size = imported.style.sample_size;
+    const auto found = suggest_seams(doc, o);
+    const auto named = [&](const std::string& n) {
+      return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == n; });
+    };
+    const auto neck = named("neck seam");
+    ASSERT_NE(neck, found.end());
+    const SeamKey k = key(doc, neck->hems);
+    ASSERT_EQ(k.size(), 4u);
+    EXPECT_EQ(std::get<0>(k[0]), c.rib);
+    EXPECT_EQ(std::get<0>(k[1]), std::get<0>(k[3]));  // the back, split at centre back
+    EXPECT_NE(std::get<0>(k[1]).find("BK"), std::string::npos);
+    EXPECT_NE(std::get<0>(k[2]).find("FR"), std::string::npos);
+    EXPECT_NEAR(neck->length_a, c.rib_length, 0.0005);
+    EXPECT_NEAR(neck->length_b, c.neckline, 0.0005);
+    // Each neckline run ends where a shoulder seam begins on that piece.
+    for (const int part : {1, 2, 3}) {
+      const auto& [piece, from, to, reverse] = k[part];
+      bool before = false, after = false;
+      for (const auto& s : found) {
+        if (s.name.find("shoulder") == std::string::npos) continue;
+        for (const auto& h : key(doc, s.hems)) {
+          if (std::get<0>(h) != piece) continue;
+          const int n = static_cast<int>(boundary_stretches(*doc.find(neck->hems[part].pattern)).size());
+          before = before || (std::get<2>(h) + 1) % n == from;
+          after = after || (to + 1) % n == std::get<1>(h);
+        }
+      }
+      EXPECT_TRUE(part == 1 ? before : part == 3 ? after : before && after) << "part " << part;
+    }
+    const auto ends = named("neckband ends");
+    ASSERT_NE(ends, found.end());
+    EXPECT_EQ(std::get<0>(key(doc, ends->hems)[0]), c.rib);
+    EXPECT_NEAR(ends->length_a, 0.040, 0.001);
   }
 }
 

@@ -62,7 +62,11 @@ struct GarmentPiece {
   std::string pattern_id;  // the PATTERN's id in the document
   int copy = 0;            // which of the pattern's arrangements (0-based)
   std::string name;        // piece name (block name when the piece has none)
-  pattern::Piece piece;    // the piece as meshed (resampled outline)
+  pattern::Piece piece;    // the piece as meshed (resampled outline; a folded piece's half)
+  // Layers of fabric it hangs as: 2 for a piece cut double and folded
+  // lengthwise (PATTERN folded="true": the half beside the longest edge a
+  // seam sews, pattern::fold_lengthwise), else 1.
+  int layers = 1;
   mesh::PieceMesh mesh;    // nodes in pattern coordinates
 };
 

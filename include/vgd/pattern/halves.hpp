@@ -60,4 +60,15 @@ TopHalves unfold_top_halves(Style& style, double tol_m = 0.002);
 // What unfold_top_halves did, a sentence per piece.
 std::vector<std::string> describe(const TopHalves& halves);
 
+// A piece cut double and folded lengthwise along its middle (a crew neck's
+// rib, sewn to the neckline by both raw edges together): the half beside the
+// line through `point` along `direction` (the edge that is sewn), as the two
+// layers lie. Every point's distance across from that line is halved:
+// outline, notches (and their cuts' directions), grain, mirror and grade
+// lines, internal lines, cut-outs, sew lines and drill holes. The outline
+// keeps its vertices, its order and its turn (counter-clockwise stays so),
+// so what refers to them (stretches, seams) stays valid. Throws
+// std::invalid_argument for a zero or non-finite direction.
+void fold_lengthwise(Piece& piece, const Vec2& point, const Vec2& direction);
+
 }  // namespace vgd::pattern

@@ -68,6 +68,9 @@ struct MadePiece {
   // The MATERIAL id, in the cloth's garment document, the piece is cut from
   // when it names its own (xvc::piece_material); "" = the cloth's material.
   std::string material;
+  // Layers of that fabric it hangs as (a rib cut double and folded: 2); its
+  // mass and stiffnesses are the fabric's times this (scene::layered).
+  int layers = 1;
   std::string pattern;  // the PATTERN it was cut from, in its garment document
   int copy = 0;         // which copy of that pattern (its arrangement's index)
   // The particles (of this piece) its document's pins hold where they were

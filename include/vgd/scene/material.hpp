@@ -90,6 +90,14 @@ std::string orthotropic_problem(const MaterialDef& m);
 // The orthotropic material with the MaterialDef's density and thickness.
 sim::OrthotropicMaterial orthotropic_of(const MaterialDef& m);
 
+// `layers` plies of the fabric lying on one another, not bonded (a rib cut
+// double and folded): the areal density, particle mass, thickness, every
+// stiffness (sheet moduli, springs, bending rigidities, twist) and the
+// springs' damping times `layers`; Poisson's ratios, residual strains and
+// the strain limit as they are, and curves' stresses times `layers`. The
+// name says how many plies.
+MaterialDef layered(const MaterialDef& m, int layers);
+
 // The fabric a piece of a garment document is cut from: the MATERIAL its
 // PATTERN names as its own (xvc::piece_material; the pattern found by block
 // or piece name, any size; `file` names the document in errors), else

@@ -97,9 +97,11 @@ struct ArrangementOptions {
 // cut in two on that side of the arm, its over-arm edge outside, flipped as that needs),
 // leg -> the legs the same way, the
 // wider end up (the waist, at leg_top) and the narrower half to the front (one copy
-// flipped: the right leg's front is on its pattern's +x), collar, collar stand, neckband ->
-// neck front; in a lower-body garment front/back -> hips front/back with their top at the
-// waist, and waistband -> hips front around the waist. Empty for other roles and when the
+// flipped: the right leg's front is on its pattern's +x), collar, collar stand -> neck
+// front, neckband -> neck front lengthwise, its bottom edge at the neck point; in a
+// lower-body garment front/back -> hips front/back with their top at the waist, and
+// waistband -> hips front around the waist (a band drawn upright is turned a quarter
+// clockwise, its right edge to the bottom). Empty for other roles and when the
 // piece is not cut (quantity 0). The reference point and angle come from the piece's box
 // and grain line.
 std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, bool lower_body,

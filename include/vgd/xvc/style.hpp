@@ -44,6 +44,11 @@ pattern::RoleGuess piece_role(const Document& doc, const Node& pattern);
 // vgd dress, corrected by the designer), nothing when it has none.
 std::optional<bool> drape_attribute(const Node& pattern);
 
+// A PATTERN's folded attribute (cut double and folded lengthwise: draped as
+// the half beside the edge its seam sews, two layers; set by vgd dress for a
+// neckband, corrected by the designer), nothing when it has none.
+std::optional<bool> folded_attribute(const Node& pattern);
+
 // The MATERIAL a PATTERN is cut from when it names its own (an ASSOCIATION
 // with role "material" referring to a MATERIAL of `doc`): its id, else "".
 std::string piece_material(const Document& doc, const Node& pattern);
