@@ -86,7 +86,8 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
       why = "no neckline vgd found (a front's and a back's outline between their shoulder seams) fits its length";
       break;
     case Role::cuff:
-      why = "vgd does not yet suggest the seam that sews a cuff to a sleeve's hem";
+      why = "no sleeve vgd sews to the armholes is cut as often as it and has a hem it fits (a shirt's cuff, "
+            "with its opening, is not sewn yet)";
       break;
     case Role::waistband:
       why = half_legs ? "vgd sews a waistband to a skirt's waist or to the waist of whole legs (leggings), not yet to "
@@ -328,7 +329,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     out.decisions.push_back("seams from " + options.seams_file + ": " + std::to_string(plans.size()) + " seams (" +
                             std::to_string(n) + " SEAMs over the sizes); none suggested");
   }
-  std::map<std::string, double> band_to_neckline;  // neckband piece -> its length over the neckline's (suggested)
+  std::map<std::string, double> band_to_opening;  // neckband or cuff piece -> its length over the opening's (suggested)
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
     so.size = !sample.empty() && !patterns_of(sample).empty() ? sample : out.size;
@@ -346,8 +347,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                               format_fixed(1000 * s.ease, 1) + " mm, score " + format_fixed(s.score, 2));
     }
     for (const auto& s : suggested)
-      if (s.name == "neck seam" && s.length_b > 0)
-        if (const auto* p = doc.find(s.hems[0].pattern)) band_to_neckline[std::string(p->attribute("piece"))] = s.length_a / s.length_b;
+      if ((s.name == "neck seam" || s.name == "right cuff") && s.length_b > 0)
+        if (const auto* p = doc.find(s.hems[0].pattern)) band_to_opening[std::string(p->attribute("piece"))] = s.length_a / s.length_b;
     if (!nodes.empty()) xvc::execute(doc, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
     out.seams_added = static_cast<int>(suggested.size());
     if (suggested.empty())
@@ -523,15 +524,18 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
 
-  // A neckband is cut double and folded lengthwise (a crew neck's rib, both
-  // raw edges sewn to the neckline together): it drapes as the half beside
-  // the neckline, in two layers (PATTERN folded="true", written where the
-  // document says nothing). One cut shorter than its neckline is stretched
-  // onto it, as a rib knit is: unless the designer chose the fabric
-  // (--material) or the piece has its own, it is cut from the shipped rib
-  // (a piece MATERIAL).
+  // A neckband or a cuff is cut double and folded lengthwise (a crew neck's
+  // rib, a rib cuff: both raw edges sewn to the opening together): it drapes
+  // as the half beside the opening, in two layers (PATTERN folded="true",
+  // written where the document says nothing). One cut shorter than its
+  // opening is stretched onto it, as a rib knit is: unless the designer chose
+  // the fabric (--material) or the piece has its own, it is cut from the
+  // shipped rib (a piece MATERIAL).
   for (const auto& name : out.pieces) {
-    if (roles[name].role != pattern::Role::neckband) continue;
+    const pattern::Role band_role = roles[name].role;
+    if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff) continue;
+    const std::string role_name(pattern::role_name(band_role));
+    const std::string opening = band_role == pattern::Role::cuff ? "the sleeve's hem" : "the neckline";
     std::vector<std::unique_ptr<xvc::Command>> set;
     const xvc::Node* here = nullptr;
     for (const auto* p : doc.patterns()) {
@@ -541,19 +545,19 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
     if (!here) continue;
     const bool said = !set.empty();
-    if (said) xvc::execute(doc, *std::make_unique<xvc::Batch>("neckband folded", std::move(set)));
+    if (said) xvc::execute(doc, *std::make_unique<xvc::Batch>(role_name + " folded", std::move(set)));
     const pattern::Piece piece = xvc::to_piece(doc, std::string(here->id()));
     double w0 = 1e300, w1 = -1e300, h0 = 1e300, h1 = -1e300;
     for (const auto& c : piece.boundary)
       w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
     const double width = std::min(w1 - w0, h1 - h0);
     if (said && xvc::folded_attribute(*doc.find(std::string(here->id()))).value_or(false))
-      out.decisions.push_back("piece " + name + " (neckband) read as cut double and folded lengthwise (folded=\"true\" "
-                              "written in the document): it drapes as the half beside the neckline, " +
+      out.decisions.push_back("piece " + name + " (" + role_name + ") read as cut double and folded lengthwise "
+                              "(folded=\"true\" written in the document): it drapes as the half beside " + opening + ", " +
                               format_fixed(50 * width, 1) + " of its " + format_fixed(100 * width, 1) +
                               " cm, in two layers");
-    const auto ratio = band_to_neckline.find(name);
-    if (options.fabric_given || ratio == band_to_neckline.end() || ratio->second > 0.98 ||
+    const auto ratio = band_to_opening.find(name);
+    if (options.fabric_given || ratio == band_to_opening.end() || ratio->second > 0.98 ||
         !xvc::piece_material(doc, *here).empty())
       continue;
     const xvc::Document kdoc = xvc::load_file(data_file("materials/cotton-rib.xvc"));
@@ -569,10 +573,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     for (const auto* p : doc.patterns())
       if (p->attribute("piece") == name && xvc::piece_material(doc, *p).empty())
         cut.push_back(std::make_unique<xvc::SetPieceMaterial>(std::string(p->id()), rib));
-    xvc::execute(doc, *std::make_unique<xvc::Batch>("neckband cut from rib", std::move(cut)));
-    out.decisions.push_back("piece " + name + " (neckband) cut from the shipped rib " + std::string(rib.attribute("id")) +
-                            " (written in the document): it is " + format_fixed(100 * (1 - ratio->second), 0) +
-                            " % shorter than the neckline it is sewn to and is stretched onto it, as a rib knit is; "
+    xvc::execute(doc, *std::make_unique<xvc::Batch>(role_name + " cut from rib", std::move(cut)));
+    out.decisions.push_back("piece " + name + " (" + role_name + ") cut from the shipped rib " +
+                            std::string(rib.attribute("id")) + " (written in the document): it is " +
+                            format_fixed(100 * (1 - ratio->second), 0) + " % shorter than " + opening +
+                            " it is sewn to and is stretched onto it, as a rib knit is; "
                             "choose another fabric for the piece in the document or with --material");
   }
 

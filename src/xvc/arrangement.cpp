@@ -293,6 +293,23 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       a.side = "front";
       a.height = opts.neck_point_height + box_h;  // its bottom edge, the one sewn, at the neck's base
       return {a};
+    case Role::cuff: {
+      // Round each arm lengthwise as a band, its top edge (the one sewn) at
+      // the hem of the sleeve it is sewn to (suggest_arrangements moves it
+      // down the arm by that sleeve's length); the left copy mirrored, as a
+      // sleeve's is.
+      if (piece.quantity < 2) return {};
+      turn_band();
+      a.height = opts.sleeve_drop;
+      a.clearance = opts.sleeve_clearance;
+      Arrangement l = a, r = a;
+      l.segment = "left-arm";
+      l.side = "left";
+      l.flip = true;
+      r.segment = "right-arm";
+      r.side = "right";
+      return {r, l};
+    }
     case Role::collar:
     case Role::collar_stand:
       a.segment = "neck";
@@ -389,6 +406,43 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
     if (!p || piece_role(doc, *p).role != pattern::Role::back) continue;
     if (const auto it = yoke_drop.find(std::string(p->attribute("size"))); it != yoke_drop.end())
       for (auto& a : list) a.height -= it->second;
+  }
+
+  // A cuff goes on at the hem of the sleeve a SEAM sews it to (of its size,
+  // else of the sample size at the same piece): the sleeve's length as
+  // arranged (its top, the cap, sleeve_drop down the arm) further down. A
+  // cuff no seam sews to a sleeve is not placed.
+  std::map<std::string, std::string> cuff_sleeve;  // cuff piece -> sleeve piece
+  for (const auto& seam : list_seams(doc))
+    for (const auto& h : seam.hems) {
+      const Node* c = doc.find(h.pattern);
+      if (!c || piece_role(doc, *c).role != pattern::Role::cuff) continue;
+      for (const auto& k : seam.hems)
+        if (const Node* sl = doc.find(k.pattern); sl && piece_role(doc, *sl).role == pattern::Role::sleeve)
+          cuff_sleeve[std::string(c->attribute("piece"))] = std::string(sl->attribute("piece"));
+    }
+  for (auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::cuff) continue;
+    const auto sleeve = cuff_sleeve.find(std::string(p->attribute("piece")));
+    const Node* sl = nullptr;
+    if (sleeve != cuff_sleeve.end())
+      for (const Node* q : doc.patterns())
+        if (q->attribute("piece") == sleeve->second && q->attribute("size") == p->attribute("size")) sl = q;
+    std::vector<Arrangement> sleeve_list;
+    for (const auto& [sid, slist] : out)
+      if (sl && sid == sl->id()) sleeve_list = slist;
+    if (sleeve_list.empty()) {
+      list.clear();
+      continue;
+    }
+    const pattern::Piece piece = to_piece(doc, sl->id());
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : piece.boundary) {
+      const double y = rotate(c.p, sleeve_list.front().angle_deg).y();
+      lo = std::min(lo, y), hi = std::max(hi, y);
+    }
+    for (auto& a : list) a.height = sleeve_list.front().height + (hi - lo);
   }
   return out;
 }

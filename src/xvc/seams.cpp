@@ -250,7 +250,7 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, neckband, leg, yoke };
+enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
@@ -258,6 +258,7 @@ Role role_of(const Outline& o) {
     case pattern::Role::sleeve: return Role::sleeve;
     case pattern::Role::waistband: return Role::waistband;
     case pattern::Role::neckband: return Role::neckband;
+    case pattern::Role::cuff: return Role::cuff;
     case pattern::Role::front: return Role::front;
     case pattern::Role::back: return Role::back;
     case pattern::Role::yoke: return Role::yoke;
@@ -348,7 +349,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     if (o.size != size || o.quantity == 0 || o.stretches.empty()) continue;
     const Role r = role_of(o);
     if (r == Role::other) continue;
-    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband), {}};
+    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff), {}};
     pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
     ps.push_back(std::move(pi));
   }
@@ -775,10 +776,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // on the band's bottom edge as it is arranged round the body
   // (xvc/arrangement.hpp: a band drawn upright is turned a quarter clockwise,
   // its right edge to the bottom): that edge runs from the wearer's right to
-  // the left as the parts round the body do.
+  // the left as the parts round the body do. A cuff (`top`) is sewn by its
+  // top edge as arranged on the arm, the one towards the shoulder.
   const auto sew_band = [&](const PieceInfo& band, std::vector<Part> parts, const std::string& name,
-                            const std::string& reason, double ease_lo, double ease_hi,
-                            double tolerance) -> std::optional<SeamSuggestion> {
+                            const std::string& reason, double ease_lo, double ease_hi, double tolerance,
+                            bool top = false) -> std::optional<SeamSuggestion> {
     std::optional<SeamSuggestion> best;
     std::vector<std::pair<std::size_t, std::size_t>> runs;
     double longest = 0;
@@ -792,7 +794,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       const Edge& e = band.edges[r.edge];
       if (e.length < 0.5 * longest) continue;
       runs.emplace_back(r.k0, r.k1);
-      bottomness.push_back(upright ? e.u_mid : -e.v_mean);
+      bottomness.push_back((top ? -1.0 : 1.0) * (upright ? e.u_mid : -e.v_mean));
     }
     std::optional<double> best_bottom;
     for (std::size_t r = 0; r < runs.size(); ++r) {
@@ -808,11 +810,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     return best;
   };
   // A band closed into a loop: its two ends, the edges shorter than half its
-  // longest, sewn to each other (at centre back, where it is arranged to
-  // meet). In contour order one end runs up and the other down, so the second
-  // is reversed: bottom corner to bottom corner.
-  const auto band_ends = [&](const PieceInfo& band, const std::string& name,
-                             const std::string& what) -> std::optional<SeamSuggestion> {
+  // longest, sewn to each other (`where`: centre back, or a cuff's under the
+  // arm, where it is arranged to meet). In contour order one end runs up and
+  // the other down, so the second is reversed: bottom corner to bottom corner.
+  const auto band_ends = [&](const PieceInfo& band, const std::string& name, const std::string& what,
+                             const std::string& where = "at centre back") -> std::optional<SeamSuggestion> {
     double longest = 0;
     for (const auto& e : band.edges) longest = std::max(longest, e.length);
     std::vector<const Edge*> ends;
@@ -820,7 +822,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       if (e.length < 0.5 * longest) ends.push_back(&e);
     if (ends.size() != 2) return std::nullopt;
     auto s = make(name, size, {{band.o, ends[0]->k0, ends[0]->k1, false}, {band.o, ends[1]->k0, ends[1]->k1, true}},
-                  1.0, what + " closed into a loop: its two ends, at centre back", 0, 0, 0.02);
+                  1.0, what + " closed into a loop: its two ends, " + where, 0, 0, 0.02);
     if (s.score < opts.min_score) return std::nullopt;
     return s;
   };
@@ -1132,6 +1134,46 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       }
     }
   next_band:;
+  }
+
+  // 8. Cuff -> sleeve hem (a rib cuff): a sleeve cut twice whose cap a seam
+  //    sews to the armholes takes a cuff cut as often on each copy: the
+  //    cuff's long edge (its top as arranged on the arm) that best fits the
+  //    sleeve's hem (its lowest edge, between the underarm seam's ends; up
+  //    to a quarter longer than the cuff, which a rib is stretched onto), the
+  //    right sleeve's first (the copies' order, xvc/arrangement.hpp); each
+  //    cuff's ends sewn to each other under the arm. Of several sleeves (a
+  //    short and a full one), the one whose hem fits the cuff best.
+  for (const auto& cf : ps) {
+    if (cf.role != Role::cuff || cf.o->quantity < 2) continue;
+    std::optional<SeamSuggestion> best;
+    for (const auto& sl : ps) {
+      if (sl.role != Role::sleeve || sl.o->role.half != pattern::Half::none || sl.o->quantity != cf.o->quantity ||
+          sl.edges.size() < 3)
+        continue;
+      const bool capped = std::any_of(found.begin(), found.end(), [&](const SeamSuggestion& x) {
+        return x.name.find("armhole") != std::string::npos && x.hems[0].pattern == sl.o->id;
+      });
+      if (!capped) continue;
+      std::size_t hem = 0;
+      for (std::size_t i = 1; i < sl.edges.size(); ++i)
+        if (sl.edges[i].v_mean < sl.edges[hem].v_mean) hem = i;
+      const Edge& he = sl.edges[hem];
+      auto s = sew_band(cf, {{cf.o, 0, 0, false}, {sl.o, he.k0, he.k1, true}}, "right cuff",
+                        "cuff " + cf.o->piece + " to the hem of " + sl.o->piece, -kRibShorter * he.length, 0.0, 0.03, true);
+      if (s && (!best || s->score > best->score)) best = s;
+    }
+    if (!best) continue;
+    for (const char* side : {"right ", "left "}) {
+      SeamSuggestion s = *best;
+      s.name = std::string(side) + "cuff";
+      s.reason = std::string(side) + s.reason;
+      found.push_back(std::move(s));
+    }
+    for (const char* side : {"right ", "left "})
+      if (auto e = band_ends(cf, std::string(side) + "cuff ends", std::string(side) + "cuff " + cf.o->piece,
+                             "under the arm"))
+        found.push_back(*e);
   }
   {
     std::set<std::string> sewn;

@@ -318,6 +318,37 @@ TEST(CliDress, ACrewNecksRibIsFoldedAndCutFromRib) {
   EXPECT_EQ(given.err.find("cut from the shipped rib"), std::string::npos) << given.err;
 }
 
+// GMG1016S19's rib cuffs (5 x 33 cm, cut twice) go on its short sleeves
+// (35 cm hems; not on the long sleeve, its alternative): one on each arm,
+// folded, in rib, each closed under the arm; the placement puts two pieces
+// more on each arm.
+TEST(CliDress, RibCuffsAreSewnToTheShortSleevesHems) {
+  VGD_REQUIRE_SHARED();
+  const auto out = scratch_dir("dress-cuffs");
+  const auto r = run_vgd({"dress", shared_dxf("mirrored.DXF").string(), "-o", (out / "c").string(), "--no-previews",
+                          "--time-limit", "0.05"});
+  for (const char* says :
+       {"seam 'right cuff' suggested at size 50: GMG1016S19-CU to GMG1016S19-SS, ease -20.0 mm",
+        "seam 'left cuff' suggested at size 50: GMG1016S19-CU to GMG1016S19-SS, ease -20.0 mm",
+        "seam 'right cuff ends' suggested at size 50: GMG1016S19-CU to GMG1016S19-CU",
+        "seam 'left cuff ends' suggested at size 50: GMG1016S19-CU to GMG1016S19-CU",
+        "piece GMG1016S19-CU (cuff) read as cut double and folded lengthwise (folded=\"true\" written in the "
+        "document): it drapes as the half beside the sleeve's hem, 2.5 of its 5.0 cm, in two layers",
+        "piece GMG1016S19-CU (cuff) cut from the shipped rib cotton-rib (written in the document): it is 6 % shorter "
+        "than the sleeve's hem it is sewn to",
+        "piece GMG1016S19-ST left out: an alternative to the sleeve GMG1016S19-SS"})
+    EXPECT_NE(r.err.find(says), std::string::npos) << says << "\n" << r.err;
+  const json c = read_json(out / "c" / "certificate.json");
+  std::map<std::string, int> on;
+  for (const auto& p : c["placement"]) ++on[p["segment"].get<std::string>()];
+  EXPECT_EQ(on["left-arm"], 2);
+  EXPECT_EQ(on["right-arm"], 2);
+  int cuff_seams = 0;
+  for (const auto& s : c["seams"])
+    if (s["name"].get<std::string>().find("cuff") != std::string::npos) ++cuff_seams;
+  EXPECT_EQ(cuff_seams, 4);
+}
+
 TEST(CliDress, LegsWithNegativeEaseAreDrapedInTheShippedKnit) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("dress-knit");

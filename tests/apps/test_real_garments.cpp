@@ -109,9 +109,9 @@ INSTANTIATE_TEST_SUITE_P(
                     "body: the mannequin of size 50 from en13402-men (nearest the pattern"},
         RealGarment{"tee_gmh_54", "GMH1006F18_AAMA.DXF", "54", 0, "left-arm neck right-arm torso torso",
                     "seam 'left armhole' suggested at size 50"},
-        RealGarment{"shirt_gmg_50", "mirrored.DXF", "", 0, "left-arm neck right-arm torso torso",
+        RealGarment{"shirt_gmg_50", "mirrored.DXF", "", 0, "left-arm left-arm neck right-arm right-arm torso torso",
                     "every piece says it is cut 0 times, which states nothing"},
-        RealGarment{"shirt_gmg_54", "mirrored.DXF", "54", 0, "left-arm neck right-arm torso torso",
+        RealGarment{"shirt_gmg_54", "mirrored.DXF", "54", 0, "left-arm left-arm neck right-arm right-arm torso torso",
                     "piece GMG1016S19-ST left out: an alternative to the sleeve GMG1016S19-SS"},
         RealGarment{"tank_binding_36", "simple.DXF", "", 0, "torso torso",
                     "piece C-S1615WWO206-NB (binding) left out: no seam sews it: vgd does not yet suggest the seams of a "

@@ -2,6 +2,8 @@
 // valid against the schema and vgd's rules, editable and undoable.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "vgd/core/diagnostics.hpp"
@@ -224,3 +226,65 @@ TEST(Arrangement, ABackHangsBelowItsSizesYoke) {
     if (name != back) EXPECT_NEAR(after.at(name).height, a.height, 1e-12) << name;
   EXPECT_TRUE(suggest_arrangement(yoke, true).empty());
 }
+
+// A rib cuff cut twice beside a sleeve cut twice: sewn by its long edge to
+// each copy's hem (the right sleeve's first), its ends under the arm, and
+// arranged on each arm at the sleeve's hem: the sleeve's own height down the
+// arm plus its length. A cuff no seam sews is not placed.
+TEST(Arrangement, ACuffGoesOnAtItsSleevesHem) {
+  auto style = pattern::draft_tshirt_style({pattern::TShirtMeasurements{}});
+  std::vector<pattern::Piece> kept;
+  for (auto& p : style.pieces) {
+    if (p.name == "RIGHT SLEEVE") continue;
+    if (p.name == "LEFT SLEEVE") p.name = "SLEEVE", p.block = "SLEEVE_" + p.size, p.quantity = 2;
+    kept.push_back(p);
+  }
+  pattern::Piece cuff;
+  cuff.name = "CUFF";
+  cuff.size = kept.front().size;
+  cuff.block = "CUFF_" + cuff.size;
+  cuff.quantity = 2;
+  for (const auto& q : {pattern::Vec2(3.0, 0), pattern::Vec2(3.05, 0), pattern::Vec2(3.05, 0.25), pattern::Vec2(3.0, 0.25)})
+    cuff.boundary.push_back({q, pattern::PointKind::turn});
+  kept.push_back(cuff);
+  style.pieces = kept;
+  const Document bare = from_style(style);
+  std::vector<Node> seams;
+  std::vector<std::string> names;
+  for (const auto& x : suggest_seams(bare)) {
+    seams.push_back(seam_node(x));
+    names.push_back(x.name);
+  }
+  const auto at = [&](const std::string& n) { return std::find(names.begin(), names.end(), n) - names.begin(); };
+  ASSERT_LT(at("right cuff"), static_cast<long>(names.size()));
+  EXPECT_LT(at("right cuff"), at("left cuff"));
+  EXPECT_LT(at("right cuff ends"), at("left cuff ends"));
+  ASSERT_LT(at("left cuff ends"), static_cast<long>(names.size()));
+  Document doc = bare;
+  execute(doc, *std::make_unique<AddSeams>(std::move(seams)));
+  std::map<std::string, std::vector<Arrangement>> by_piece;
+  for (const auto& [id, list] : suggest_arrangements(doc)) by_piece[std::string(doc.find(id)->attribute("piece"))] = list;
+  const auto& sl = by_piece.at("SLEEVE");
+  const auto& cf = by_piece.at("CUFF");
+  ASSERT_EQ(cf.size(), 2u);
+  ASSERT_EQ(sl.size(), 2u);
+  EXPECT_EQ(cf[0].segment, "right-arm");
+  EXPECT_EQ(cf[1].segment, "left-arm");
+  EXPECT_FALSE(cf[0].flip);
+  EXPECT_TRUE(cf[1].flip);
+  EXPECT_NEAR(cf[0].angle_deg, -90.0, 1e-12);  // drawn upright: turned to go round the arm
+  const pattern::Piece sleeve = to_piece(doc, std::string(std::find_if(doc.patterns().begin(), doc.patterns().end(), [](const Node* p) {
+                                                             return p->attribute("piece") == "SLEEVE";
+                                                           })[0]->id()));
+  double lo = 1e300, hi = -1e300;
+  const double a = sl[0].angle_deg * M_PI / 180.0;
+  for (const auto& c : sleeve.boundary) {
+    const double y = std::sin(a) * c.p.x() + std::cos(a) * c.p.y();
+    lo = std::min(lo, y), hi = std::max(hi, y);
+  }
+  EXPECT_NEAR(cf[0].height, sl[0].height + (hi - lo), 1e-9);
+  EXPECT_NEAR(cf[1].height, cf[0].height, 1e-12);
+  for (const auto& [id, list] : suggest_arrangements(bare))
+    if (bare.find(id)->attribute("piece") == "CUFF") EXPECT_TRUE(list.empty());
+}
+

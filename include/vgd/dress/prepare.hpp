@@ -13,10 +13,11 @@
 //             times, pieces no seam sews; of several sleeve (or leg) patterns
 //             (a short and a full sleeve) the one sewn to the armholes, else
 //             the one with the most seams;
-//   neckband  read as cut double and folded lengthwise (a crew neck's rib):
-//             folded="true" written on its patterns; one shorter than its
-//             neckline cut from the shipped rib (a piece MATERIAL), unless
-//             it has its own or the caller gives the fabric;
+//   bands     a neckband or a cuff read as cut double and folded lengthwise
+//             (a crew neck's rib, a rib cuff): folded="true" written on its
+//             patterns; one shorter than its neckline or sleeve hem cut from
+//             the shipped rib (a piece MATERIAL), unless it has its own or the
+//             caller gives the fabric;
 //   quantities a document where every piece says it is cut 0 times: each
 //             as often as its annotation says ("2XFABRIC"), else once;
 //   legs      in a garment with a waistband and no front, back or leg, a

@@ -98,7 +98,9 @@ struct ArrangementOptions {
 // leg -> the legs the same way, the
 // wider end up (the waist, at leg_top) and the narrower half to the front (one copy
 // flipped: the right leg's front is on its pattern's +x), collar, collar stand -> neck
-// front, neckband -> neck front lengthwise, its bottom edge at the neck point; in a
+// front, neckband -> neck front lengthwise, its bottom edge at the neck point, a cuff
+// cut twice -> each arm lengthwise (the right first, the left mirrored; placed at the
+// hem of its sleeve by suggest_arrangements); in a
 // lower-body garment front/back -> hips front/back with their top at the waist, and
 // waistband -> hips front around the waist (a band drawn upright is turned a quarter
 // clockwise, its right edge to the bottom). Empty for other roles and when the
@@ -111,7 +113,9 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
                                              bool lower_body, const ArrangementOptions& opts = {});
 // Every PATTERN of the document (its role as xvc::piece_role reads it): (pattern id, its
 // suggestions). A garment is lower-body when a piece is a waistband or its name says
-// skirt, or the garment's says skirt, trousers or pants.
+// skirt, or the garment's says skirt, trousers or pants. A cuff goes on at the hem of
+// the sleeve a SEAM sews it to: that sleeve's height down the arm plus its length
+// along its upright; a cuff no seam sews to a sleeve gets none.
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
     const Document& doc, const ArrangementOptions& opts = {});
 
