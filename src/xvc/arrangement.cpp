@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -197,15 +198,21 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       box_h = w1 - w0;
     }
   };
+  // A piece on each arm or leg: the left copy and the right, on the limb's outside.
+  const auto both_limbs = [&](const std::string& limb) {
+    Arrangement l = a, r = a;
+    l.segment = "left-" + limb;
+    l.side = "left";
+    r.segment = "right-" + limb;
+    r.side = "right";
+    return std::pair{l, r};
+  };
   switch (role.role) {
     case Role::sleeve: {
       a.height = opts.sleeve_drop;  // the cap top this far down the arm from its shoulder end
       a.clearance = opts.sleeve_clearance;
-      Arrangement l = a, r = a;
-      l.segment = "left-arm";
-      l.side = "left";
-      r.segment = "right-arm";
-      r.side = "right";
+      Arrangement l, r;
+      std::tie(l, r) = both_limbs("arm");
       if (role.half != pattern::Half::none) {
         // Half a sleeve: on the front or the back of the arm, its over-arm
         // edge (the one from the highest point, the cap's top) on the arm's
@@ -247,12 +254,9 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       const bool front_at_plus = umax <= -umin;
       a.height = opts.leg_top;
       a.clearance = opts.sleeve_clearance;
-      Arrangement l = a, r = a;
-      l.segment = "left-leg";
-      l.side = "left";
+      Arrangement l, r;
+      std::tie(l, r) = both_limbs("leg");
       l.flip = front_at_plus;
-      r.segment = "right-leg";
-      r.side = "right";
       r.flip = !front_at_plus;
       if (role.half != pattern::Half::none) {
         // Half a trouser leg: on the front or the back of the leg, its crotch's
@@ -302,12 +306,9 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       turn_band();
       a.height = opts.sleeve_drop;
       a.clearance = opts.sleeve_clearance;
-      Arrangement l = a, r = a;
-      l.segment = "left-arm";
-      l.side = "left";
+      Arrangement l, r;
+      std::tie(l, r) = both_limbs("arm");
       l.flip = true;
-      r.segment = "right-arm";
-      r.side = "right";
       return {r, l};
     }
     case Role::collar:

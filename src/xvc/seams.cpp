@@ -1111,11 +1111,12 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   };
   for (const auto& nb : ps) {
     if (nb.role != Role::neckband) continue;
+    bool sewn = false;
     for (const auto& fr : ps) {
-      if (fr.role != Role::front) continue;
+      if (fr.role != Role::front || sewn) continue;
       const auto nf = neckline(fr);
       for (const auto& bk : ps) {
-        if (bk.role != Role::back) continue;
+        if (bk.role != Role::back || sewn) continue;
         const auto nbk = neckline(bk);
         if (!nf || !nbk) continue;
         std::vector<Part> parts{{nb.o, 0, 0, false}};
@@ -1130,10 +1131,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         found.push_back(*best);
         if (fr.o->quantity == 1 && fr.o->role.side == pattern::Side::none && nb.o->quantity == 1)
           if (auto e = band_ends(nb, "neckband ends", "neckband " + nb.o->piece)) found.push_back(*e);
-        goto next_band;
+        sewn = true;
       }
     }
-  next_band:;
   }
 
   // 8. Cuff -> sleeve hem (a rib cuff): a sleeve cut twice whose cap a seam

@@ -223,7 +223,9 @@ TEST(Arrangement, ABackHangsBelowItsSizesYoke) {
   ASSERT_FALSE(back.empty());
   EXPECT_NEAR(after.at(back).height, before.at(back).height - 0.12, 1e-12);
   for (const auto& [name, a] : before)
-    if (name != back) EXPECT_NEAR(after.at(name).height, a.height, 1e-12) << name;
+    if (name != back) {
+      EXPECT_NEAR(after.at(name).height, a.height, 1e-12) << name;
+    }
   EXPECT_TRUE(suggest_arrangement(yoke, true).empty());
 }
 
@@ -284,7 +286,10 @@ TEST(Arrangement, ACuffGoesOnAtItsSleevesHem) {
   }
   EXPECT_NEAR(cf[0].height, sl[0].height + (hi - lo), 1e-9);
   EXPECT_NEAR(cf[1].height, cf[0].height, 1e-12);
-  for (const auto& [id, list] : suggest_arrangements(bare))
-    if (bare.find(id)->attribute("piece") == "CUFF") EXPECT_TRUE(list.empty());
+  for (const auto& [id, list] : suggest_arrangements(bare)) {
+    if (bare.find(id)->attribute("piece") == "CUFF") {
+      EXPECT_TRUE(list.empty());
+    }
+  }
 }
 
