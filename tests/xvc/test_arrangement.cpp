@@ -275,9 +275,11 @@ TEST(Arrangement, ACuffGoesOnAtItsSleevesHem) {
   EXPECT_FALSE(cf[0].flip);
   EXPECT_TRUE(cf[1].flip);
   EXPECT_NEAR(cf[0].angle_deg, -90.0, 1e-12);  // drawn upright: turned to go round the arm
-  const pattern::Piece sleeve = to_piece(doc, std::string(std::find_if(doc.patterns().begin(), doc.patterns().end(), [](const Node* p) {
-                                                             return p->attribute("piece") == "SLEEVE";
-                                                           })[0]->id()));
+  std::string sleeve_id;
+  for (const Node* p : doc.patterns())
+    if (p->attribute("piece") == "SLEEVE") sleeve_id = std::string(p->id());
+  ASSERT_FALSE(sleeve_id.empty());
+  const pattern::Piece sleeve = to_piece(doc, sleeve_id);
   double lo = 1e300, hi = -1e300;
   const double a = sl[0].angle_deg * M_PI / 180.0;
   for (const auto& c : sleeve.boundary) {
