@@ -276,6 +276,10 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       throw Error(file, g.pieces[copies[pi][0]].pattern_id,
                   "piece " + name + " is folded (folded=\"true\"), but no seam sews it: the fold is about the edge sewn");
     const Vec2 a = bd[edge.first].p, b = bd[edge.second].p;
+    if (!((b - a).norm() > 1e-6))
+      throw Error(file, g.pieces[copies[pi][0]].pattern_id,
+                  "piece " + name + " is folded (folded=\"true\"), but the edge its seam sews ends where it "
+                  "starts: there is no line to fold about");
     for (const int c : copies[pi]) {
       pattern::fold_lengthwise(g.pieces[c].piece, a, b - a);
       g.pieces[c].layers = 2;

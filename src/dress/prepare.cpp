@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "vgd/body/sizes.hpp"
@@ -329,7 +331,6 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     out.decisions.push_back("seams from " + options.seams_file + ": " + std::to_string(plans.size()) + " seams (" +
                             std::to_string(n) + " SEAMs over the sizes); none suggested");
   }
-  std::map<std::string, double> band_to_opening;  // neckband or cuff piece -> its length over the opening's (suggested)
   if (xvc::list_seams(doc).empty()) {
     xvc::SeamOptions so;
     so.size = !sample.empty() && !patterns_of(sample).empty() ? sample : out.size;
@@ -346,9 +347,6 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.decisions.push_back("seam '" + s.name + "' suggested at size " + so.size + ": " + hems + ", ease " +
                               format_fixed(1000 * s.ease, 1) + " mm, score " + format_fixed(s.score, 2));
     }
-    for (const auto& s : suggested)
-      if ((s.name == "neck seam" || s.name == "right cuff") && s.length_b > 0)
-        if (const auto* p = doc.find(s.hems[0].pattern)) band_to_opening[std::string(p->attribute("piece"))] = s.length_a / s.length_b;
     if (!nodes.empty()) xvc::execute(doc, *std::make_unique<xvc::AddSeams>(std::move(nodes)));
     out.seams_added = static_cast<int>(suggested.size());
     if (suggested.empty())
@@ -528,9 +526,22 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // rib, a rib cuff: both raw edges sewn to the opening together): it drapes
   // as the half beside the opening, in two layers (PATTERN folded="true",
   // written where the document says nothing). One cut shorter than its
-  // opening is stretched onto it, as a rib knit is: unless the designer chose
-  // the fabric (--material) or the piece has its own, it is cut from the
-  // shipped rib (a piece MATERIAL).
+  // opening (the first SEAM that sews it to another piece: its hem over the
+  // others') is stretched onto it, as a rib knit is: unless the designer
+  // chose the fabric (--material) or the piece has its own, it is cut from
+  // the shipped rib (a piece MATERIAL).
+  const auto band_to_opening = [&](const std::string& band) -> std::optional<double> {
+    for (const auto& seam : xvc::list_seams(doc)) {
+      const auto* a = seam.hems.empty() ? nullptr : doc.find(seam.hems[0].pattern);
+      if (!a || a->attribute("piece") != band) continue;
+      double others = 0;
+      for (std::size_t k = 1; k < seam.hems.size(); ++k)
+        if (const auto* b = doc.find(seam.hems[k].pattern); b && b->attribute("piece") != band) others += seam.hems[k].length;
+      if (others > 0) return seam.hems[0].length / others;
+    }
+    return std::nullopt;
+  };
+  std::optional<xvc::Node> rib;  // the shipped rib's MATERIAL, read once when a band needs it
   for (const auto& name : out.pieces) {
     const pattern::Role band_role = roles[name].role;
     if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff) continue;
@@ -556,14 +567,16 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                               "(folded=\"true\" written in the document): it drapes as the half beside " + opening + ", " +
                               format_fixed(50 * width, 1) + " of its " + format_fixed(100 * width, 1) +
                               " cm, in two layers");
-    const auto ratio = band_to_opening.find(name);
-    if (options.fabric_given || ratio == band_to_opening.end() || ratio->second > 0.98 ||
-        !xvc::piece_material(doc, *here).empty())
-      continue;
-    const xvc::Document kdoc = xvc::load_file(data_file("materials/cotton-rib.xvc"));
-    const auto* kmats = kdoc.container("MATERIALS");
-    if (!kmats || kmats->children.empty()) continue;
-    const xvc::Node rib = xvc::copy_node(kdoc, kmats->children.front().id());
+    if (options.fabric_given || !xvc::piece_material(doc, *here).empty()) continue;
+    const auto ratio = band_to_opening(name);
+    if (!ratio || *ratio > 0.98) continue;
+    if (!rib) {
+      const std::filesystem::path rib_file = data_file("materials/cotton-rib.xvc");
+      const xvc::Document kdoc = xvc::load_file(rib_file);
+      const auto* kmats = kdoc.container("MATERIALS");
+      if (!kmats || kmats->children.empty()) throw Error(rib_file.string(), "MATERIALS", "the shipped rib has no MATERIAL");
+      rib = xvc::copy_node(kdoc, kmats->children.front().id());
+    }
     if (!doc.container("MATERIALS")) {
       xvc::Node container;
       container.tag = "MATERIALS";
@@ -572,11 +585,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     std::vector<std::unique_ptr<xvc::Command>> cut;
     for (const auto* p : doc.patterns())
       if (p->attribute("piece") == name && xvc::piece_material(doc, *p).empty())
-        cut.push_back(std::make_unique<xvc::SetPieceMaterial>(std::string(p->id()), rib));
+        cut.push_back(std::make_unique<xvc::SetPieceMaterial>(std::string(p->id()), *rib));
     xvc::execute(doc, *std::make_unique<xvc::Batch>(role_name + " cut from rib", std::move(cut)));
     out.decisions.push_back("piece " + name + " (" + role_name + ") cut from the shipped rib " +
-                            std::string(rib.attribute("id")) + " (written in the document): it is " +
-                            format_fixed(100 * (1 - ratio->second), 0) + " % shorter than " + opening +
+                            std::string(rib->attribute("id")) + " (written in the document): it is " +
+                            format_fixed(100 * (1 - *ratio), 0) + " % shorter than " + opening +
                             " it is sewn to and is stretched onto it, as a rib knit is; "
                             "choose another fabric for the piece in the document or with --material");
   }

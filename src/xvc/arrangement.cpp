@@ -169,7 +169,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   using pattern::Role;
   Arrangement a;
   a.clearance = opts.clearance;
-  const bool band = role.role == Role::waistband || role.role == Role::neckband;
+  const bool band = role.role == Role::waistband || role.role == Role::neckband || role.role == Role::cuff;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -409,10 +409,10 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       for (auto& a : list) a.height -= it->second;
   }
 
-  // A cuff goes on at the hem of the sleeve a SEAM sews it to (of its size,
-  // else of the sample size at the same piece): the sleeve's length as
-  // arranged (its top, the cap, sleeve_drop down the arm) further down. A
-  // cuff no seam sews to a sleeve is not placed.
+  // A cuff goes on at the hem of the sleeve a SEAM sews it to (a seam of any
+  // size: graded sizes sew with the sample's; the sleeve of the cuff's own
+  // size): that sleeve's length as arranged (its top, the cap, sleeve_drop
+  // down the arm) further down. A cuff no seam sews to a sleeve is not placed.
   std::map<std::string, std::string> cuff_sleeve;  // cuff piece -> sleeve piece
   for (const auto& seam : list_seams(doc))
     for (const auto& h : seam.hems) {

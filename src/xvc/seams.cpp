@@ -307,8 +307,9 @@ constexpr double kYokeGathers = 0.15;
 // Relative length tolerance of a side seam (other seams: 0.02): a 2.5 % difference
 // still scores 0.67.
 constexpr double kSideSeamTolerance = 0.04;
-// How much shorter than its neckline a neckband may be cut (a rib is
-// stretched onto it: typically 10-20 %).
+// How much shorter than the opening it is sewn round (a neckline, a sleeve's
+// hem) a neckband or a cuff may be cut (a rib is stretched onto it:
+// typically 10-20 %).
 constexpr double kRibShorter = 0.25;
 
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,

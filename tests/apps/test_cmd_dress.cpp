@@ -15,6 +15,7 @@
 #include "support/test_paths.hpp"
 #include "vgd/core/file.hpp"
 #include "vgd/dress/certificate.hpp"
+#include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
@@ -309,6 +310,26 @@ TEST(CliDress, ACrewNecksRibIsFoldedAndCutFromRib) {
   const double across = std::min(hi[0] - lo[0], hi[1] - lo[1]), along = std::max(hi[0] - lo[0], hi[1] - lo[1]);
   EXPECT_NEAR(across, 0.020, 2e-4);
   EXPECT_NEAR(along, 0.425, 2e-3);
+
+  // Dressed again, the document keeps its fold and fabric and decides neither anew;
+  // with its pieces' own fabric taken away, the rib is cut from rib again, as
+  // measured on the document's own seams.
+  const auto again = run_vgd({"dress", (out / "r" / "garment.xvc").string(), "-o", (out / "a").string(),
+                              "--no-previews", "--time-limit", "0.05"});
+  EXPECT_EQ(again.code, 3) << again.err;  // stopped at the time limit
+  EXPECT_EQ(again.err.find("read as cut double"), std::string::npos) << again.err;
+  EXPECT_EQ(again.err.find("cut from the shipped rib"), std::string::npos) << again.err;
+  xvc::Document bare = doc;
+  for (const auto* p : doc.patterns())
+    if (p->attribute("piece") == "GMH1006FNR")
+      xvc::execute(bare, *std::make_unique<xvc::SetPieceMaterial>(std::string(p->id()), std::nullopt));
+  xvc::save_file(bare, out / "bare.xvc");
+  const auto recut = run_vgd({"dress", (out / "bare.xvc").string(), "-o", (out / "b").string(), "--no-previews",
+                              "--time-limit", "0.05"});
+  EXPECT_NE(recut.err.find("piece GMH1006FNR (neckband) cut from the shipped rib cotton-rib (written in the "
+                           "document): it is 17 % shorter than the neckline"),
+            std::string::npos)
+      << recut.err;
 
   const auto given = run_vgd({"dress", shared_dxf("GMH1006F18_AAMA.DXF").string(), "-o", (out / "g").string(),
                               "--no-previews", "--time-limit", "0.05", "--material",
