@@ -80,6 +80,9 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
   std::string why;
   switch (role) {
     case Role::collar:
+      why = "vgd sews a one-piece collar (no stand) round a whole front's and a back's necklines from centre front, not "
+            "yet a collar to its stand or a stand to the neckline";
+      break;
     case Role::collar_stand:
     case Role::hood:
       why = "vgd does not yet suggest the seam that sews a " + r + " to the neckline";
@@ -541,10 +544,16 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
     return std::nullopt;
   };
+  // A one-piece collar (a polo's: no collar stand is draped) rolls over
+  // about half way across: its fall turned down over its stand, folded the
+  // same way, so it drapes folded as a neckband does.
+  const bool stand = std::any_of(out.pieces.begin(), out.pieces.end(),
+                                 [&](const std::string& n) { return roles[n].role == pattern::Role::collar_stand; });
   std::optional<xvc::Node> rib;  // the shipped rib's MATERIAL, read once when a band needs it
   for (const auto& name : out.pieces) {
     const pattern::Role band_role = roles[name].role;
-    if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff) continue;
+    const bool collar = band_role == pattern::Role::collar && !stand;
+    if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff && !collar) continue;
     const std::string role_name(pattern::role_name(band_role));
     const std::string opening = band_role == pattern::Role::cuff ? "the sleeve's hem" : "the neckline";
     std::vector<std::unique_ptr<xvc::Command>> set;
@@ -563,9 +572,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       w0 = std::min(w0, c.p.x()), w1 = std::max(w1, c.p.x()), h0 = std::min(h0, c.p.y()), h1 = std::max(h1, c.p.y());
     const double width = std::min(w1 - w0, h1 - h0);
     if (said && xvc::folded_attribute(*doc.find(std::string(here->id()))).value_or(false))
-      out.decisions.push_back("piece " + name + " (" + role_name + ") read as cut double and folded lengthwise "
-                              "(folded=\"true\" written in the document): it drapes as the half beside " + opening + ", " +
-                              format_fixed(50 * width, 1) + " of its " + format_fixed(100 * width, 1) +
+      out.decisions.push_back("piece " + name + " (" + role_name + ") read as " +
+                              (collar ? "rolled over at half its width, its fall turned down over its stand"
+                                      : "cut double and folded lengthwise") +
+                              " (folded=\"true\" written in the document): it drapes as the half beside " + opening +
+                              ", " + format_fixed(50 * width, 1) + " of its " + format_fixed(100 * width, 1) +
                               " cm, in two layers");
     if (options.fabric_given || !xvc::piece_material(doc, *here).empty()) continue;
     const auto ratio = band_to_opening(name);

@@ -169,7 +169,8 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   using pattern::Role;
   Arrangement a;
   a.clearance = opts.clearance;
-  const bool band = role.role == Role::waistband || role.role == Role::neckband || role.role == Role::cuff;
+  const bool band = role.role == Role::waistband || role.role == Role::neckband || role.role == Role::cuff ||
+                    role.role == Role::collar;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -312,6 +313,14 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       return {r, l};
     }
     case Role::collar:
+      // Lengthwise round the neck as a neckband, its bottom edge (the one
+      // sewn) at the neck point, but centred at the back: a collar's ends
+      // meet at centre front.
+      turn_band();
+      a.segment = "neck";
+      a.side = "back";
+      a.height = opts.neck_point_height + box_h;
+      return {a};
     case Role::collar_stand:
       a.segment = "neck";
       a.side = "front";
@@ -444,6 +453,51 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       lo = std::min(lo, y), hi = std::max(hi, y);
     }
     for (auto& a : list) a.height = sleeve_list.front().height + (hi - lo);
+  }
+
+  // A collar goes on by the edge a SEAM sews to the neckline (a seam of any
+  // size: the same stretches in every size), whichever of its long edges
+  // that is: turned half round when it would be the top as arranged.
+  std::map<std::string, std::pair<std::size_t, std::size_t>> collar_run;  // collar piece -> stretches sewn
+  for (const auto& seam : list_seams(doc))
+    for (const auto& h : seam.hems) {
+      const Node* c = doc.find(h.pattern);
+      if (!c || piece_role(doc, *c).role != pattern::Role::collar) continue;
+      const std::string piece(c->attribute("piece"));
+      const bool to_another = std::any_of(seam.hems.begin(), seam.hems.end(), [&](const HemRef& k) {
+        const Node* q = doc.find(k.pattern);
+        return q && q->attribute("piece") != piece;
+      });
+      if (to_another) collar_run.emplace(piece, stretch_range(*c, h));
+    }
+  for (auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::collar) continue;
+    const auto found = collar_run.find(std::string(p->attribute("piece")));
+    const auto stretches = boundary_stretches(*p);
+    if (found == collar_run.end() || found->second.first >= stretches.size() || found->second.second >= stretches.size())
+      continue;
+    const auto* run = &found->second;
+    const pattern::Piece piece = to_piece(doc, id);
+    const std::size_t n = piece.boundary.size();
+    for (auto& a : list) {
+      double lo = 1e300, hi = -1e300, sewn = 0;
+      for (const auto& c : piece.boundary) {
+        const double y = rotate(c.p, a.angle_deg).y();
+        lo = std::min(lo, y), hi = std::max(hi, y);
+      }
+      int k = 0;
+      const std::size_t last = run->second + 1 < stretches.size() ? stretches[run->second + 1].first : 0;
+      for (std::size_t i = stretches[run->first].first; n > 0; i = (i + 1) % n) {
+        sewn += rotate(piece.boundary[i].p, a.angle_deg).y(), ++k;
+        if (i == last % n) break;
+      }
+      if (k == 0 || sewn / k <= 0.5 * (lo + hi)) continue;
+      a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+      const auto ref = reference_point(piece, a.angle_deg);
+      a.x = ref.x();
+      a.y = ref.y();
+    }
   }
   return out;
 }

@@ -250,7 +250,7 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke };
+enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke, collar };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
@@ -262,6 +262,7 @@ Role role_of(const Outline& o) {
     case pattern::Role::front: return Role::front;
     case pattern::Role::back: return Role::back;
     case pattern::Role::yoke: return Role::yoke;
+    case pattern::Role::collar: return Role::collar;
     default: return Role::other;
   }
 }
@@ -350,7 +351,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     if (o.size != size || o.quantity == 0 || o.stretches.empty()) continue;
     const Role r = role_of(o);
     if (r == Role::other) continue;
-    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff), {}};
+    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff && r != Role::collar), {}};
     pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
     ps.push_back(std::move(pi));
   }
@@ -746,19 +747,25 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // arranged. Back's +u half (the wearer's right seen from behind) runs from
   // the side to centre back along the contour; reversed it starts at centre
   // back.
-  const auto split_round = [&](const PieceInfo& fr, std::pair<std::size_t, std::size_t> rf, const PieceInfo& bk,
-                               std::pair<std::size_t, std::size_t> rb) {
+  // The stretch of a run (k0..k1) after which the piece's centre line
+  // crosses it: the stretch boundary nearest the centre, within 1 cm.
+  const auto centre_split = [&](const PieceInfo& p, std::pair<std::size_t, std::size_t> r) {
     std::optional<std::size_t> split;
     double best_d = 0.01;
-    for (std::size_t k = rb.first; k != rb.second; k = (k + 1) % bk.o->stretches.size()) {
-      const std::size_t next = (k + 1) % bk.o->stretches.size();
-      const Vec2 p = bk.o->shape.boundary[bk.o->stretches[next].first].p;
-      const double d = std::abs(p.dot(bk.frame.right) - bk.frame.u_centre);
+    for (std::size_t k = r.first; k != r.second; k = (k + 1) % p.o->stretches.size()) {
+      const std::size_t next = (k + 1) % p.o->stretches.size();
+      const Vec2 q = p.o->shape.boundary[p.o->stretches[next].first].p;
+      const double d = std::abs(q.dot(p.frame.right) - p.frame.u_centre);
       if (d < best_d) {
         best_d = d;
         split = k;
       }
     }
+    return split;
+  };
+  const auto split_round = [&](const PieceInfo& fr, std::pair<std::size_t, std::size_t> rf, const PieceInfo& bk,
+                               std::pair<std::size_t, std::size_t> rb) {
+    const auto split = centre_split(bk, rb);
     if (split)
       return std::vector<Part>{{bk.o, rb.first, *split, true},
                                {fr.o, rf.first, rf.second, true},
@@ -1137,7 +1144,48 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
   }
 
-  // 8. Cuff -> sleeve hem (a rib cuff): a sleeve cut twice whose cap a seam
+  // 6. A one-piece collar (a polo's: the garment has no collar stand) to the
+  //    neckline, as a neckband but from centre front: the front's neckline
+  //    split at its centre (a stretch boundary within 1 cm of it), round the
+  //    back's, to centre front again, where its ends meet open (a polo's
+  //    placket). Cut up to a quarter shorter, as a rib collar is. Not where
+  //    a neckband is sewn, and only for a front cut once (a whole front).
+  const bool stand = std::any_of(outs.begin(), outs.end(), [&](const Outline& o) {
+    return o.size == size && o.quantity > 0 && o.role.role == pattern::Role::collar_stand;
+  });
+  const bool necked = std::any_of(found.begin(), found.end(), [](const SeamSuggestion& x) { return x.name == "neck seam"; });
+  for (const auto& co : ps) {
+    if (co.role != Role::collar || co.o->quantity != 1 || stand || necked) continue;
+    bool sewn = false;
+    for (const auto& fr : ps) {
+      if (fr.role != Role::front || fr.o->quantity != 1 || fr.o->role.side != pattern::Side::none || sewn) continue;
+      const auto nf = neckline(fr);
+      if (!nf) continue;
+      const auto split = centre_split(fr, *nf);
+      if (!split) continue;
+      const std::size_t nsf = fr.o->stretches.size();
+      for (const auto& bk : ps) {
+        if (bk.role != Role::back || sewn) continue;
+        const auto nbk = neckline(bk);
+        if (!nbk) continue;
+        std::vector<Part> parts{{co.o, 0, 0, false},
+                                {fr.o, nf->first, *split, true},
+                                {bk.o, nbk->first, nbk->second, true},
+                                {fr.o, (*split + 1) % nsf, nf->second, true}};
+        double length = 0;
+        for (std::size_t i = 1; i < parts.size(); ++i) length += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+        const auto best = sew_band(co, std::move(parts), "collar seam",
+                                   "collar " + co.o->piece + " to the neckline of " + fr.o->piece + " and " + bk.o->piece +
+                                       " from centre front",
+                                   -kRibShorter * length, 0.0, 0.03);
+        if (!best) continue;
+        found.push_back(*best);
+        sewn = true;
+      }
+    }
+  }
+
+  // 7. Cuff -> sleeve hem (a rib cuff): a sleeve cut twice whose cap a seam
   //    sews to the armholes takes a cuff cut as often on each copy: the
   //    cuff's long edge (its top as arranged on the arm) that best fits the
   //    sleeve's hem (its lowest edge, between the underarm seam's ends; up

@@ -25,10 +25,11 @@ namespace vgd::test {
 using nlohmann::json;
 
 // The Gerber polo straight from its DXF, in a graded size: the importer's
-// marks, the suggested seams (at the sample size, carried to 44), the pieces
-// no seam sews left out and said, the men's table chosen from the style's
-// name, both sleeves on their own armholes, previews written, the document
-// it draped saved beside them.
+// marks, the suggested seams (at the sample size, carried to 44), its rib
+// collar sewn round the neckline and folded over, the pieces no seam sews
+// left out and said, the men's table chosen from the style's name, both
+// sleeves on their own armholes, previews written, the document it draped
+// saved beside them.
 TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("dress-polo");
@@ -36,14 +37,18 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
                           "--views", "front"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("seam 'left armhole' suggested at size 50"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("piece SS17_M POLO REG CO (collar) left out: no seam sews it"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("seam 'collar seam' suggested at size 50"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("piece SS17_M POLO REG CO (collar) read as rolled over at half its width"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("piece SS17_M POLO REG YP (placket) left out: it is sewn onto the face"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("body: the mannequin of size 44 from en13402-men"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("no SEAM sews this size: the 8 seams of size 50"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no SEAM sews this size: the 9 seams of size 50"), std::string::npos) << r.err;
   const json c = read_json(out / "certificate.json");
   EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
-  ASSERT_EQ(c["seams"].size(), 8u);
+  ASSERT_EQ(c["seams"].size(), 9u);
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
-  EXPECT_EQ(c["placement"].size(), 4u) << "front, back and two sleeves";
+  EXPECT_EQ(c["placement"].size(), 5u) << "front, back, two sleeves and the collar";
   EXPECT_TRUE(std::filesystem::exists(out / "previews" / "front.png"));
   // Read back (as the studio reads a server's), it writes the same text.
   const std::string cert_text = vgd::read_file(out / "certificate.json");
@@ -53,14 +58,15 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   EXPECT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.out.find("left armhole"), std::string::npos) << again.out;
   // With each piece's role and whether it is draped, read back when it runs
-  // on its own document: the collar stays out, as the document now says.
+  // on its own document: the plackets stay out, as the document now says.
   const std::string saved = vgd::read_file(out / "garment.xvc");
   EXPECT_NE(saved.find("role=\"collar\""), std::string::npos);
+  EXPECT_NE(saved.find("folded=\"true\""), std::string::npos);
   EXPECT_NE(saved.find("role=\"sleeve\""), std::string::npos);
   const auto rerun = run_vgd({"dress", (out / "garment.xvc").string(), "--size", "44", "-o", out.string(),
                               "--no-previews", "--time-limit", "0.05"});
   EXPECT_TRUE(rerun.code == 0 || rerun.code == 3) << rerun.err;
-  EXPECT_NE(rerun.err.find("piece SS17_M POLO REG CO (collar) left out: the document says drape=\"false\""),
+  EXPECT_NE(rerun.err.find("piece SS17_M POLO REG YP (placket) left out: the document says drape=\"false\""),
             std::string::npos)
       << rerun.err;
   EXPECT_EQ(rerun.err.find("is kept as"), std::string::npos) << "its own input is not moved aside";
@@ -235,8 +241,9 @@ TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
   const auto shirt = run_vgd({"dress", shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf").string(), "-o",
                               (out / "s").string(), "--no-previews", "--time-limit", "0.05"});
   for (const char* says :
-       {"piece COLLAR (collar) left out: no seam sews it: vgd does not yet suggest the seam that sews a collar to the "
-        "neckline; sew it with 'vgd seams add' and arrange it with 'vgd place', then dress the document again",
+       {"piece COLLAR (collar) left out: no seam sews it: vgd sews a one-piece collar (no stand) round a whole front's "
+        "and a back's necklines from centre front, not yet a collar to its stand or a stand to the neckline; sew it "
+        "with 'vgd seams add' and arrange it with 'vgd place', then dress the document again",
         "piece COLLARBASE (collar stand) left out: no seam sews it: vgd does not yet suggest the seam that sews a "
         "collar stand to the neckline"})
     EXPECT_NE(shirt.err.find(says), std::string::npos) << says << "\n" << shirt.err;

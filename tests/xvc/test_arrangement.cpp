@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
+#include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/draft.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -295,3 +298,62 @@ TEST(Arrangement, ACuffGoesOnAtItsSleevesHem) {
   }
 }
 
+
+// A polo's collar goes round the neck centred at the back (its ends at
+// centre front), by the edge its seam sews to the neckline: the collar is
+// drawn with that edge (the curved, notched one) on the left, which turning
+// a band a quarter clockwise would put at the top, so it is turned half
+// round; with no seam it is turned as any band.
+TEST(Arrangement, APolosCollarGoesOnByTheEdgeSewnToTheNeckline) {
+  VGD_REQUIRE_SHARED();
+  dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  const auto imported = dxf::import_file(vgd::test::shared_dxf("drill-holes.DXF"), unfold);
+  const Document bare = from_style(imported.style);
+  SeamOptions o;
+  o.size = imported.style.sample_size;
+  std::vector<Node> seams;
+  std::optional<SeamSuggestion> collar;
+  for (const auto& s : suggest_seams(bare, o)) {
+    seams.push_back(seam_node(s));
+    if (s.name == "collar seam") collar = s;
+  }
+  ASSERT_TRUE(collar);
+  Document doc = bare;
+  execute(doc, *std::make_unique<AddSeams>(std::move(seams)));
+  const auto arranged = [](const Document& d) {
+    std::map<std::string, std::vector<Arrangement>> out;
+    for (const auto& [id, list] : suggest_arrangements(d))
+      if (d.find(id)->attribute("size") == "50") out[std::string(d.find(id)->attribute("piece"))] = list;
+    return out;
+  };
+  const auto unsewn = arranged(bare).at("SS17_M POLO REG CO");
+  ASSERT_EQ(unsewn.size(), 1u);
+  EXPECT_NEAR(unsewn[0].angle_deg, -90.0, 1e-12);
+  const auto sewn = arranged(doc).at("SS17_M POLO REG CO");
+  ASSERT_EQ(sewn.size(), 1u);
+  EXPECT_EQ(sewn[0].segment, "neck");
+  EXPECT_EQ(sewn[0].side, "back");
+  EXPECT_NEAR(sewn[0].angle_deg, 90.0, 1e-12);
+  // The sewn edge is now the bottom: its points lie lowest as arranged.
+  const std::string id = collar->hems[0].pattern;
+  const pattern::Piece piece = to_piece(doc, id);
+  const auto st = boundary_stretches(*doc.find(id));
+  std::size_t from = 0, to = 0;
+  for (std::size_t k = 0; k < st.size(); ++k) {
+    if (st[k].id == collar->hems[0].from) from = st[k].first;
+    if (st[k].id == collar->hems[0].to) to = k + 1 < st.size() ? st[k + 1].first : 0;
+  }
+  const double a = sewn[0].angle_deg * M_PI / 180.0;
+  const auto up = [&](const pattern::Vec2& p) { return std::sin(a) * p.x() + std::cos(a) * p.y(); };
+  double lo = 1e300, hi = -1e300, edge = 0;
+  int n = 0;
+  for (const auto& c : piece.boundary) lo = std::min(lo, up(c.p)), hi = std::max(hi, up(c.p));
+  for (std::size_t i = from;; i = (i + 1) % piece.boundary.size()) {
+    edge += up(piece.boundary[i].p), ++n;
+    if (i == to) break;
+  }
+  EXPECT_LT(edge / n - lo, 0.1 * (hi - lo)) << "the sewn edge lies in the bottom tenth of the collar's height";
+  // Its reference point is the top's middle: the edge sewn sits a whole collar below it.
+  EXPECT_NEAR(up(pattern::Vec2(sewn[0].x, sewn[0].y)), hi, 1e-9);
+}

@@ -341,6 +341,49 @@ TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
   }
 }
 
+// A polo's one-piece collar (no collar stand in the garment) is sewn round
+// the neckline from centre front, where its ends meet open: the front's
+// neckline split at its centre, the back's whole between them. Its sewn edge
+// is the one with the shoulder notches (the curved one, not the straight
+// finished edge), whichever way the collar is drawn.
+TEST(SeamSuggestions, APolosCollarIsSewnRoundTheNecklineFromCentreFront) {
+  VGD_REQUIRE_SHARED();
+  dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  const auto imported = dxf::import_file(vgd::test::shared_dxf("drill-holes.DXF"), unfold);
+  const Document doc = from_style(imported.style);
+  SeamOptions o;
+  o.size = imported.style.sample_size;
+  const auto found = suggest_seams(doc, o);
+  const auto collar = std::find_if(found.begin(), found.end(), [](const SeamSuggestion& s) { return s.name == "collar seam"; });
+  ASSERT_NE(collar, found.end());
+  const SeamKey k = key(doc, collar->hems);
+  ASSERT_EQ(k.size(), 4u);
+  EXPECT_EQ(std::get<0>(k[0]), "SS17_M POLO REG CO");
+  EXPECT_EQ(std::get<0>(k[1]), "SS17_M POLO REG FR");
+  EXPECT_EQ(std::get<0>(k[2]), "SS17_M POLO REG BK");
+  EXPECT_EQ(std::get<0>(k[3]), "SS17_M POLO REG FR");
+  // The front's two halves meet at centre front: one ends where the other begins.
+  const int nf = static_cast<int>(boundary_stretches(*doc.find(collar->hems[1].pattern)).size());
+  EXPECT_EQ((std::get<2>(k[1]) + 1) % nf, std::get<1>(k[3]));
+  // Its curved edge, 136.9 + 4.3 + 79.3 + 79.3 + 4.5 + 136.7 mm in the file
+  // (the straight one is 439.8 mm), on a neckline 20.6 mm longer.
+  EXPECT_NEAR(collar->length_a, 0.4410, 0.0005);
+  EXPECT_NEAR(collar->length_b, 0.4615, 0.0005);
+  EXPECT_EQ(collar->notches_a, 2);
+  EXPECT_EQ(collar->notches_matched, 2);
+  // Its ends are not sewn to each other (the placket's opening is between them).
+  for (const auto& s : found) EXPECT_EQ(s.name.find("collar ends"), std::string::npos);
+  // A garment with a collar stand sews no collar this way.
+  for (const char* file : {"mirrored.DXF", "Valentina_MaleShirt_AAMA_R12.dxf"}) {
+    const auto other = dxf::import_file(vgd::test::shared_dxf(file), unfold);
+    const Document od = from_style(other.style);
+    SeamOptions os;
+    os.size = other.style.sample_size;
+    for (const auto& s : suggest_seams(od, os)) EXPECT_NE(s.name, "collar seam") << file;
+  }
+}
+
 // data/garments/t-shirt.dxf is what `vgd draft tshirt -o data/garments/t-shirt.dxf` writes
 // today (as DraftedSkirtData does for the skirt in tests/io/dxf/test_roundtrip.cpp).
 TEST(GarmentData, CommittedTShirtDxfMatchesTheDraft) {

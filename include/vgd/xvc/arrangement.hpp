@@ -97,8 +97,10 @@ struct ArrangementOptions {
 // cut in two on that side of the arm, its over-arm edge outside, flipped as that needs),
 // leg -> the legs the same way, the
 // wider end up (the waist, at leg_top) and the narrower half to the front (one copy
-// flipped: the right leg's front is on its pattern's +x), collar, collar stand -> neck
-// front, neckband -> neck front lengthwise, its bottom edge at the neck point, a cuff
+// flipped: the right leg's front is on its pattern's +x), collar stand -> neck front,
+// neckband -> neck front lengthwise, its bottom edge at the neck point, collar -> neck
+// back lengthwise (its ends at centre front; suggest_arrangements turns it half round
+// when the edge a SEAM sews to the neckline would be its top), a cuff
 // cut twice -> each arm lengthwise (the right first, the left mirrored; placed at the
 // hem of its sleeve by suggest_arrangements); in a
 // lower-body garment front/back -> hips front/back with their top at the waist, and
