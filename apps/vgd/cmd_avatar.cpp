@@ -74,12 +74,15 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
             if (*arm) {
               const auto& a = **arm;
               const double along = (a.wrist - a.shoulder).norm();
-              std::printf("%s elbow: %s from the shoulder joint, %.0f %% of the way to the wrist (%s)\n", side,
-                          cm((a.elbow - a.shoulder).norm()).c_str(),
+              const auto from = [](bool skeleton) { return skeleton ? "the file's skeleton" : "the surface"; };
+              std::printf("%s elbow: %s from the shoulder joint, %.0f %% of the way to the wrist (%s; the shoulder "
+                          "joint from %s, the wrist from %s)\n",
+                          side, cm((a.elbow - a.shoulder).norm()).c_str(),
                           along > 0 ? 100 * (a.elbow - a.shoulder).norm() / along : 0.0,
                           a.elbow_from_skeleton ? "the file's skeleton"
                           : a.elbow_on_surface  ? "where the arm's girth bends"
-                                                : "not shown by the surface: put at 56 %");
+                                                : "not shown by the surface: put at 56 %",
+                          from(a.shoulder_from_skeleton), from(a.wrist_from_skeleton));
             }
         }
         if (r.nearest)

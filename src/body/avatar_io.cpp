@@ -555,7 +555,8 @@ Avatar import_avatar(const fs::path& path, const AvatarImportOptions& o, AvatarR
   if (o.segments) {
     if (o.human) {
       BodyMeasuring measured = measure_body(av.surface);
-      landmarks_from_skeleton(measured.landmarks, joints, measured.notes);
+      if (landmarks_from_skeleton(measured.landmarks, joints, measured.notes) > 0)
+        measured.arms = arm_segments(av.surface, measured.landmarks);  // along the skeleton's arms
       av.segments = segments_from_slices(av.surface, &measured.landmarks);
       for (const auto& arm : measured.arms) av.segments.push_back(arm);
       av.landmarks = measured.landmarks;
@@ -619,10 +620,12 @@ std::string to_json(const AvatarReport& r) {
                       {"knee_m", l.knee},           {"ankle_m", l.ankle}};
     for (const auto& [name, arm] : {std::pair{"left_arm", &l.left_arm}, {"right_arm", &l.right_arm}})
       if (*arm)
-        lj[name] = {{"shoulder_m", v3((*arm)->shoulder)}, {"elbow_m", v3((*arm)->elbow)},
+        lj[name] = {{"shoulder_m", v3((*arm)->shoulder)}, {"shoulder_from_skeleton", (*arm)->shoulder_from_skeleton},
+                    {"elbow_m", v3((*arm)->elbow)},
                     {"elbow_from_skeleton", (*arm)->elbow_from_skeleton},
                     {"elbow_on_surface", (*arm)->elbow_on_surface},
-                    {"wrist_m", v3((*arm)->wrist)}, {"wrist_girth_m", (*arm)->wrist_girth}};
+                    {"wrist_m", v3((*arm)->wrist)}, {"wrist_from_skeleton", (*arm)->wrist_from_skeleton},
+                    {"wrist_girth_m", (*arm)->wrist_girth}};
     j["landmarks"] = lj;
     j["measurements"] = {{"height_m", m.height},   {"bust_m", m.bust},         {"under_bust_m", m.under_bust},
                          {"waist_m", m.waist},     {"hip_m", m.hip},           {"shoulder_width_m", m.shoulder_width},

@@ -592,6 +592,11 @@ std::string skeleton_joint_kind(std::string_view bone_name) {
     if (has(finger)) return "";
   if (has("forearm") || has("lowerarm") || has("elbow")) return "elbow";
   if (has("wrist") || has("hand")) return "wrist";
+  // The upper arm's bone starts at the shoulder joint (Mixamo LeftArm, SMPL
+  // L_Shoulder, MakeHuman upperarm01, Rigify upper_arm, 3ds Max UpperArm);
+  // Mixamo's LeftShoulder and Rigify's shoulder are the collarbone.
+  if (has("upperarm") || has("upper_arm") || has("_shoulder")) return "shoulder";
+  if (has("arm") && !has("armature")) return "shoulder";
   if (has("knee") || has("lowerleg") || has("shin") || has("calf")) return "knee";
   if (has("leg") && !has("up") && !has("thigh")) return "knee";  // Mixamo's LeftLeg starts at the knee
   if (has("ankle") || has("foot")) return "ankle";
@@ -600,6 +605,35 @@ std::string skeleton_joint_kind(std::string_view bone_name) {
 
 int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& joints, std::vector<std::string>& notes) {
   int taken = 0;
+  std::map<std::string, int> kinds;  // joints taken, by kind
+  // Where a joint lies against the arm on its side (the body's left is +X)
+  // found on the surface: how far along from shoulder to wrist (0 to 1) and
+  // how far off that line, m.
+  const auto along = [](const ArmLandmarks& arm, const Vec3& p) {
+    const Vec3 a = arm.shoulder, b = arm.wrist;
+    const double u = (p - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-12);
+    return std::pair{u, (p - (a + u * (b - a))).norm()};
+  };
+  // The arm's ends first (the shoulder and wrist joints): an elbow is then
+  // judged against the skeleton's own arm. Each end within 8 cm of the line
+  // the surface found and no more than a quarter of the arm beyond where the
+  // surface put it (the collarbone's start, at the neck, is not a shoulder).
+  for (const auto& j : joints) {
+    const std::string kind = skeleton_joint_kind(j.name);
+    if (kind != "shoulder" && kind != "wrist") continue;
+    auto& arm = j.position.x() >= 0 ? lm.left_arm : lm.right_arm;
+    if (!arm) continue;
+    const auto [u, off] = along(*arm, j.position);
+    const double end = kind == "shoulder" ? 0.0 : 1.0;
+    if (off > 0.08 || std::abs(u - end) > 0.25) {
+      notes.push_back("skeleton joint " + j.name + " left out: " + format_fixed(100 * off, 1) + " cm from the arm's axis, " +
+                      format_fixed(100 * u, 0) + " % of the way from the shoulder to the wrist found on the surface");
+      continue;
+    }
+    (kind == "shoulder" ? arm->shoulder : arm->wrist) = j.position;
+    (kind == "shoulder" ? arm->shoulder_from_skeleton : arm->wrist_from_skeleton) = true;
+    ++kinds[kind], ++taken;
+  }
   std::vector<double> knees;
   for (const auto& j : joints) {
     const std::string kind = skeleton_joint_kind(j.name);
@@ -618,7 +652,7 @@ int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& jo
       arm->elbow = j.position;
       arm->elbow_from_skeleton = true;
       arm->elbow_on_surface = false;
-      ++taken;
+      ++kinds[kind], ++taken;
     } else if (kind == "knee") {
       const double y = j.position.y();
       if (lm.crotch > 0 && (y <= lm.ankle || y >= lm.crotch)) {
@@ -627,7 +661,7 @@ int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& jo
         continue;
       }
       knees.push_back(y);
-      ++taken;
+      ++kinds[kind], ++taken;
     }
   }
   if (!knees.empty()) {
@@ -635,9 +669,13 @@ int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& jo
     for (const double y : knees) sum += y;
     lm.knee = sum / static_cast<double>(knees.size());
   }
-  if (taken > 0)
-    notes.push_back("elbows and knees from the file's skeleton (" + std::to_string(taken) + " joint" +
-                    (taken > 1 ? "s" : "") + ")");
+  if (taken > 0) {
+    std::string what;
+    for (const char* k : {"shoulder", "elbow", "wrist", "knee"})
+      if (const auto it = kinds.find(k); it != kinds.end())
+        what += (what.empty() ? "" : ", ") + std::to_string(it->second) + " " + k + (it->second > 1 ? "s" : "");
+    notes.push_back("joints from the file's skeleton: " + what);
+  }
   return taken;
 }
 

@@ -289,7 +289,10 @@ void write_skinned_gltf(const std::filesystem::path& path, const mesh::SurfaceMe
 // come from it (the surface shows neither), moved with the body into vgd's
 // frame; fingers, hips and shoulders are not taken. The rig's elbows sit at
 // half the arm, not at the 56 % the surface rule would give.
-TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
+// The rig's shoulders and wrists are a few cm off where the surface puts
+// them (its shoulder joint 3 cm inside the chest's half-width, its wrist at
+// the thinnest slice): the arms follow the rig's.
+TEST(ImportedBodySkinned, ArmJointsAndKneesComeFromTheSkeleton) {
   const Avatar& body = mannequin('A');
   const auto& s = body.surface;
   const auto dir = test::scratch_dir("avatar_skeleton");
@@ -297,6 +300,7 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
   const BodySegment* ra = body.segment("right-arm");
   ASSERT_TRUE(la && ra);
   const double knee_y = mannequin_landmarks(BodyMeasurements{}).knee;
+  const Vec3 up = Vec3::UnitY();
   const std::vector<GltfJoint> joints = {
       {"mixamorig:Hips", Vec3(0, 0.9, 0)},
       {"mixamorig:LeftForeArm", la->start + 0.5 * la->length * la->axis},
@@ -304,6 +308,11 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
       {"mixamorig:LeftHandIndex1", la->start + 1.05 * la->length * la->axis},
       {"mixamorig:LeftLeg", Vec3(0.09, knee_y, 0.0)},
       {"mixamorig:RightLeg", Vec3(-0.09, knee_y, 0.0)},
+      {"mixamorig:LeftArm", la->start + 0.03 * la->length * la->axis + 0.02 * up},
+      {"mixamorig:RightArm", ra->start + 0.03 * ra->length * ra->axis + 0.02 * up},
+      {"mixamorig:LeftHand", la->start + 0.97 * la->length * la->axis},
+      {"mixamorig:RightHand", ra->start + 0.97 * ra->length * ra->axis},
+      {"mixamorig:LeftShoulder", Vec3(0.03, 1.35, 0.0)},  // the collarbone, beside the neck: not a shoulder joint
   };
   write_skinned_gltf(dir / "rigged.gltf", s, joints, R"("scale": [0.01, 0.01, 0.01])");
   const mesh::Box3 b = mesh::bounding_box(s);
@@ -318,9 +327,24 @@ TEST(ImportedBodySkinned, ElbowsAndKneesComeFromTheSkeleton) {
   EXPECT_LT((l.left_arm->elbow - (joints[1].p + shift)).norm(), 1e-3);
   EXPECT_LT((l.right_arm->elbow - (joints[2].p + shift)).norm(), 1e-3);
   EXPECT_NEAR(l.knee, knee_y + shift.y(), 1e-3);
+  EXPECT_TRUE(l.left_arm->shoulder_from_skeleton && l.right_arm->shoulder_from_skeleton);
+  EXPECT_TRUE(l.left_arm->wrist_from_skeleton && l.right_arm->wrist_from_skeleton);
+  EXPECT_LT((l.left_arm->shoulder - (joints[6].p + shift)).norm(), 1e-3);
+  EXPECT_LT((l.right_arm->shoulder - (joints[7].p + shift)).norm(), 1e-3);
+  EXPECT_LT((l.left_arm->wrist - (joints[8].p + shift)).norm(), 1e-3);
+  EXPECT_LT((l.right_arm->wrist - (joints[9].p + shift)).norm(), 1e-3);
+  // The arm segments run between the rig's joints.
+  for (const auto& [name, shoulder, wrist] : {std::tuple{"left-arm", joints[6].p, joints[8].p},
+                                              std::tuple{"right-arm", joints[7].p, joints[9].p}}) {
+    const BodySegment* seg = got.segment(name);
+    ASSERT_TRUE(seg) << name;
+    EXPECT_LT(seg->axis.normalized().cross((wrist - shoulder).normalized()).norm(), 1e-3) << name;
+    EXPECT_LT((seg->start - (shoulder + shift)).cross(seg->axis.normalized()).norm(), 1e-3) << name;
+  }
   std::string notes;
   for (const auto& n : got.notes) notes += n + "\n";
-  EXPECT_NE(notes.find("elbows and knees from the file's skeleton (4 joints)"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("joints from the file's skeleton: 2 shoulders, 2 elbows, 2 wrists, 2 knees"), std::string::npos)
+      << notes;
 }
 
 TEST(SkeletonJoints, RigsNamesAreRead) {
@@ -330,8 +354,11 @@ TEST(SkeletonJoints, RigsNamesAreRead) {
     EXPECT_EQ(skeleton_joint_kind(n), "knee") << n;
   for (const char* n : {"mixamorig:LeftHand", "L_Wrist", "wrist.L", "hand.R"}) EXPECT_EQ(skeleton_joint_kind(n), "wrist") << n;
   for (const char* n : {"mixamorig:LeftFoot", "R_Ankle", "foot.L"}) EXPECT_EQ(skeleton_joint_kind(n), "ankle") << n;
-  for (const char* n : {"mixamorig:LeftUpLeg", "mixamorig:LeftHandIndex1", "mixamorig:LeftArm", "L_Shoulder", "Hips",
-                        "mixamorig:LeftToeBase", "upperleg01.L", "thigh.L", "forearm_twist.L"})
+  for (const char* n : {"mixamorig:LeftArm", "L_Shoulder", "upperarm01.L", "upper_arm.R", "Bip01 L UpperArm"})
+    EXPECT_EQ(skeleton_joint_kind(n), "shoulder") << n;
+  for (const char* n : {"mixamorig:LeftUpLeg", "mixamorig:LeftHandIndex1", "mixamorig:LeftShoulder", "shoulder.L",
+                        "L_Collar", "Armature", "Hips", "mixamorig:LeftToeBase", "upperleg01.L", "thigh.L",
+                        "forearm_twist.L", "upper_arm_twist.L"})
     EXPECT_EQ(skeleton_joint_kind(n), "") << n;
 }
 
@@ -352,6 +379,30 @@ TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_NE(notes[0].find("LeftForeArm left out: 20.0 cm from the arm's axis"), std::string::npos) << notes[0];
   EXPECT_NE(notes[1].find("not between the ankle and the crotch"), std::string::npos) << notes[1];
+}
+
+// A shoulder joint at the collarbone's start or a wrist at the fingertips is
+// not where the arm ends: left out with a note, the surface's kept.
+TEST(SkeletonJoints, AShoulderOrWristFarFromTheArmsEndIsLeftOutWithANote) {
+  BodyLandmarks l;
+  ArmLandmarks arm;
+  arm.shoulder = Vec3(0.17, 1.35, 0);
+  arm.wrist = Vec3(0.55, 0.95, 0);
+  arm.elbow = arm.shoulder + 0.56 * (arm.wrist - arm.shoulder);
+  l.left_arm = arm;
+  std::vector<std::string> notes;
+  const Vec3 d = arm.wrist - arm.shoulder;
+  const std::vector<ModelJoint> joints = {{"L_Shoulder", arm.shoulder - 0.4 * d},
+                                          {"L_Wrist", arm.wrist + 0.2 * d + Vec3(0, 0, 0.1)}};
+  EXPECT_EQ(landmarks_from_skeleton(l, joints, notes), 0);
+  EXPECT_FALSE(l.left_arm->shoulder_from_skeleton);
+  EXPECT_FALSE(l.left_arm->wrist_from_skeleton);
+  EXPECT_EQ(l.left_arm->shoulder, arm.shoulder);
+  EXPECT_EQ(l.left_arm->wrist, arm.wrist);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[0].find("L_Shoulder left out: 0.0 cm from the arm's axis, -40 % of the way"), std::string::npos)
+      << notes[0];
+  EXPECT_NE(notes[1].find("L_Wrist left out: 10.0 cm from the arm's axis"), std::string::npos) << notes[1];
 }
 
 // A Mixamo-style skinned glTF: the mesh under an armature node that scales by

@@ -67,6 +67,8 @@ struct ArmLandmarks {
   double wrist_girth = 0.0;      // m
   bool elbow_on_surface = false;     // the elbow was found on the surface, not put at 56 %
   bool elbow_from_skeleton = false;  // the elbow is the file's elbow joint
+  bool shoulder_from_skeleton = false;  // the shoulder is the file's (the upper arm bone's start)
+  bool wrist_from_skeleton = false;     // the wrist is the file's (the hand bone's start); wrist_girth stays the surface's
 };
 
 struct BodyLandmarks {

@@ -41,14 +41,19 @@ BodyMeasuring measure_body(const mesh::SurfaceMesh& upright);
 
 // The joint a skeleton's bone stands for, from its name as rigs spell it
 // (Mixamo "mixamorig:LeftForeArm", SMPL "L_Elbow", MakeHuman "lowerarm01.L",
-// Rigify "forearm.L", 3ds Max "Bip01 L Forearm"): "elbow", "wrist", "knee",
-// "ankle", or "" for any other bone.
+// Rigify "forearm.L", 3ds Max "Bip01 L Forearm"): "shoulder" (the upper arm's
+// bone: Mixamo "LeftArm", SMPL "L_Shoulder", "upperarm01.L", "upper_arm.L",
+// "Bip01 L UpperArm"; not a collarbone), "elbow", "wrist", "knee", "ankle",
+// or "" for any other bone.
 std::string skeleton_joint_kind(std::string_view bone_name);
 
 // Takes from a file's skeleton (joints in the body's upright frame, m) what
-// the surface cannot show: the elbows (on the arm found, within 8 cm of its
-// axis) and the knees (between ankle and crotch). Says in `notes` what it took
-// and what it refused. Returns how many joints it took.
+// the surface can only estimate: the shoulder and wrist joints (each within
+// 8 cm of the arm's axis found on the surface and a quarter of the arm's
+// length of where the surface put it), then the elbows (on the arm, within
+// 8 cm of its axis, 20-90 % of the way to the wrist) and the knees (between
+// ankle and crotch). Says in `notes` what it took and what it refused.
+// Returns how many joints it took; arm_segments then follows the joints.
 int landmarks_from_skeleton(BodyLandmarks& landmarks, const std::vector<ModelJoint>& joints,
                             std::vector<std::string>& notes);
 
