@@ -363,7 +363,8 @@ TEST(SkeletonJoints, RigsNamesAreRead) {
 }
 
 // A skeleton whose elbow lies off the arm is not believed.
-TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
+// Landmarks with a left arm found on the surface, as a skeleton's joints are judged against.
+BodyLandmarks left_arm_landmarks() {
   BodyLandmarks l;
   l.crotch = 0.78, l.ankle = 0.1;
   ArmLandmarks arm;
@@ -371,6 +372,11 @@ TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
   arm.wrist = Vec3(0.55, 0.95, 0);
   arm.elbow = arm.shoulder + 0.56 * (arm.wrist - arm.shoulder);
   l.left_arm = arm;
+  return l;
+}
+
+TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
+  BodyLandmarks l = left_arm_landmarks();
   std::vector<std::string> notes;
   const std::vector<ModelJoint> joints = {{"LeftForeArm", Vec3(0.36, 1.15, 0.2)}, {"LeftLeg", Vec3(0.1, 1.2, 0)}};
   EXPECT_EQ(landmarks_from_skeleton(l, joints, notes), 0);
@@ -384,12 +390,8 @@ TEST(SkeletonJoints, AnElbowOffTheArmIsLeftOutWithANote) {
 // A shoulder joint at the collarbone's start or a wrist at the fingertips is
 // not where the arm ends: left out with a note, the surface's kept.
 TEST(SkeletonJoints, AShoulderOrWristFarFromTheArmsEndIsLeftOutWithANote) {
-  BodyLandmarks l;
-  ArmLandmarks arm;
-  arm.shoulder = Vec3(0.17, 1.35, 0);
-  arm.wrist = Vec3(0.55, 0.95, 0);
-  arm.elbow = arm.shoulder + 0.56 * (arm.wrist - arm.shoulder);
-  l.left_arm = arm;
+  BodyLandmarks l = left_arm_landmarks();
+  const ArmLandmarks arm = *l.left_arm;
   std::vector<std::string> notes;
   const Vec3 d = arm.wrist - arm.shoulder;
   const std::vector<ModelJoint> joints = {{"L_Shoulder", arm.shoulder - 0.4 * d},

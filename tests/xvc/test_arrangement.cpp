@@ -7,9 +7,9 @@
 #include <map>
 #include <optional>
 
+#include "shared_style.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
-#include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/draft.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -306,15 +306,10 @@ TEST(Arrangement, ACuffGoesOnAtItsSleevesHem) {
 // round; with no seam it is turned as any band.
 TEST(Arrangement, APolosCollarGoesOnByTheEdgeSewnToTheNeckline) {
   VGD_REQUIRE_SHARED();
-  dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  const auto imported = dxf::import_file(vgd::test::shared_dxf("drill-holes.DXF"), unfold);
-  const Document bare = from_style(imported.style);
-  SeamOptions o;
-  o.size = imported.style.sample_size;
+  const auto [bare, sample] = vgd::test::shared_style("drill-holes.DXF");
   std::vector<Node> seams;
   std::optional<SeamSuggestion> collar;
-  for (const auto& s : suggest_seams(bare, o)) {
+  for (const auto& s : suggest_seams(bare, sample)) {
     seams.push_back(seam_node(s));
     if (s.name == "collar seam") collar = s;
   }

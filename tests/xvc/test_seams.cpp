@@ -13,6 +13,7 @@
 #include "fixtures.hpp"
 #include "support/split_sleeve.hpp"
 #include "support/trousers.hpp"
+#include "shared_style.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -299,13 +300,8 @@ TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
   for (const Case& c : {Case{"GMH1006F18_AAMA.DXF", "GMH1006FNR", 0.425, 0.5133},
                         Case{"MEN_CLASSIC_TEE.DXF", "REGULAR TEECO", 0.390, 0.5193}}) {
     SCOPED_TRACE(c.file);
-    dxf::ImportOptions unfold;
-    unfold.unfold_mirrored = true;
-    const auto imported = dxf::import_file(vgd::test::shared_dxf(c.file), unfold);
-    const Document doc = from_style(imported.style);
-    SeamOptions o;
-    o.size = imported.style.sample_size;
-    const auto found = suggest_seams(doc, o);
+    const auto [doc, sample] = vgd::test::shared_style(c.file);
+    const auto found = suggest_seams(doc, sample);
     const auto named = [&](const std::string& n) {
       return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == n; });
     };
@@ -348,13 +344,8 @@ TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
 // finished edge), whichever way the collar is drawn.
 TEST(SeamSuggestions, APolosCollarIsSewnRoundTheNecklineFromCentreFront) {
   VGD_REQUIRE_SHARED();
-  dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  const auto imported = dxf::import_file(vgd::test::shared_dxf("drill-holes.DXF"), unfold);
-  const Document doc = from_style(imported.style);
-  SeamOptions o;
-  o.size = imported.style.sample_size;
-  const auto found = suggest_seams(doc, o);
+  const auto [doc, sample] = vgd::test::shared_style("drill-holes.DXF");
+  const auto found = suggest_seams(doc, sample);
   const auto collar = std::find_if(found.begin(), found.end(), [](const SeamSuggestion& s) { return s.name == "collar seam"; });
   ASSERT_NE(collar, found.end());
   const SeamKey k = key(doc, collar->hems);
@@ -376,11 +367,8 @@ TEST(SeamSuggestions, APolosCollarIsSewnRoundTheNecklineFromCentreFront) {
   for (const auto& s : found) EXPECT_EQ(s.name.find("collar ends"), std::string::npos);
   // A garment with a collar stand sews no collar this way.
   for (const char* file : {"mirrored.DXF", "Valentina_MaleShirt_AAMA_R12.dxf"}) {
-    const auto other = dxf::import_file(vgd::test::shared_dxf(file), unfold);
-    const Document od = from_style(other.style);
-    SeamOptions os;
-    os.size = other.style.sample_size;
-    for (const auto& s : suggest_seams(od, os)) EXPECT_NE(s.name, "collar seam") << file;
+    const auto other = vgd::test::shared_style(file);
+    for (const auto& s : suggest_seams(other.doc, other.sample)) EXPECT_NE(s.name, "collar seam") << file;
   }
 }
 
