@@ -69,9 +69,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::ExistingFile);
   sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's; "
                                              "for legs with none, the shipped cotton-jersey when they are smaller round "
-                                             "the hip than the body, else data/materials/shirting.xvc; a neckband or "
-                                             "cuff shorter than its opening in the shipped cotton-rib unless this is "
-                                             "given)")
+                                             "the hip than the body, else data/materials/shirting.xvc; a neckband, "
+                                             "cuff or one-piece collar shorter than its opening in the shipped "
+                                             "cotton-rib unless this is given)")
       ->check(CLI::ExistingFile);
   sub->add_option("--material-id", o->material_id, "MATERIAL id in --material (default: its first)");
   sub->add_option("--quality", o->quality, "Quality preset: preview, standard or precise (vgd drape --quality)")
