@@ -641,9 +641,7 @@ int landmarks_from_skeleton(BodyLandmarks& lm, const std::vector<ModelJoint>& jo
       // The arm on the joint's side (the body's left is +X).
       auto& arm = j.position.x() >= 0 ? lm.left_arm : lm.right_arm;
       if (!arm) continue;
-      const Vec3 a = arm->shoulder, b = arm->wrist;
-      const double u = std::clamp((j.position - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-      const double off = (j.position - (a + u * (b - a))).norm();
+      const auto [u, off] = along(*arm, j.position);
       if (off > 0.08 || u < 0.2 || u > 0.9) {
         notes.push_back("skeleton joint " + j.name + " left out: " + format_fixed(100 * off, 1) +
                         " cm from the arm's axis, " + format_fixed(100 * u, 0) + " % of the way to the wrist");

@@ -63,23 +63,41 @@ bool straps(const pattern::Piece& piece, double angle_deg) {
   return widest < 0.25 * (xmax - xmin);
 }
 
+// The lowest and highest point of a piece turned by `angle_deg` (m, along its up).
+std::pair<double, double> height_range(const pattern::Piece& piece, double angle_deg) {
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : piece.boundary) {
+    const double y = rotate(c.p, angle_deg).y();
+    lo = std::min(lo, y), hi = std::max(hi, y);
+  }
+  return piece.boundary.empty() ? std::pair{0.0, 0.0} : std::pair{lo, hi};
+}
+
+// The outline points of stretches from..to (indices in `stretches`), both
+// ends' vertices included; empty when the range is not the piece's.
+std::vector<pattern::Vec2> run_points(const pattern::Piece& piece, const std::vector<Stretch>& stretches,
+                                      std::size_t from, std::size_t to) {
+  std::vector<pattern::Vec2> out;
+  const std::size_t n = piece.boundary.size();
+  if (n == 0 || from >= stretches.size() || to >= stretches.size()) return out;
+  const std::size_t last = to + 1 < stretches.size() ? stretches[to + 1].first : 0;  // the run's end vertex
+  for (std::size_t i = stretches[from].first % n;; i = (i + 1) % n) {
+    out.push_back(piece.boundary[i].p);
+    if (i == last % n) break;
+  }
+  return out;
+}
+
 // How far below the top of its pattern (turned upright by its grain line) the
 // highest point of a hem lies (m).
 double hem_drop(const Document& doc, const Node& node, std::size_t from, std::size_t to) {
   const pattern::Piece piece = to_piece(doc, node.id());
-  const auto stretches = boundary_stretches(node);
-  const std::size_t n = piece.boundary.size();
-  if (n == 0 || from >= stretches.size() || to >= stretches.size()) return 0;
+  const auto run = run_points(piece, boundary_stretches(node), from, to);
+  if (run.empty()) return 0;
   const double angle = upright_angle(piece);
-  double top = -1e300, hem_top = -1e300;
-  for (const auto& c : piece.boundary) top = std::max(top, rotate(c.p, angle).y());
-  const std::size_t first = stretches[from].first;
-  const std::size_t last = to + 1 < stretches.size() ? stretches[to + 1].first : 0;  // the hem's end vertex
-  for (std::size_t i = first;; i = (i + 1) % n) {
-    hem_top = std::max(hem_top, rotate(piece.boundary[i].p, angle).y());
-    if (i == last % n) break;
-  }
-  return top - hem_top;
+  double hem_top = -1e300;
+  for (const auto& p : run) hem_top = std::max(hem_top, rotate(p, angle).y());
+  return height_range(piece, angle).second - hem_top;
 }
 
 // A hem's stretches as indices in its pattern's boundary (graded sizes have the
@@ -177,12 +195,8 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   a.y = ref.y();
   double box_h = 0;
   {
-    double lo = 1e300, hi = -1e300;
-    for (const auto& c : piece.boundary) {
-      lo = std::min(lo, rotate(c.p, a.angle_deg).y());
-      hi = std::max(hi, rotate(c.p, a.angle_deg).y());
-    }
-    box_h = piece.boundary.empty() ? 0 : hi - lo;
+    const auto [lo, hi] = height_range(piece, a.angle_deg);
+    box_h = hi - lo;
   }
   // A band goes round the body lengthwise: one drawn upright is turned a
   // quarter clockwise (its right edge to the bottom, as the seam suggestions
@@ -269,8 +283,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
         // front half and the left leg's back half.
         const bool front = role.half == pattern::Half::front;
         l.side = r.side = front ? "front" : "back";
-        double top_v = -1e300;
-        for (const auto& c : piece.boundary) top_v = std::max(top_v, rotate(c.p, a.angle_deg).y());
+        const double top_v = height_range(piece, a.angle_deg).second;
         double t0 = 1e300, t1 = -1e300, u0 = 1e300, u1 = -1e300;
         for (const auto& c : piece.boundary) {
           const auto q = rotate(c.p, a.angle_deg);
@@ -403,12 +416,7 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
   for (const auto& [id, list] : out) {
     const Node* p = doc.find(id);
     if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::yoke) continue;
-    const pattern::Piece piece = to_piece(doc, id);
-    double lo = 1e300, hi = -1e300;
-    for (const auto& c : piece.boundary) {
-      const double y = rotate(c.p, list.front().angle_deg).y();
-      lo = std::min(lo, y), hi = std::max(hi, y);
-    }
+    const auto [lo, hi] = height_range(to_piece(doc, id), list.front().angle_deg);
     if (hi > lo) yoke_drop[std::string(p->attribute("size"))] = std::max(yoke_drop[std::string(p->attribute("size"))], hi - lo);
   }
   for (auto& [id, list] : out) {
@@ -446,12 +454,7 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       list.clear();
       continue;
     }
-    const pattern::Piece piece = to_piece(doc, sl->id());
-    double lo = 1e300, hi = -1e300;
-    for (const auto& c : piece.boundary) {
-      const double y = rotate(c.p, sleeve_list.front().angle_deg).y();
-      lo = std::min(lo, y), hi = std::max(hi, y);
-    }
+    const auto [lo, hi] = height_range(to_piece(doc, sl->id()), sleeve_list.front().angle_deg);
     for (auto& a : list) a.height = sleeve_list.front().height + (hi - lo);
   }
 
@@ -474,25 +477,15 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
     const Node* p = doc.find(id);
     if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::collar) continue;
     const auto found = collar_run.find(std::string(p->attribute("piece")));
-    const auto stretches = boundary_stretches(*p);
-    if (found == collar_run.end() || found->second.first >= stretches.size() || found->second.second >= stretches.size())
-      continue;
-    const auto* run = &found->second;
+    if (found == collar_run.end()) continue;
     const pattern::Piece piece = to_piece(doc, id);
-    const std::size_t n = piece.boundary.size();
+    const auto sewn = run_points(piece, boundary_stretches(*p), found->second.first, found->second.second);
+    if (sewn.empty()) continue;
     for (auto& a : list) {
-      double lo = 1e300, hi = -1e300, sewn = 0;
-      for (const auto& c : piece.boundary) {
-        const double y = rotate(c.p, a.angle_deg).y();
-        lo = std::min(lo, y), hi = std::max(hi, y);
-      }
-      int k = 0;
-      const std::size_t last = run->second + 1 < stretches.size() ? stretches[run->second + 1].first : 0;
-      for (std::size_t i = stretches[run->first].first; n > 0; i = (i + 1) % n) {
-        sewn += rotate(piece.boundary[i].p, a.angle_deg).y(), ++k;
-        if (i == last % n) break;
-      }
-      if (k == 0 || sewn / k <= 0.5 * (lo + hi)) continue;
+      const auto [lo, hi] = height_range(piece, a.angle_deg);
+      double mean = 0;
+      for (const auto& q : sewn) mean += rotate(q, a.angle_deg).y() / static_cast<double>(sewn.size());
+      if (mean <= 0.5 * (lo + hi)) continue;
       a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
       const auto ref = reference_point(piece, a.angle_deg);
       a.x = ref.x();

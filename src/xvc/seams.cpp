@@ -738,15 +738,6 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       if (p.edges[i].side == 0 && (!t || p.edges[i].v_mean > p.edges[*t].v_mean)) t = i;
     return t;
   };
-  // The runs (k0..k1, along the contour) of a front and a back round the
-  // body, for a band sewn there (a waistband to a waist, a neckband to a
-  // neckline): the back's from centre back (split at the stretch boundary
-  // nearest centre back when it has one, within 1 cm), the front's, the
-  // back's other half on to centre back; each reversed, running from the
-  // wearer's right to the left as a band's bottom edge does as it is
-  // arranged. Back's +u half (the wearer's right seen from behind) runs from
-  // the side to centre back along the contour; reversed it starts at centre
-  // back.
   // The stretch of a run (k0..k1) after which the piece's centre line
   // crosses it: the stretch boundary nearest the centre, within 1 cm.
   const auto centre_split = [&](const PieceInfo& p, std::pair<std::size_t, std::size_t> r) {
@@ -763,6 +754,15 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
     return split;
   };
+  // The runs (k0..k1, along the contour) of a front and a back round the
+  // body, for a band sewn there (a waistband to a waist, a neckband to a
+  // neckline): the back's from centre back (split at the stretch boundary
+  // nearest centre back when it has one, within 1 cm), the front's, the
+  // back's other half on to centre back; each reversed, running from the
+  // wearer's right to the left as a band's bottom edge does as it is
+  // arranged. Back's +u half (the wearer's right seen from behind) runs from
+  // the side to centre back along the contour; reversed it starts at centre
+  // back.
   const auto split_round = [&](const PieceInfo& fr, std::pair<std::size_t, std::size_t> rf, const PieceInfo& bk,
                                std::pair<std::size_t, std::size_t> rb) {
     const auto split = centre_split(bk, rb);
@@ -1097,6 +1097,12 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    shorter than the neckline it is stretched onto: up to a quarter
   //    shorter scores alike. Round a closed neckline (a front cut once: a
   //    pullover) its ends meet at centre back and are sewn to each other.
+  // The length (m) of the parts a band is sewn round (all but parts[0], the band).
+  const auto round_length = [](const std::vector<Part>& parts) {
+    double length = 0;
+    for (std::size_t i = 1; i < parts.size(); ++i) length += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+    return length;
+  };
   const auto neckline = [&](const PieceInfo& p) -> std::optional<std::pair<std::size_t, std::size_t>> {
     const auto it = shoulders.find(p.o);
     if (it == shoulders.end() || it->second.size() != 2) return std::nullopt;
@@ -1130,8 +1136,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         std::vector<Part> parts{{nb.o, 0, 0, false}};
         const auto around = split_round(fr, *nf, bk, *nbk);
         parts.insert(parts.end(), around.begin(), around.end());
-        double length = 0;
-        for (std::size_t i = 1; i < parts.size(); ++i) length += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+        const double length = round_length(parts);
         const auto best = sew_band(nb, std::move(parts), "neck seam",
                                    "neckband " + nb.o->piece + " to the neckline of " + bk.o->piece + " and " + fr.o->piece,
                                    -kRibShorter * length, 0.0, 0.03);
@@ -1172,8 +1177,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
                                 {fr.o, nf->first, *split, true},
                                 {bk.o, nbk->first, nbk->second, true},
                                 {fr.o, (*split + 1) % nsf, nf->second, true}};
-        double length = 0;
-        for (std::size_t i = 1; i < parts.size(); ++i) length += arc_range(*parts[i].o, parts[i].k0, parts[i].k1).second;
+        const double length = round_length(parts);
         const auto best = sew_band(co, std::move(parts), "collar seam",
                                    "collar " + co.o->piece + " to the neckline of " + fr.o->piece + " and " + bk.o->piece +
                                        " from centre front",

@@ -14,8 +14,9 @@
 //             (a short and a full sleeve) the one sewn to the armholes, else
 //             the one with the most seams;
 //   bands     a neckband or a cuff read as cut double and folded lengthwise
-//             (a crew neck's rib, a rib cuff): folded="true" written on its
-//             patterns; one shorter than its neckline or sleeve hem cut from
+//             (a crew neck's rib, a rib cuff), and a one-piece collar with no
+//             stand draped read as rolled over at half its width: folded="true"
+//             written on its patterns; one shorter than its neckline or sleeve hem cut from
 //             the shipped rib (a piece MATERIAL), unless it has its own or the
 //             caller gives the fabric;
 //   quantities a document where every piece says it is cut 0 times: each

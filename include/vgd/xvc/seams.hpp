@@ -70,7 +70,8 @@ struct SeamOptions {
 // Pairs pieces by role (pattern/roles.hpp: front/back: side seams and shoulders; sleeve
 // with front+back: cap to armhole, and the sleeve's underarm seam; waistband to the
 // skirt waist; neckband round the neckline between the shoulders, its ends together;
-// a cuff round each copy's sleeve hem, its ends together) and
+// a one-piece collar round the neckline from centre front, its ends open; a cuff
+// round each copy's sleeve hem, its ends together) and
 // stretches by length, shape and notches; best first within each size. Patterns with
 // quantity 0 are skipped. See docs/xvc.md for the rules.
 std::vector<SeamSuggestion> suggest_seams(const Document& doc, const SeamOptions& opts = {});
