@@ -24,7 +24,7 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0;
-  bool self_collision = true, frames = false, json = false, between = true, offset_contact = false;
+  bool self_collision = true, frames = false, json = false, between = true, offset_contact = false, sleeves_first = false;
 };
 
 vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
@@ -71,6 +71,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
                 "heels, a crotch under a seam junction; docs/collisions.md)");
+  sub->add_flag("--sleeves-first", o->sleeves_first,
+                "Sew each sleeve into a tube round its arm before pulling its cap to the armhole: for bodies with the "
+                "arms swung forward, where an open sleeve slides off its arm (docs/seams.md, \"Order\"). Off by "
+                "default: it changes which drapes pass elsewhere");
   sub->add_flag("--offset-contact", o->offset_contact,
                 "Offset contact instead of the body collision and self-collision: no cloth through the body or "
                 "through cloth at the end of any step. Experimental: slow, and it does not yet sew the shipped "
@@ -105,6 +109,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.self_collision = o->self_collision;
     d.between_particles = o->between;
     d.offset_contact = o->offset_contact;
+    d.sleeves_first = o->sleeves_first;
     d.model = scene::parse_cloth_model(o->model);
     if (!o->avatar.empty()) {
       d.avatar = vgd::cli::avatar_file(o->avatar, o->avatar_unit, o->avatar_up, o->avatar_facing);

@@ -28,7 +28,7 @@ struct Options {
   std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter", trj;
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
-  bool previews = true, json = false, between = true;
+  bool previews = true, json = false, between = true, sleeves_first = false;
   std::string model = "mass-spring";
   std::string material, material_id, quality = "standard", preview_size = "768", seams;
   double spacing = 0.0;
@@ -61,6 +61,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--preview-size", o->preview_size, "Preview size in pixels: N or WxH")->capture_default_str();
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
+  sub->add_flag("--sleeves-first", o->sleeves_first,
+                "Sew each sleeve into a tube round its arm before pulling its cap to the armhole (vgd drape "
+                "--sleeves-first)");
   sub->add_option("--model", o->model, "Cloth model: mass-spring (the default) or strain-rosette (vgd drape --model)")
       ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
       ->capture_default_str();
@@ -144,6 +147,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.mannequin_table = prep.body_table;
     run.options.time_limit = o->time_limit;
     run.options.between_particles = o->between;
+    run.options.sleeves_first = o->sleeves_first;
     run.options.model = vgd::scene::parse_cloth_model(o->model);
     run.options.material_xvc = o->material;
     run.options.material_id = o->material_id;

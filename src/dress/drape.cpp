@@ -140,6 +140,13 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
   // came to rest (T-shirt sizes 34, spacings 1.4, 1.5 cm; docs/drape.md).
   seams.effect.last_stitch_distance = 0.05;
   seams.effect.last_stitch_frames = 10;
+  // Sleeves first (an option): a sleeve is sewn to its armhole once it is a
+  // tube round its arm (its underarm seam closed; SeamPairs::after,
+  // dress_garments), or after 1 s whatever its other seams do. Pulled to the
+  // armhole while still open, a sleeve on an arm swung forward slid off the
+  // arm through its opening (docs/seams.md, "Order").
+  seams.sleeves_first = o.sleeves_first;
+  seams.effect.wait_limit = 1.0;
   e.seams = seams;
   if (o.self_collision) {
     e.self_collision = sim::SelfCollisionDef{};

@@ -347,10 +347,12 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     }
     if (seams && mine && !mine->pieces.empty()) {
       const int first = pieces[first_piece].first;
+      const int base = static_cast<int>(seams->size());
       for (const auto& ms : mine->seams) {
         sim::SeamPairs sp;
         sp.name = ms.name;
         for (const auto& [a, b] : ms.pairs) sp.pairs.push_back({first + a, first + b});
+        for (const int w : ms.after) sp.after.push_back(base + w);
         seams->push_back(std::move(sp));
       }
     }

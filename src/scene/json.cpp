@@ -498,6 +498,8 @@ EffectsDef read_effects(Object o) {
     c.number("zip_distance", d.effect.zip_distance, dim::length);
     c.number("last_stitch_distance", d.effect.last_stitch_distance, dim::length);
     c.integer("last_stitch_frames", d.effect.last_stitch_frames);
+    c.number("wait_limit", d.effect.wait_limit, dim::time);
+    c.flag("sleeves_first", d.sleeves_first);
     c.flag("merge", d.effect.merge);
     std::string law = "saturating";
     c.string("law", law);

@@ -234,6 +234,7 @@ class Checker {
       non_negative("effects.seams.zip_distance", e.seams->effect.zip_distance);
       non_negative("effects.seams.last_stitch_distance", e.seams->effect.last_stitch_distance);
       if (e.seams->effect.last_stitch_frames < 1) fail("effects.seams.last_stitch_frames", "must be >= 1");
+      non_negative("effects.seams.wait_limit", e.seams->effect.wait_limit);
     }
     if (e.gravity) finite("effects.gravity.g", e.gravity->g);
     if (e.speed_limit) positive("effects.speed_limit.max_speed", e.speed_limit->max_speed);

@@ -442,6 +442,7 @@ struct PosedBody {
   double scale;                   // file units per metre
   std::string unit, up, facing;   // what the importer must find
   std::string garment;
+  std::vector<std::string> drape = {};  // vgd drape options
 };
 
 void PrintTo(const PosedBody& b, std::ostream* os) { *os << b.name << " + " << b.garment; }
@@ -457,8 +458,10 @@ TEST_P(CliDrapePosed, GarmentsDrapeOnAnImportedBodyInItsOwnPose) {
   const auto body = dir / (b.name + ".obj");
   rewrite_obj(dir / "m.obj", body, b.scale, b.up, b.facing);
   const auto out = dir / "drape";
-  const auto r = run_vgd({"drape", (source_dir() / "data/garments" / (b.garment + ".xvc")).string(), "--avatar",
-                          body.string(), "-o", out.string(), "--time-limit", "6"});
+  std::vector<std::string> drape = {"drape", (source_dir() / "data/garments" / (b.garment + ".xvc")).string(),
+                                    "--avatar", body.string(), "-o", out.string(), "--time-limit", "6"};
+  drape.insert(drape.end(), b.drape.begin(), b.drape.end());
+  const auto r = run_vgd(drape);
   ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
   EXPECT_NE(r.err.find("unit " + b.unit + " "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("up " + b.up + " "), std::string::npos) << r.err;
@@ -482,7 +485,9 @@ INSTANTIATE_TEST_SUITE_P(
     Poses, CliDrapePosed,
     ::testing::Values(PosedBody{"t_pose_mm_z_up", {"--arm-angle", "90"}, 1000.0, "mm", "z", "+z", "t-shirt"},
                       PosedBody{"t_pose_mm_z_up", {"--arm-angle", "90"}, 1000.0, "mm", "z", "+z", "a-line-skirt"},
-                      PosedBody{"arms_forward_in_facing_x", {"--arm-forward", "30"}, 1.0 / 0.0254, "in", "y", "+x", "a-line-skirt"}),
+                      PosedBody{"arms_forward_in_facing_x", {"--arm-forward", "30"}, 1.0 / 0.0254, "in", "y", "+x", "a-line-skirt"},
+                      PosedBody{"arms_forward_in_facing_x", {"--arm-forward", "30"}, 1.0 / 0.0254, "in", "y", "+x", "t-shirt",
+                                {"--sleeves-first"}}),
     [](const auto& p) {
       std::string g = p.param.garment;
       for (auto& ch : g)

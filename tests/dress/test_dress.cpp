@@ -112,6 +112,32 @@ TEST(DressBuild, APieceCutFromItsOwnFabricWeighsWhatItsDensitySays) {
   }
 }
 
+// Sleeves first: a seam joining a piece on an arm to one elsewhere waits for
+// the seams that close that arm's pieces on themselves: the T-shirt's
+// armholes wait for their own sleeve's underarm seam, nothing else waits
+// (sim::SeamPairs::after). By default nothing waits.
+TEST(DressBuild, ASleevesCapWaitsForItsUnderarmSeam) {
+  DrapeOptions d;
+  d.garment = vgd::test::source_dir() / "data/garments/t-shirt.xvc";
+  d.spacing = 0.03;
+  for (const auto& seam : dress::build(drape_scene(d)).seams) EXPECT_TRUE(seam.after.empty()) << seam.name;
+  d.sleeves_first = true;
+  const scene::SceneDef def = drape_scene(d);
+  EXPECT_TRUE(def.effects.seams->sleeves_first);
+  EXPECT_EQ(def.effects.seams->effect.wait_limit, 1.0);
+  const scene::Scene s = dress::build(def);
+  std::map<std::string, int> at;
+  for (std::size_t i = 0; i < s.seams.size(); ++i) at[s.seams[i].name] = static_cast<int>(i);
+  ASSERT_TRUE(at.count("left armhole") && at.count("right armhole") && at.count("left underarm") &&
+              at.count("right underarm"));
+  for (const auto& seam : s.seams) {
+    SCOPED_TRACE(seam.name);
+    if (seam.name == "left armhole") EXPECT_EQ(seam.after, std::vector<int>{at["left underarm"]});
+    else if (seam.name == "right armhole") EXPECT_EQ(seam.after, std::vector<int>{at["right underarm"]});
+    else EXPECT_TRUE(seam.after.empty());
+  }
+}
+
 // A pin in the document (POSITION type="pin", seed 000's constriction): the
 // skirt's front held at the middle of its hem, where the arrangement put it.
 // After half a second of sewing and falling the pinned particle has not moved

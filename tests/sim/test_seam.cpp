@@ -396,3 +396,86 @@ TEST(SeamMerge, TheLastStalledPairOfASeamMergesAfterItsFrames) {
   EXPECT_EQ(frames_until_last(0.02), -1);  // farther than the last stitch reaches
   EXPECT_EQ(frames_until_last(0.0), -1);   // off
 }
+
+// ---- seams in order ----------------------------------------------------------------
+
+// A seam that waits for others (SeamPairs::after: a sleeve's cap for its
+// underarm seam) exerts no force and has no energy until every pair of those
+// has merged, then pulls by its law; with a wait limit it pulls from that
+// time on whatever the others do. Release happens at frame boundaries.
+TEST(SeamOrder, ASeamWaitsUntilTheSeamsItIsAfterHaveClosed) {
+  Model m = test::particles(4, 0.001);
+  at(m.x0, 0) = Vec3(0, 0, 0), at(m.x0, 1) = Vec3(0.001, 0, 0);     // "underarm": within the merge distance
+  at(m.x0, 2) = Vec3(0, 0.1, 0), at(m.x0, 3) = Vec3(0.03, 0.1, 0);  // "armhole": 3 cm apart
+  SeamDef def;
+  def.damping = 0.0;
+  def.seams = {SeamPairs{"underarm", {{0, 1}}, {}}, SeamPairs{"armhole", {{2, 3}}, {0}}};
+  auto e = make_seam(m, def);
+  const VecX v = VecX::Zero(m.num_dofs());
+  const SeamReport* r = seam_report(*e);
+  EXPECT_FALSE(r->seams[0].waiting);
+  EXPECT_TRUE(r->seams[1].waiting);
+  VecX f = forces(*e, m, m.x0, v);
+  EXPECT_EQ(at(f, 2), Vec3::Zero());
+  EXPECT_EQ(at(f, 3), Vec3::Zero());
+  EXPECT_GT(at(f, 0).x(), 0.0);  // the underarm pulls
+  const double underarm_energy = e->energy({m, 0.0, m.x0, v});
+  EXPECT_GT(underarm_energy, 0.0);
+  EXPECT_LT(underarm_energy, seam_force(def, 0.001) * 0.001);  // ∫₀^d φ < φ(d) d: the underarm's alone
+  Triplets dx, dv;
+  e->add_jacobian({m, 0.0, m.x0, v}, dx, dv);
+  for (const auto& t : dx) EXPECT_LT(t.row(), 6);  // blocks of particles 0 and 1 only
+  // Frame boundary: the underarm's pair merges; the armhole pulls from then on.
+  std::vector<std::array<int, 2>> out;
+  e->merge_requests(m, initial_state(m), out);
+  EXPECT_EQ(out, (std::vector<std::array<int, 2>>{{0, 1}}));
+  EXPECT_TRUE(r->seams[1].waiting);
+  e->particles_merged(m, {0, 0, 1, 2});
+  EXPECT_FALSE(r->seams[1].waiting);
+  f = forces(*e, m, m.x0, v);
+  EXPECT_NEAR(at(f, 2).x(), seam_force(def, 0.03), 1e-15);
+  EXPECT_NEAR(at(f, 3).x(), -seam_force(def, 0.03), 1e-15);
+
+  // The underarm never closes (5 cm apart, no merge): with a wait limit of
+  // 0.5 s the armhole pulls from the first frame boundary at or after 0.5 s.
+  at(m.x0, 1) = Vec3(0.05, 0, 0);
+  def.wait_limit = 0.5;
+  auto late = make_seam(m, def);
+  const SeamReport* rl = seam_report(*late);
+  for (const double t : {0.0, 0.25, 0.49}) {
+    out.clear();
+    late->merge_requests(m, State{t, m.x0, v}, out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_TRUE(rl->seams[1].waiting) << t;
+    EXPECT_EQ(at(forces(*late, m, m.x0, v, t + 0.01), 2), Vec3::Zero()) << t;
+  }
+  late->merge_requests(m, State{0.5, m.x0, v}, out);
+  EXPECT_FALSE(rl->seams[1].waiting);
+  EXPECT_NEAR(at(forces(*late, m, m.x0, v, 0.5), 2).x(), seam_force(def, 0.03), 1e-15);
+}
+
+TEST(SeamOrder, WaitingForAMissingSeamOrForItselfIsRefused) {
+  Model m = test::particles(6);
+  SeamDef def;
+  auto refused = [&](const std::string& expect) {
+    try {
+      make_seam(m, def);
+      ADD_FAILURE() << "accepted; expected: " << expect;
+    } catch (const SimulationError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  };
+  def.seams = {SeamPairs{"cap", {{0, 1}}, {3}}};
+  refused("seam 0 ('cap') waits for seam 3, but the seams are 0 to 0");
+  def.seams = {SeamPairs{"cap", {{0, 1}}, {0}}};
+  refused("cannot wait for itself");
+  def.seams = {SeamPairs{"a", {{0, 1}}, {}}, SeamPairs{"b", {{2, 3}}, {2}}, SeamPairs{"c", {{4, 5}}, {1}}};
+  refused("waits for it in turn");
+  def.seams = {SeamPairs{"a", {{0, 1}}, {}}, SeamPairs{"b", {{2, 3}}, {0}}, SeamPairs{"c", {{4, 5}}, {1}}};
+  EXPECT_NO_THROW(make_seam(m, def));  // c after b after a
+  def.seams = {SeamPairs{"a", {{0, 1}}, {}}, SeamPairs{"b", {{2, 3}}, {0}}};
+  def.wait_limit = -1.0;
+  refused("wait_limit = -1 s");
+  def.wait_limit = 0.0;
+  EXPECT_NO_THROW(make_seam(m, def));
+}

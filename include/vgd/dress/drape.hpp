@@ -49,6 +49,10 @@ struct DrapeOptions {
   // cloth through the body or through cloth at the end of any step
   // (docs/collisions.md, "Offset contact").
   bool offset_contact = false;
+  // Each sleeve sewn into a tube round its arm before its cap is pulled to
+  // the armhole (docs/seams.md, "Order"): drapes on arms swung forward need
+  // it; off by default, it changes which drapes pass elsewhere.
+  bool sleeves_first = false;
   double time_limit = 8.0;               // s of simulated time
   // J: mean kinetic energy per particle counted as rest (~1.5 cm/s at 40 mg);
   // the preview preset stops at 10 times it (~5 cm/s): sooner, less settled.

@@ -83,7 +83,7 @@ struct MadePiece {
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;
-  std::vector<sim::SeamPairs> seams;
+  std::vector<sim::SeamPairs> seams;  // particle indices within the cloth; `after` indices into this list
   Diagnostics diagnostics;  // warnings made while making the pieces
 };
 using MadeCloths = std::map<int, MadeCloth>;  // by index in SceneDef::cloth

@@ -160,6 +160,11 @@ struct GridSeamDef {
 struct SeamsDef {
   sim::SeamDef effect;            // law, stiffness, max_force, damping, merge_distance, merge
   std::vector<GridSeamDef> grid;  // extra seams between grid pieces
+  // Garments' sleeves sewn first: a seam joining a piece on an arm to a piece
+  // elsewhere waits for the seams that close that arm's pieces on themselves
+  // (sim::SeamPairs::after; docs/seams.md, "Order"). Off: every seam pulls
+  // from the start.
+  bool sleeves_first = false;
 };
 
 // The effects a scene calls for; an absent effect is never constructed.

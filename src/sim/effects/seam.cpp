@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace vgd::sim {
 
@@ -53,7 +54,7 @@ class Seam final : public Effect {
   Seam(const Model& m, const SeamDef& d)
       : law_{d.law, d.stiffness, d.max_force}, c_(d.damping), merge_distance_(d.merge_distance),
         zip_distance_(d.zip_distance), last_distance_(d.last_stitch_distance),
-        last_frames_(d.last_stitch_frames), merge_(d.merge) {
+        last_frames_(d.last_stitch_frames), merge_(d.merge), wait_limit_(d.wait_limit) {
     auto bad = [](const std::string& what) { throw SimulationError("seam: " + what); };
     auto check = [&](const char* field, double v, const char* unit) {
       if (!std::isfinite(v) || v < 0.0)
@@ -64,6 +65,7 @@ class Seam final : public Effect {
     check("merge_distance", d.merge_distance, " m");
     check("zip_distance", d.zip_distance, " m");
     check("last_stitch_distance", d.last_stitch_distance, " m");
+    check("wait_limit", d.wait_limit, " s");
     if (d.last_stitch_frames < 1) bad("last_stitch_frames = " + std::to_string(d.last_stitch_frames) + "; it must be ≥ 1");
     if (d.law == SeamLaw::saturating && !(d.max_force > 0.0 && std::isfinite(d.max_force)))
       bad("max_force = " + fmt(d.max_force) + " N; the saturating law needs a finite force > 0");
@@ -83,7 +85,28 @@ class Seam final : public Effect {
         if (a == b) bad(pair + " joins particle " + std::to_string(a) + " to itself");
         pairs_.push_back({a, b, static_cast<int>(s)});
       }
+      for (const int w : seam.after) {
+        if (w < 0 || w >= static_cast<int>(d.seams.size()) || w == static_cast<int>(s))
+          bad(who + " waits for seam " + std::to_string(w) + ", but the seams are 0 to " +
+              std::to_string(d.seams.size() - 1) + " and a seam cannot wait for itself");
+      }
+      after_.push_back(seam.after);
+      report_.seams[s].waiting = !seam.after.empty();
     }
+    // No seam may wait for itself through others (depth-first, 1 = on the path).
+    std::vector<int> mark(d.seams.size(), 0);
+    std::function<void(int)> visit = [&](int s) {
+      mark[s] = 1;
+      for (const int w : d.seams[s].after) {
+        if (mark[w] == 1)
+          bad("seam " + std::to_string(s) + " ('" + d.seams[s].name + "') waits for seam " + std::to_string(w) +
+              ", which waits for it in turn");
+        if (mark[w] == 0) visit(w);
+      }
+      mark[s] = 2;
+    };
+    for (std::size_t s = 0; s < d.seams.size(); ++s)
+      if (mark[s] == 0) visit(static_cast<int>(s));
     report_.total.total = static_cast<int>(pairs_.size());
     gap_.assign(pairs_.size(), 0.0);
     closed_.assign(pairs_.size(), 0);
@@ -100,6 +123,7 @@ class Seam final : public Effect {
 
   void add_forces(const Eval& e, VecX& f) override {
     for (int p : open_) {
+      if (waiting(p)) continue;
       const int a = pairs_[p].a, b = pairs_[p].b;
       const Vec3 l = at(e.x, a) - at(e.x, b);
       const Vec3 fa = -law_.phi_over_d(l.norm()) * l - c_ * (at(e.v, a) - at(e.v, b));
@@ -111,6 +135,7 @@ class Seam final : public Effect {
   bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets& dfdv) override {
     const Mat3 kv = -c_ * Mat3::Identity();
     for (int p : open_) {
+      if (waiting(p)) continue;
       const int a = pairs_[p].a, b = pairs_[p].b;
       const Vec3 l = at(e.x, a) - at(e.x, b);
       const double d = l.norm();
@@ -132,11 +157,13 @@ class Seam final : public Effect {
 
   double energy(const Eval& e) const override {
     double u = 0.0;
-    for (int p : open_) u += law_.energy((at(e.x, pairs_[p].a) - at(e.x, pairs_[p].b)).norm());
+    for (int p : open_)
+      if (!waiting(p)) u += law_.energy((at(e.x, pairs_[p].a) - at(e.x, pairs_[p].b)).norm());
     return u;
   }
 
-  // ‖∂f_a/∂x_a‖₂ = max(φ′, φ/d) ≤ k for both laws; ‖c I‖₂ = c; twice per row (a-a and a-b blocks).
+  // ‖∂f_a/∂x_a‖₂ = max(φ′, φ/d) ≤ k for both laws; ‖c I‖₂ = c; twice per row
+  // (a-a and a-b blocks). Waiting pairs count too: the bound holds once they pull.
   void add_stiffness_bound(const Model&, VecX& k_rows, VecX& c_rows) const override {
     for (int p : open_) {
       const int a = pairs_[p].a, b = pairs_[p].b;
@@ -147,6 +174,7 @@ class Seam final : public Effect {
 
   // Measures every open pair's gap (the progress) and asks for the close ones to merge.
   void merge_requests(const Model&, const State& full, std::vector<std::array<int, 2>>& out) override {
+    release(full.t);
     // The zipper looks at the neighbours' state before this frame's merges, so
     // it advances at most one pair per seam end per frame.
     auto sewn_neighbour = [&](int p) {
@@ -185,12 +213,28 @@ class Seam final : public Effect {
     }
     open_ = std::move(still);
     summarise();
+    release(-1.0);
   }
 
   bool finished() const override { return merge_ && open_.empty(); }
   bool blocks_rest() const override { return merge_ && !open_.empty(); }
 
  private:
+  bool waiting(int p) const { return report_.seams[pairs_[p].seam].waiting; }
+  // Seams whose awaited seams have all closed, or all waiting seams once t
+  // reaches the wait limit, start pulling. Called at frame boundaries only, so
+  // forces and Jacobians agree within every step. t < 0: no time check.
+  void release(double t) {
+    const bool late = wait_limit_ > 0.0 && t >= wait_limit_;
+    for (std::size_t s = 0; s < after_.size(); ++s) {
+      SeamProgress& r = report_.seams[s];
+      if (!r.waiting) continue;
+      bool closed = true;
+      for (const int w : after_[s]) closed = closed && report_.seams[w].closed == report_.seams[w].total;
+      if (closed || late) r.waiting = false;
+    }
+  }
+
   void summarise() {
     std::vector<double> sum(report_.seams.size(), 0.0);
     for (auto& s : report_.seams) s.closed = 0, s.max_gap = 0.0, s.mean_gap = 0.0;
@@ -220,6 +264,8 @@ class Seam final : public Effect {
   double c_, merge_distance_, zip_distance_, last_distance_;
   int last_frames_;
   bool merge_;
+  double wait_limit_;                   // s
+  std::vector<std::vector<int>> after_;  // per seam: the seams it waits for
   std::vector<Pair> pairs_;
   std::vector<int> open_;      // pairs not yet merged
   std::vector<double> gap_;    // m, per pair, at the last frame boundary

@@ -38,6 +38,14 @@ namespace vgd::sim {
 struct SeamPairs {
   std::string name;                         // for progress and messages ("side seam left")
   std::vector<std::array<int, 2>> pairs;    // (particle on one hem, particle on the other)
+  // Seams (indices into SeamDef::seams) that must have closed, every pair
+  // merged, before this one pulls: a sleeve's cap waits for its underarm seam,
+  // so the sleeve is a tube round its arm before it is pulled to the armhole
+  // (an open sleeve pulled along an arm swung forward slid off it through its
+  // opening, and the underarm seam closed with the arm outside). Until then
+  // its pairs exert no force; they still merge when they meet. A seam may
+  // wait for seams that wait in turn, never for itself through them.
+  std::vector<int> after;
 };
 
 enum class SeamLaw {
@@ -68,6 +76,10 @@ struct SeamDef {
   double last_stitch_distance = 0.0;
   int last_stitch_frames = 10;
   bool merge = true;              // false: pairs are pulled together but never merged
+  // s: a seam waiting for others (SeamPairs::after) pulls from this time on
+  // whether they have closed or not (checked at frame boundaries), so a seam
+  // that stalls open does not hold the garment apart. 0 = wait until they close.
+  double wait_limit = 0.0;
 };
 
 // Validates the definition against the model (particles exist, a pair joins two
@@ -85,6 +97,7 @@ struct SeamProgress {
   int total = 0;         // pairs
   double max_gap = 0.0;  // m, largest distance of an open pair (0 when all closed)
   double mean_gap = 0.0; // m, mean distance of the open pairs (0 when all closed)
+  bool waiting = false;  // not pulling yet: the seams it waits for are open (SeamPairs::after)
 };
 struct SeamReport {
   std::vector<SeamProgress> seams;  // one per SeamDef::seams entry
