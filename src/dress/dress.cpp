@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <set>
 #include <tuple>
 
@@ -282,21 +283,24 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
     // Legs never: the tights' rise left waiting for their inseams let the
     // body through the crotch (129 triangles, 34 mm).
     const bool order = def.effects.seams && def.effects.seams->sleeves_first;
-    const auto on_arm = [](const std::string& segment) { return segment.find("arm") != std::string::npos; };
     const int base = static_cast<int>(out.seams.size());
     std::vector<std::set<std::string>> on(g.seams.size());  // each seam's segments
-    for (std::size_t s = 0; s < g.seams.size(); ++s)
-      for (const auto& [a, b] : g.seams[s].pairs) on[s].insert(placed[a.piece].segment), on[s].insert(placed[b.piece].segment);
+    std::map<std::string, std::vector<int>> closing;        // per arm: the seams whose pieces are all on it
+    if (order)
+      for (std::size_t s = 0; s < g.seams.size(); ++s) {
+        for (const auto& [a, b] : g.seams[s].pairs) on[s].insert(placed[a.piece].segment), on[s].insert(placed[b.piece].segment);
+        if (on[s].size() == 1 && on[s].begin()->find("arm") != std::string::npos)
+          closing[*on[s].begin()].push_back(base + static_cast<int>(s));
+      }
     for (std::size_t s = 0; s < g.seams.size(); ++s) {
       const auto& gs = g.seams[s];
       sim::SeamPairs sp;
       sp.name = gs.name.empty() ? gs.id : gs.name;
       for (const auto& [a, b] : gs.pairs) sp.pairs.push_back({first[a.piece] + a.node, first[b.piece] + b.node});
-      if (order && on[s].size() > 1)
+      if (on[s].size() > 1)
         for (const auto& segment : on[s])
-          if (on_arm(segment))
-            for (std::size_t w = 0; w < g.seams.size(); ++w)
-              if (on[w].size() == 1 && *on[w].begin() == segment) sp.after.push_back(base + static_cast<int>(w));
+          if (const auto it = closing.find(segment); it != closing.end())
+            sp.after.insert(sp.after.end(), it->second.begin(), it->second.end());
       out.seams.push_back(std::move(sp));
     }
   }

@@ -468,7 +468,7 @@ TEST(SeamOrder, WaitingForAMissingSeamOrForItselfIsRefused) {
   def.seams = {SeamPairs{"cap", {{0, 1}}, {3}}};
   refused("seam 0 ('cap') waits for seam 3, but the seams are 0 to 0");
   def.seams = {SeamPairs{"cap", {{0, 1}}, {0}}};
-  refused("cannot wait for itself");
+  refused("seam 0 ('cap') waits for itself");
   def.seams = {SeamPairs{"a", {{0, 1}}, {}}, SeamPairs{"b", {{2, 3}}, {2}}, SeamPairs{"c", {{4, 5}}, {1}}};
   refused("waits for it in turn");
   def.seams = {SeamPairs{"a", {{0, 1}}, {}}, SeamPairs{"b", {{2, 3}}, {0}}, SeamPairs{"c", {{4, 5}}, {1}}};

@@ -86,9 +86,10 @@ class Seam final : public Effect {
         pairs_.push_back({a, b, static_cast<int>(s)});
       }
       for (const int w : seam.after) {
-        if (w < 0 || w >= static_cast<int>(d.seams.size()) || w == static_cast<int>(s))
+        if (w < 0 || w >= static_cast<int>(d.seams.size()))
           bad(who + " waits for seam " + std::to_string(w) + ", but the seams are 0 to " +
-              std::to_string(d.seams.size() - 1) + " and a seam cannot wait for itself");
+              std::to_string(d.seams.size() - 1));
+        if (w == static_cast<int>(s)) bad(who + " waits for itself");
       }
       after_.push_back(seam.after);
       report_.seams[s].waiting = !seam.after.empty();
