@@ -44,7 +44,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--size", o->size, "The garment's size (default: the sample size); the mannequin is of this size");
   sub->add_option("--body-table", o->body_table,
                   "Size table of the mannequin (vgd mannequin --list-sizes; default: men's or women's from the "
-                  "style's name, else the table nearest the pattern's girth)");
+                  "style's name, else the table holding most of the style's graded sizes, else the table nearest the "
+                  "pattern's girth)");
   sub->add_option("--body-size", o->body_size,
                   "The mannequin's size, when it is not the garment's (default: the garment's; a size no table "
                   "has, as Valentina's 'base': the size nearest the pattern's girth)");
@@ -115,6 +116,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     po.fabric_given = !o->material.empty();
     const vgd::dress::Preparation prep = vgd::dress::prepare_garment(doc, po);
     for (const auto& d : prep.decisions) vgd::cli::say(common, "vgd: " + d);
+    for (const auto& w : prep.warnings) vgd::cli::say(common, "vgd: warning: " + w);
     if (!prep.missing.empty()) {
       std::string list;
       for (const auto& m : prep.missing) list += (list.empty() ? "" : ", ") + m;

@@ -126,6 +126,33 @@ std::string size_table_from_name(const std::string& style_name) {
   return men ? "en13402-men" : "en13402-women";
 }
 
+// The size table that holds most of a style's graded sizes, when one holds
+// at least two of them and more than any other ("" otherwise: one size, or
+// sizes no table tells apart). GLX4802S19's tights, graded 26-52, are
+// women's sizes: 10 of them are EN 13402 women's, 5 men's.
+std::string size_table_from_sizes(const std::vector<std::string>& sizes, std::string& why) {
+  std::string best;
+  int most = 0, second = 0;
+  for (const auto& t : body::size_table_names()) {
+    std::set<std::string> labels;
+    for (const auto& row : body::load_size_table(body::size_table_file(t))) labels.insert(row.label);
+    const int n = static_cast<int>(std::count_if(sizes.begin(), sizes.end(), [&](const std::string& z) { return labels.count(z) > 0; }));
+    if (n > most) second = most, most = n, best = t;
+    else second = std::max(second, n);
+  }
+  if (most < 2 || most == second) return "";
+  // Numbers in their order (the document may list them in any).
+  std::vector<std::string> sorted = sizes;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const std::string& a, const std::string& b) {
+    const bool na = !a.empty() && std::all_of(a.begin(), a.end(), ::isdigit), nb = !b.empty() && std::all_of(b.begin(), b.end(), ::isdigit);
+    if (na && nb) return a.size() != b.size() ? a.size() < b.size() : a < b;
+    return na && !nb;
+  });
+  why = "the style's sizes " + sorted.front() + " to " + sorted.back() + ": " + std::to_string(most) + " of its " +
+        std::to_string(sizes.size()) + " are " + best + " sizes";
+  return best;
+}
+
 Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   const std::string file = doc.name();
   Preparation out;
@@ -605,8 +632,9 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                             "choose another fabric for the piece in the document or with --material");
   }
 
-  // The body: the size table from the style's name, the garment's size
-  // when that table has it. Otherwise the body nearest the pattern: the
+  // The body: the size table from the style's name, else from its graded
+  // sizes (size_table_from_sizes), the garment's size when that table has
+  // it. Otherwise the body nearest the pattern: the
   // table (and, for a size no table has, the row) whose bust (tops) or hip
   // (skirts, trousers) leaves the pattern's girth the usual ease.
   if (!options.avatar.empty()) {
@@ -617,6 +645,16 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   const std::string style(doc.root().attribute("name"));
   out.body_table = !options.body_table.empty() ? options.body_table : size_table_from_name(style);
   std::string why = !options.body_table.empty() ? "as asked" : "the style's name '" + style + "'";
+  std::string table_why;  // the table from the style's sizes: why, kept when the size is then chosen by girth
+  if (out.body_table.empty()) {
+    std::vector<std::string> sizes;
+    for (const auto* p : doc.patterns()) {
+      const std::string z(p->attribute("size"));
+      if (std::find(sizes.begin(), sizes.end(), z) == sizes.end()) sizes.push_back(z);
+    }
+    out.body_table = size_table_from_sizes(sizes, table_why);
+    if (!out.body_table.empty()) why = table_why;
+  }
   out.body_size = !options.body_size.empty() ? options.body_size : out.size;
   bool has_size = true;
   try {
@@ -681,7 +719,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     if (girth > 0 && !best.table.empty()) {
       out.body_table = best.table;
       out.body_size = best.label;
-      why = "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
+      why = (table_why.empty() ? "" : table_why + ", which has no size " + out.size + "; ") +
+            "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
             " cm, " + format_fixed(100 * (girth - best.body), 0) + " cm of ease over the body's " +
             format_fixed(100 * best.body, 0) + " cm (" + format_fixed(100 * ease, 0) + " cm wanted" +
             (inseam > 0 ? ", its inseam " + format_fixed(100 * inseam, 1) + " cm for a crotch height of " +
@@ -701,6 +740,32 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     } else {
       why = "the style's name '" + style + "' says neither men nor women and the pattern has no front or back to "
             "measure; choose with --body-table";
+    }
+  }
+  // The pattern's girth against the body's, when the table (not the girth)
+  // chose the body: said with the decision; a top more than kTooSmall
+  // smaller round the bust than the body is a warning (the certificate
+  // would fail it after the drape: a woven cannot close round it). Legs
+  // smaller than the body are cut for a stretch fabric (below).
+  constexpr double kTooSmall = 0.04;  // m of girth, as the drape's fit check
+  if (girth > 0 && why.rfind("nearest the pattern", 0) != 0 && why.find("; nearest the pattern") == std::string::npos) {
+    try {
+      const auto b = body::find_size(out.body_size, out.body_table);
+      const double body_girth = lower ? b.hip : b.bust;
+      const char* where = lower ? "hip" : "bust";
+      if (body_girth > 0) {
+        why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
+               format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
+               format_fixed(100 * body_girth, 0) + " cm";
+        if (!lower && girth < body_girth - kTooSmall)
+          out.warnings.push_back("the garment is too small for the body: the pattern's bust girth is " +
+                                 format_fixed(100 * girth, 0) + " cm, " + format_fixed(100 * (body_girth - girth), 0) +
+                                 " cm less than the body's " + format_fixed(100 * body_girth, 0) + " cm (" +
+                                 (b.sex == "male" ? "men's " : "women's ") + b.label +
+                                 "); a woven cannot close round it: choose the body with --body-size, or a knit "
+                                 "with --material");
+      }
+    } catch (const Error&) {
     }
   }
   out.decisions.push_back("body: the mannequin of size " + out.body_size + " from " +

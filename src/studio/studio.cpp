@@ -1913,8 +1913,10 @@ struct Studio::Impl {
       fs::path copy;
       dress::DrapeOptions d = prepared_drape(prep, copy);
       preparation = prep.decisions;
+      for (const auto& w : prep.warnings) preparation.push_back("warning: " + w);
       membranes.clear();  // fabrics may have changed
       std::string made;
+      if (!prep.warnings.empty()) made += ", " + prep.warnings.front();
       if (prep.seams_added > 0) made += ", " + std::to_string(prep.seams_added) + " seams suggested (not in the document)";
       if (!prep.left_out.empty()) {
         made += ", left out:";

@@ -161,6 +161,77 @@ TEST(PrepareGarment, TheBodyTableFollowsThePatternsGirth) {
   EXPECT_EQ(p.body_table, women_nearer ? "en13402-women" : "en13402-men");
 }
 
+// A style graded over several sizes and named neither men's nor women's
+// takes the table holding most of its sizes, whatever its girth (Gerber's
+// GLX4802S19 tights, graded 26-52, went on the men's 46 by girth and hung
+// off its legs); a size that table lacks is its row nearest the pattern. A
+// tie, or sizes no table holds, leaves the choice to the girth.
+TEST(PrepareGarment, TheBodyTableFollowsTheStylesSizes) {
+  auto graded = [](const std::string& name, const std::vector<std::string>& sizes, double w) {
+    pattern::Style s;
+    s.name = name;
+    s.sample_size = sizes.front();
+    s.sizes = sizes;
+    for (const auto& z : sizes) {
+      s.pieces.push_back(panel("FR", 0.0, w, 0.7, z));
+      s.pieces.back().category = "FRONT";
+      s.pieces.push_back(panel("BK", 1.0, w, 0.7, z));
+      s.pieces.back().category = "BACK";
+    }
+    return xvc::from_style(s);
+  };
+  auto said = [](const Preparation& p, const std::string& what) {
+    return std::any_of(p.decisions.begin(), p.decisions.end(),
+                       [&](const std::string& d) { return d.find(what) != std::string::npos; });
+  };
+  std::vector<std::string> women_range, men_range;
+  for (int z = 32; z <= 52; z += 2) women_range.push_back(std::to_string(z));
+  for (int z = 42; z <= 70; z += 2) men_range.push_back(std::to_string(z));
+
+  // A 110 cm chest in size 50: by girth the men's 50 (100 cm) leaves the usual
+  // ease, but 10 of the style's 11 sizes are women's (5 men's).
+  xvc::Document doc = graded("GX100", women_range, 0.55);
+  PrepareOptions at50;
+  at50.size = "50";
+  Preparation p = prepare_garment(doc, at50);
+  EXPECT_EQ(p.body_table, "en13402-women");
+  EXPECT_EQ(p.body_size, "50");
+  EXPECT_TRUE(said(p, "body: the mannequin of size 50 from en13402-women (the style's sizes 32 to 52: 10 of its 11 "
+                      "are en13402-women sizes; its bust girth is 110 cm, -8 cm of ease over the body's 118 cm)"))
+      << ::testing::PrintToString(p.decisions);
+  // 8 cm less than the body round the bust: said before the drape.
+  ASSERT_EQ(p.warnings.size(), 1u);
+  EXPECT_EQ(p.warnings[0],
+            "the garment is too small for the body: the pattern's bust girth is 110 cm, 8 cm less than the body's "
+            "118 cm (women's 50); a woven cannot close round it: choose the body with --body-size, or a knit with "
+            "--material");
+
+  // Graded 42-70: men's (8 of 15 against 5); size 42 is no men's size, so the
+  // men's row nearest the pattern (a 96 cm chest, 10 cm of ease wanted).
+  doc = graded("GX200", men_range, 0.48);
+  PrepareOptions at42;
+  at42.size = "42";
+  p = prepare_garment(doc, at42);
+  EXPECT_EQ(p.body_table, "en13402-men");
+  const auto rows = body::load_size_table(body::size_table_file("en13402-men"));
+  std::string nearest;
+  double miss = 1e300;
+  for (const auto& r : rows)
+    if (std::abs(0.96 - r.bust - 0.10) < miss) miss = std::abs(0.96 - r.bust - 0.10), nearest = r.label;
+  EXPECT_EQ(p.body_size, nearest);
+  EXPECT_TRUE(said(p, "(the style's sizes 42 to 70: 8 of its 15 are en13402-men sizes, which has no size 42; "
+                      "nearest the pattern: its bust girth is 96 cm"))
+      << ::testing::PrintToString(p.decisions);
+  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
+
+  // Sizes 44 and 46 are in both tables: the girth decides, as for one size.
+  doc = graded("GX300", {"44", "46"}, 0.55);
+  PrepareOptions at46;
+  at46.size = "46";
+  p = prepare_garment(doc, at46);
+  EXPECT_TRUE(said(p, "(nearest the pattern: its bust girth is 110 cm")) << ::testing::PrintToString(p.decisions);
+}
+
 // Pieces left out say why, from their role: bonded interfacings, pockets sewn
 // on a face, linings, pieces nobody cuts.
 TEST(PrepareGarment, PiecesLeftOutSayWhy) {

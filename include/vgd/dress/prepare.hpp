@@ -75,6 +75,9 @@ struct Preparation {
   // knit); "" when none was written.
   std::string fabric;
   std::vector<std::string> decisions;  // one sentence each, in the order taken
+  // What the user should know before the drape (a top whose pattern has less
+  // girth than the body chosen), one sentence each.
+  std::vector<std::string> warnings;
 };
 
 // Adds SEAMs to `doc` when it has none. Throws vgd::Error naming the document
