@@ -1628,6 +1628,13 @@ struct Studio::Impl {
       drape.time_limit = std::clamp(drape.time_limit, 0.04, 120.0);
     track("time limit");
     fabric_combo();
+    ImGui::SameLine();
+    ImGui::Checkbox("sleeves first", &drape.sleeves_first);
+    track("sleeves first");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Sew each sleeve into a tube round its arm before pulling its cap to the armhole\n"
+                        "(vgd drape --sleeves-first): for bodies with the arms swung forward, where an open\n"
+                        "sleeve slides off its arm. Off by default: it changes which drapes pass elsewhere.");
     body_row();
     layers_row();
     server_row();
@@ -1947,6 +1954,8 @@ struct Studio::Impl {
       }
       scene::SceneDef def = dress::drape_scene(d);
       const std::string quality = kQualityNames[static_cast<int>(drape.quality)];
+      if (remote && drape.sleeves_first)
+        throw Error("", "", "sleeves first is for drapes here: a server sews every seam at once; untick it to simulate on a server");
       if (remote) {
         // The same document and settings as a job (docs/server.md): the
         // server's vgd dress makes the same decisions from them.

@@ -217,6 +217,25 @@ TEST(Studio, TheQualityPresetChosenInItsComboReachesTheDrapesScene) {
   EXPECT_FALSE(o.self_collision);
 }
 
+// Sleeves first (vgd drape --sleeves-first) ticked in the simulate panel
+// reaches the drape's scene; unticked, the seams sew all at once again.
+TEST(Studio, SleevesFirstTickedReachesTheDrapesScene) {
+  TestHarness h;
+  ASSERT_TRUE(h.studio().open(kTShirt));
+  h.frame();
+  auto& o = h.studio().drape_options();
+  EXPECT_FALSE(o.sleeves_first);
+  for (const bool on : {true, false}) {
+    h.click("sleeves first");
+    EXPECT_EQ(o.sleeves_first, on);
+    vgd::dress::DrapeOptions d = o;
+    d.garment = kTShirt;
+    const auto def = vgd::dress::drape_scene(d);
+    ASSERT_TRUE(def.effects.seams);
+    EXPECT_EQ(def.effects.seams->sleeves_first, on);
+  }
+}
+
 TEST(Studio, TwoPickedStretchesBecomeASeamThatUndoAndRedoTakeBackAndForth) {
   TestHarness h;
   ASSERT_TRUE(h.studio().open(kTShirt));
