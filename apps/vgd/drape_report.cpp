@@ -32,7 +32,8 @@ class StageBar {
     std::string line = "[" + std::string(filled, '#') + std::string(width - filled, '.') + "] " + p.stage;
     if (p.stage != "placing") {
       line += "  t " + fixed(p.t, 2) + " s  seams " + std::to_string(p.seams_closed) + "/" +
-              std::to_string(p.seam_pairs) + "  KE " + vgd::format_significant(p.kinetic_energy, 3) + " J/particle";
+              std::to_string(p.seam_pairs) +
+              (p.seams_waiting > 0 ? " (" + std::to_string(p.seams_waiting) + " seams waiting)" : std::string()) + "  KE " + vgd::format_significant(p.kinetic_energy, 3) + " J/particle";
     }
     line += "  wall " + fixed(p.wall_s, 1) + " s";
     const int tenth = static_cast<int>(10 * f);

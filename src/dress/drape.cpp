@@ -214,6 +214,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
       const auto* rep = sim::seam_report(*seam_effect);
       d.seams_closed = rep->total.closed;
       d.seam_pairs = rep->total.total;
+      for (const auto& s : rep->seams) d.seams_waiting += s.waiting ? 1 : 0;
     }
     if (sewn_at < 0 && d.seams_closed == d.seam_pairs) {
       sewn_at = p.t;

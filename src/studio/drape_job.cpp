@@ -189,6 +189,7 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
         status_.wall_s = p.wall_s;
         status_.seams_closed = p.seams_closed;
         status_.seam_pairs = p.seam_pairs;
+        status_.seams_waiting = p.seams_waiting;
       }
       // After each frame (the placing call comes before the first): held here while paused.
       if (p.stage != "placing") hold_if_paused();

@@ -1689,7 +1689,8 @@ struct Studio::Impl {
     std::string overlay = s.stage + (s.paused ? " (paused)" : "");
     if (s.running && s.stage != "placing")
       overlay += "  " + format_fixed(s.t, 2) + " s  seams " + std::to_string(s.seams_closed) + "/" +
-                 std::to_string(s.seam_pairs);
+                 std::to_string(s.seam_pairs) +
+                 (s.seams_waiting > 0 ? " (" + std::to_string(s.seams_waiting) + " waiting)" : std::string());
     if (s.running || !s.stage.empty()) overlay += "  wall " + format_fixed(s.wall_s, 1) + " s";
     ImGui::ProgressBar(s.stage == "done" ? 1.0f : f, {-1, 0}, overlay.c_str());
     track("progress");

@@ -466,6 +466,11 @@ TEST_P(CliDrapePosed, GarmentsDrapeOnAnImportedBodyInItsOwnPose) {
   EXPECT_NE(r.err.find("unit " + b.unit + " "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("up " + b.up + " "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("facing " + b.facing + " "), std::string::npos) << r.err;
+  // Sewn sleeves first, the progress says while the caps wait (each for its
+  // sleeve's underarm seam: two seams, on the first frame of the sewing);
+  // sewn all at once, nothing waits.
+  const bool ordered = std::find(b.drape.begin(), b.drape.end(), "--sleeves-first") != b.drape.end();
+  EXPECT_EQ(r.err.find("(2 seams waiting)") != std::string::npos, ordered) << r.err;
   const json c = read_json(out / "certificate.json");
   EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
   EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();

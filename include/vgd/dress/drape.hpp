@@ -90,6 +90,7 @@ struct DrapeStageProgress {
   // diagnostics (a garment too small for the body, meshing warnings) and the
   // body's import notes can be shown before the run.
   const scene::Scene* scene = nullptr;
+  int seams_waiting = 0;  // seams that wait for others before they pull (sleeves first)
 };
 
 struct DrapeResult {

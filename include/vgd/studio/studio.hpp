@@ -91,6 +91,7 @@ struct DrapeStatus {
   double t = 0, time_limit = 0;  // s simulated
   double wall_s = 0;
   int seams_closed = 0, seam_pairs = 0;
+  int seams_waiting = 0;  // seams waiting for others before they pull (sleeves first)
   bool paused = false;        // held after the frame at `t` (Pause; Step runs one frame more)
   std::string message;        // the outcome when finished
   std::vector<std::string> body_notes;  // an imported body: the importer's decisions (unit, up, facing) and what it left out
