@@ -136,15 +136,19 @@ std::string size_table_from_sizes(const std::vector<std::string>& sizes, std::st
   for (const auto& t : body::size_table_names()) {
     std::set<std::string> labels;
     for (const auto& row : body::load_size_table(body::size_table_file(t))) labels.insert(row.label);
-    const int n = static_cast<int>(std::count_if(sizes.begin(), sizes.end(), [&](const std::string& z) { return labels.count(z) > 0; }));
+    const int n = static_cast<int>(
+        std::count_if(sizes.begin(), sizes.end(), [&](const std::string& z) { return labels.count(z) > 0; }));
     if (n > most) second = most, most = n, best = t;
     else second = std::max(second, n);
   }
   if (most < 2 || most == second) return "";
   // Numbers in their order (the document may list them in any).
   std::vector<std::string> sorted = sizes;
-  std::stable_sort(sorted.begin(), sorted.end(), [](const std::string& a, const std::string& b) {
-    const bool na = !a.empty() && std::all_of(a.begin(), a.end(), ::isdigit), nb = !b.empty() && std::all_of(b.begin(), b.end(), ::isdigit);
+  const auto number = [](const std::string& z) {
+    return !z.empty() && std::all_of(z.begin(), z.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+  };
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const std::string& a, const std::string& b) {
+    const bool na = number(a), nb = number(b);
     if (na && nb) return a.size() != b.size() ? a.size() < b.size() : a < b;
     return na && !nb;
   });
@@ -646,6 +650,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   out.body_table = !options.body_table.empty() ? options.body_table : size_table_from_name(style);
   std::string why = !options.body_table.empty() ? "as asked" : "the style's name '" + style + "'";
   std::string table_why;  // the table from the style's sizes: why, kept when the size is then chosen by girth
+  bool by_girth = false;  // the body chosen as the one nearest the pattern's girth (which says its ease)
   if (out.body_table.empty()) {
     std::vector<std::string> sizes;
     for (const auto* p : doc.patterns()) {
@@ -719,6 +724,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     if (girth > 0 && !best.table.empty()) {
       out.body_table = best.table;
       out.body_size = best.label;
+      by_girth = true;
       why = (table_why.empty() ? "" : table_why + ", which has no size " + out.size + "; ") +
             "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
             " cm, " + format_fixed(100 * (girth - best.body), 0) + " cm of ease over the body's " +
@@ -748,7 +754,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // would fail it after the drape: a woven cannot close round it). Legs
   // smaller than the body are cut for a stretch fabric (below).
   constexpr double kTooSmall = 0.04;  // m of girth, as the drape's fit check
-  if (girth > 0 && why.rfind("nearest the pattern", 0) != 0 && why.find("; nearest the pattern") == std::string::npos) {
+  if (girth > 0 && !by_girth) {
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
       const double body_girth = lower ? b.hip : b.bust;
