@@ -33,7 +33,8 @@ class StageBar {
     if (p.stage != "placing") {
       line += "  t " + fixed(p.t, 2) + " s  seams " + std::to_string(p.seams_closed) + "/" +
               std::to_string(p.seam_pairs) +
-              (p.seams_waiting > 0 ? " (" + std::to_string(p.seams_waiting) + " seams waiting)" : std::string()) + "  KE " + vgd::format_significant(p.kinetic_energy, 3) + " J/particle";
+              (p.seams_waiting > 0 ? " (" + std::to_string(p.seams_waiting) + " seams waiting)" : std::string()) +
+              "  KE " + vgd::format_significant(p.kinetic_energy, 3) + " J/particle";
     }
     line += "  wall " + fixed(p.wall_s, 1) + " s";
     const int tenth = static_cast<int>(10 * f);

@@ -14,6 +14,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/dress/arrange.hpp"
 #include "vgd/dress/placement.hpp"
+#include "vgd/dress/prepare.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
@@ -140,7 +141,7 @@ void check_fit(const std::string& document, const std::string& size, const std::
   } catch (const Error&) {
     return;  // a size label no table has: nothing to compare
   }
-  const double too_small = 0.04, too_large = 0.12;  // m of girth
+  const double too_small = kFitTooSmall, too_large = 0.12;  // m of girth
   for (const auto& [name, garment, girth] : {std::tuple{"bust", made_for.bust, body->bust},
                                              {"waist", made_for.waist, body->waist},
                                              {"hip", made_for.hip, body->hip}}) {

@@ -748,22 +748,24 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
             "measure; choose with --body-table";
     }
   }
-  // The pattern's girth against the body's, when the table (not the girth)
-  // chose the body: said with the decision; a top more than kTooSmall
-  // smaller round the bust than the body is a warning (the certificate
-  // would fail it after the drape: a woven cannot close round it). Legs
-  // smaller than the body are cut for a stretch fabric (below).
-  constexpr double kTooSmall = 0.04;  // m of girth, as the drape's fit check
-  if (girth > 0 && !by_girth) {
+  // The pattern's girth against the body chosen: said with the decision
+  // (the girth's choice says it already), and a top more than kFitTooSmall
+  // smaller round the bust than the body is a warning, however the body was
+  // chosen (the nearest body may still be too large: a size below a table's
+  // smallest); the certificate would fail it after the drape, a woven cannot
+  // close round it. Legs smaller than the body are cut for a stretch fabric
+  // (below).
+  if (girth > 0) {
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
       const double body_girth = lower ? b.hip : b.bust;
       const char* where = lower ? "hip" : "bust";
       if (body_girth > 0) {
-        why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
-               format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
-               format_fixed(100 * body_girth, 0) + " cm";
-        if (!lower && girth < body_girth - kTooSmall)
+        if (!by_girth)
+          why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
+                 format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
+                 format_fixed(100 * body_girth, 0) + " cm";
+        if (!lower && girth < body_girth - kFitTooSmall)
           out.warnings.push_back("the garment is too small for the body: the pattern's bust girth is " +
                                  format_fixed(100 * girth, 0) + " cm, " + format_fixed(100 * (body_girth - girth), 0) +
                                  " cm less than the body's " + format_fixed(100 * body_girth, 0) + " cm (" +

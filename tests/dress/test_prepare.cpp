@@ -80,6 +80,12 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
     seam = seam || d.find("suggested at size M: FRONT to BACK") != std::string::npos;
   }
   EXPECT_TRUE(label && body && seam);
+  // The nearest body (the women's 32, 76 cm) is still 16 cm larger round the
+  // bust than the pattern: said before the drape.
+  ASSERT_EQ(p.warnings.size(), 1u) << ::testing::PrintToString(p.warnings);
+  EXPECT_NE(p.warnings[0].find("the pattern's bust girth is 60 cm, 16 cm less than the body's 76 cm (women's 32)"),
+            std::string::npos)
+      << p.warnings[0];
 
   // Run again on the document it wrote: its seams are kept, nothing added.
   const Preparation again = prepare_garment(doc);

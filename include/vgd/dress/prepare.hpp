@@ -59,6 +59,11 @@ struct PrepareOptions {
   bool fabric_given = false;
 };
 
+// m of girth: a garment more than this smaller round a girth than the body
+// is too small for it (prepare_garment's check of the pattern's girth, and
+// check_fit's of its size's measurements).
+inline constexpr double kFitTooSmall = 0.04;
+
 struct Preparation {
   std::string size;                    // the size to drape
   std::vector<std::string> pieces;     // piece names to drape, document order
