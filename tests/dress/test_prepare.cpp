@@ -81,11 +81,38 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   }
   EXPECT_TRUE(label && body && seam);
   // The nearest body (the women's 32, 76 cm) is still 16 cm larger round the
-  // bust than the pattern: said before the drape.
-  ASSERT_EQ(p.warnings.size(), 1u) << ::testing::PrintToString(p.warnings);
-  EXPECT_NE(p.warnings[0].find("the pattern's bust girth is 60 cm, 16 cm less than the body's 76 cm (women's 32)"),
-            std::string::npos)
-      << p.warnings[0];
+  // bust than the pattern: with no fabric of its own the top is cut from the
+  // shipped knit, said with the two girths, and nothing is warned ...
+  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
+  EXPECT_EQ(p.fabric, "cotton-jersey");
+  EXPECT_NE(xvc::garment_material(doc), "");
+  bool knit = false;
+  for (const auto& d : p.decisions)
+    knit = knit || d.find("fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust "
+                          "girth is 60 cm, 16 cm less than the body's 76 cm") != std::string::npos;
+  EXPECT_TRUE(knit) << ::testing::PrintToString(p.decisions);
+  // ... but in a fabric the caller gives, it is warned before the drape.
+  {
+    xvc::Document given = xvc::from_style(s);
+    PrepareOptions o;
+    o.fabric_given = true;
+    const Preparation w = prepare_garment(given, o);
+    EXPECT_EQ(w.fabric, "");
+    ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.warnings);
+    EXPECT_NE(w.warnings[0].find("the pattern's bust girth is 60 cm, 16 cm less than the body's 76 cm (women's 32)"),
+              std::string::npos)
+        << w.warnings[0];
+  }
+  // A top a quarter smaller than the body (a file's halves cut once, not
+  // unfolded, say) gets no knit: it is warned.
+  {
+    pattern::Style narrow = one_size("WM TOP", "M", {panel("FRONT", 0.0, 0.20, 0.50), panel("BACK", 1.0, 0.20, 0.50)});
+    xvc::Document d = xvc::from_style(narrow);
+    const Preparation w = prepare_garment(d);
+    EXPECT_EQ(w.fabric, "");
+    ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.decisions);
+    EXPECT_NE(w.warnings[0].find("the pattern's bust girth is 40 cm, 36 cm less"), std::string::npos) << w.warnings[0];
+  }
 
   // Run again on the document it wrote: its seams are kept, nothing added.
   const Preparation again = prepare_garment(doc);
@@ -205,7 +232,15 @@ TEST(PrepareGarment, TheBodyTableFollowsTheStylesSizes) {
   EXPECT_TRUE(said(p, "body: the mannequin of size 50 from en13402-women (the style's sizes 32 to 52: 10 of its 11 "
                       "are en13402-women sizes; its bust girth is 110 cm, -8 cm of ease over the body's 118 cm)"))
       << ::testing::PrintToString(p.decisions);
-  // 8 cm less than the body round the bust: said before the drape.
+  // 8 cm less than the body round the bust: cut from the shipped knit, or,
+  // in the caller's fabric, warned before the drape.
+  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
+  EXPECT_TRUE(said(p, "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth is "
+                      "110 cm, 8 cm less than the body's 118 cm: it is cut for a stretch fabric"))
+      << ::testing::PrintToString(p.decisions);
+  doc = graded("GX100", women_range, 0.55);
+  at50.fabric_given = true;
+  p = prepare_garment(doc, at50);
   ASSERT_EQ(p.warnings.size(), 1u);
   EXPECT_EQ(p.warnings[0],
             "the garment is too small for the body: the pattern's bust girth is 110 cm, 8 cm less than the body's "

@@ -1215,6 +1215,54 @@ TEST(Studio, ADxfOpensThroughTheImportDialogWithItsReport) {
   EXPECT_EQ(kept, pieces) << "the document that was open stays";
 }
 
+// A top smaller round the bust than the body it goes on, as vgd dress
+// prepares it: Gerber's tank with bindings in size 50 (113 cm on the women's
+// 50, 118 cm) is cut from the shipped knit, said in the preparation's list;
+// in a woven chosen in the studio it is warned, in the status line too, when
+// the drape starts. Size 40 (2 cm of ease) is neither.
+TEST(Studio, ATopTooSmallForItsBodyIsCutInAKnitOrWarnedWhenTheDrapeStarts) {
+  const fs::path shared = fs::path(VGD_SHARED_DIR) / "data" / "dxf" / "simple.DXF";
+  if (!fs::exists(shared)) GTEST_SKIP() << "shared data absent: " << shared;
+  const fs::path dir = temp_dir("too-small");
+  fs::copy_file(shared, dir / "tank.dxf");
+  TestHarness h;
+  ASSERT_TRUE(h.studio().open(dir / "tank.dxf")) << h.studio().status();
+  h.frames(2);
+  h.click("import:ok");
+  h.frames(2);
+  h.click("imported:ok");
+  struct Case {
+    std::string size, material;
+  };
+  const std::string woven = (kSource / "data" / "materials" / "shirting.xvc").string();
+  for (const Case& c : {Case{"40", ""}, Case{"50", ""}, Case{"50", woven}}) {
+    SCOPED_TRACE(c.size + " " + c.material);
+    h.studio().drape_options().size = c.size;
+    h.studio().drape_options().material_xvc = c.material;
+    h.studio().drape_options().time_limit = 60;
+    h.click("Drape");
+    ASSERT_TRUE(h.studio().drape_status().running) << h.studio().status();
+    const std::string status = h.studio().status();
+    std::string warned, knit;
+    for (const auto& line : h.studio().preparation()) {
+      if (line.rfind("warning: ", 0) == 0) warned += line + "\n";
+      if (line.rfind("fabric: the shipped knit", 0) == 0) knit += line + "\n";
+    }
+    h.click("Stop");
+    h.studio().wait_for_drape();
+    h.frame();
+    const bool small = c.size == "50", in_woven = !c.material.empty();
+    EXPECT_EQ(status.find("the garment is too small for the body") != std::string::npos, small && in_woven) << status;
+    EXPECT_EQ(warned.find("the pattern's bust girth is 113 cm, 5 cm less than the body's 118 cm (women's 50)") !=
+                  std::string::npos,
+              small && in_woven)
+        << warned;
+    EXPECT_EQ(knit.find("the pattern's bust girth is 113 cm, 5 cm less than the body's 118 cm") != std::string::npos,
+              small && !in_woven)
+        << knit;
+  }
+}
+
 // File > Open Recent: the documents opened or saved, newest first, kept in
 // the store the host gives and read back by the next studio.
 TEST(Studio, RecentFilesAreKeptAndReopenFromTheMenu) {
