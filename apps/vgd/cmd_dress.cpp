@@ -73,8 +73,8 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       ->check(CLI::ExistingFile);
   sub->add_option("--material", o->material, "XVC document holding the fabric's MATERIAL (default: the garment's; "
                                              "for legs with none, the shipped cotton-jersey when they are smaller round "
-                                             "the hip than the body, for tops when they are more than 4 cm smaller "
-                                             "round the bust, else data/materials/shirting.xvc; a neckband, "
+                                             "the hip than the body, for tops and skirts more than 4 cm smaller round "
+                                             "the bust or hip, else data/materials/shirting.xvc; a neckband, "
                                              "cuff or one-piece collar shorter than its opening in the shipped "
                                              "cotton-rib unless this is given)")
       ->check(CLI::ExistingFile);

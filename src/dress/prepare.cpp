@@ -749,13 +749,14 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
   // The pattern's girth against the body chosen: said with the decision
-  // (the girth's choice says it already), and a top more than kFitTooSmall
-  // smaller round the bust than the body is a warning, however the body was
-  // chosen (the nearest body may still be too large: a size below a table's
-  // smallest); the certificate would fail it after the drape, a woven cannot
-  // close round it. Legs smaller than the body, and a top the knit is chosen
-  // for, are cut for a stretch fabric (below), said there and not warned.
-  const bool knit_for_top = !options.fabric_given && xvc::garment_material(doc).empty() && !lower;
+  // (the girth's choice says it already), and a top (or skirt) more than
+  // kFitTooSmall smaller round the bust (hip) than the body is a warning,
+  // however the body was chosen (the nearest body may still be too large: a
+  // size below a table's smallest); the certificate would fail it after the
+  // drape, a woven cannot close round it. Legs smaller than the body, and a
+  // top or skirt the knit is chosen for, are cut for a stretch fabric
+  // (below), said there and not warned.
+  const bool knit_for_trunk = !options.fabric_given && xvc::garment_material(doc).empty() && legs.empty();
   if (girth > 0) {
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
@@ -766,8 +767,10 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
           why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
                  format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
                  format_fixed(100 * body_girth, 0) + " cm";
-        if (!lower && girth < body_girth - kFitTooSmall && !(knit_for_top && girth >= kKnitTopGirth * body_girth))
-          out.warnings.push_back("the garment is too small for the body: the pattern's bust girth is " +
+        if (legs.empty() && girth < body_girth - kFitTooSmall &&
+            !(knit_for_trunk && girth >= kKnitTopGirth * body_girth))
+          out.warnings.push_back("the garment is too small for the body: the pattern's " + std::string(where) +
+                                 " girth is " +
                                  format_fixed(100 * girth, 0) + " cm, " + format_fixed(100 * (body_girth - girth), 0) +
                                  " cm less than the body's " + format_fixed(100 * body_girth, 0) + " cm (" +
                                  (b.sex == "male" ? "men's " : "women's ") + b.label +
@@ -786,8 +789,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // a stretch fabric, and a woven (vgd's default, shirting) would have to
   // stretch 20-40 % to close round them, pressing on the body with
   // kilonewtons and never coming to rest. The shipped knit is written in the
-  // document. A top more than kFitTooSmall smaller round the bust than the body
-  // likewise: a tank graded with less ease in its larger sizes (Gerber's
+  // document. A top (or skirt) more than kFitTooSmall smaller round the bust
+  // (hip) than the body likewise: a tank graded with less ease in its larger sizes (Gerber's
   // tank with bindings: 3 cm in size 36, -5 cm in size 50) is a knit, and in
   // a woven its shoulders stand open with the body between them. Not below
   // kKnitTopGirth of the body's girth: a file that writes a top's front and
@@ -795,15 +798,15 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   // which stays a warning (above).
   const auto* materials = doc.container("MATERIALS");
   // (A document whose only MATERIALs are pieces' own has no fabric of its own.)
-  if (!options.fabric_given && xvc::garment_material(doc).empty() && (!lower || !legs.empty()) && girth > 0) {
+  if (!options.fabric_given && xvc::garment_material(doc).empty() && girth > 0) {
     double body_girth = 0;
     try {
       const auto b = body::find_size(out.body_size, out.body_table);
       body_girth = lower ? b.hip : b.bust;
     } catch (const Error&) {
     }
-    const bool stretch = lower ? body_girth > 0 && girth < body_girth
-                               : girth < body_girth - kFitTooSmall && girth >= kKnitTopGirth * body_girth;
+    const bool stretch = !legs.empty() ? body_girth > 0 && girth < body_girth
+                                       : girth < body_girth - kFitTooSmall && girth >= kKnitTopGirth * body_girth;
     if (stretch) {
       const std::filesystem::path knit = data_file("materials/cotton-jersey.xvc");
       const xvc::Document kdoc = xvc::load_file(knit);

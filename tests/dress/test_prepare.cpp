@@ -120,6 +120,35 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   EXPECT_EQ(again.pieces, p.pieces);
 }
 
+// A skirt smaller round the hip than the body (a jersey tube skirt): cut
+// from the shipped knit as a top is, or warned in a fabric given.
+TEST(PrepareGarment, ASkirtSmallerRoundTheHipThanTheBodyIsCutFromTheKnit) {
+  pattern::Style s = one_size("WM SKIRT", "40",
+                              {panel("FRONT", 0.0, 0.40, 0.60, "40"), panel("BACK", 1.0, 0.40, 0.60, "40"),
+                               panel("WAISTBAND", 2.0, 0.80, 0.04, "40")});
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  ASSERT_EQ(p.body_size, "40");
+  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
+  EXPECT_EQ(p.fabric, "cotton-jersey") << ::testing::PrintToString(p.decisions);
+  bool knit = false;
+  for (const auto& d : p.decisions)
+    knit = knit || d.find("the pattern's hip girth is 80 cm, 20 cm less than the body's 100 cm: it is cut for a "
+                          "stretch fabric") != std::string::npos;
+  EXPECT_TRUE(knit) << ::testing::PrintToString(p.decisions);
+
+  xvc::Document given = xvc::from_style(s);
+  PrepareOptions o;
+  o.fabric_given = true;
+  const Preparation w = prepare_garment(given, o);
+  EXPECT_EQ(w.fabric, "");
+  ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.decisions);
+  EXPECT_NE(w.warnings[0].find("too small for the body: the pattern's hip girth is 80 cm, 20 cm less than the "
+                               "body's 100 cm (women's 40)"),
+            std::string::npos)
+      << w.warnings[0];
+}
+
 TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
   pattern::Style s =
       one_size("parts", "M", {panel("PART A", 0.0, 0.30, 0.50), panel("PART B", 1.0, 0.05, 0.07)});

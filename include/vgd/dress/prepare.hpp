@@ -63,8 +63,8 @@ struct PrepareOptions {
 // is too small for it (prepare_garment's check of the pattern's girth, and
 // check_fit's of its size's measurements).
 inline constexpr double kFitTooSmall = 0.04;
-// A top smaller than that round the bust, and at least this fraction of the
-// body's bust, is cut for a knit (prepare_garment's fabric decision).
+// A top or skirt smaller than that round the bust or hip, and at least this
+// fraction of the body's, is cut for a knit (prepare_garment's fabric decision).
 inline constexpr double kKnitTopGirth = 0.75;
 
 struct Preparation {
