@@ -43,6 +43,27 @@ pattern::Style one_size(const std::string& name, const std::string& size,
   return s;
 }
 
+// A style smaller round the body than its body: prepared with no fabric it
+// is cut from the shipped knit, said (knit_says) and not warned; in a fabric
+// the caller gives it is warned (warning_says).
+void expect_knit_or_warned(const pattern::Style& s, const std::string& knit_says, const std::string& warning_says) {
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
+  EXPECT_EQ(p.fabric, "cotton-jersey") << ::testing::PrintToString(p.decisions);
+  EXPECT_NE(xvc::garment_material(doc), "") << "written in the document";
+  EXPECT_TRUE(std::any_of(p.decisions.begin(), p.decisions.end(),
+                          [&](const std::string& d) { return d.find(knit_says) != std::string::npos; }))
+      << ::testing::PrintToString(p.decisions);
+  xvc::Document given = xvc::from_style(s);
+  PrepareOptions o;
+  o.fabric_given = true;
+  const Preparation w = prepare_garment(given, o);
+  EXPECT_EQ(w.fabric, "");
+  ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.decisions);
+  EXPECT_NE(w.warnings[0].find(warning_says), std::string::npos) << w.warnings[0];
+}
+
 }  // namespace
 
 TEST(SizeTableFromName, MenOrWomenFromTheStyleName) {
@@ -81,28 +102,11 @@ TEST(PrepareGarment, SuggestsSeamsAndLeavesOutWhatNoSeamSews) {
   }
   EXPECT_TRUE(label && body && seam);
   // The nearest body (the women's 32, 76 cm) is still 16 cm larger round the
-  // bust than the pattern: with no fabric of its own the top is cut from the
-  // shipped knit, said with the two girths, and nothing is warned ...
-  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
-  EXPECT_EQ(p.fabric, "cotton-jersey");
-  EXPECT_NE(xvc::garment_material(doc), "");
-  bool knit = false;
-  for (const auto& d : p.decisions)
-    knit = knit || d.find("fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust "
-                          "girth is 60 cm, 16 cm less than the body's 76 cm") != std::string::npos;
-  EXPECT_TRUE(knit) << ::testing::PrintToString(p.decisions);
-  // ... but in a fabric the caller gives, it is warned before the drape.
-  {
-    xvc::Document given = xvc::from_style(s);
-    PrepareOptions o;
-    o.fabric_given = true;
-    const Preparation w = prepare_garment(given, o);
-    EXPECT_EQ(w.fabric, "");
-    ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.warnings);
-    EXPECT_NE(w.warnings[0].find("the pattern's bust girth is 60 cm, 16 cm less than the body's 76 cm (women's 32)"),
-              std::string::npos)
-        << w.warnings[0];
-  }
+  // bust than the pattern: cut from the shipped knit, or warned in a fabric given.
+  expect_knit_or_warned(s,
+                        "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth "
+                        "is 60 cm, 16 cm less than the body's 76 cm",
+                        "the pattern's bust girth is 60 cm, 16 cm less than the body's 76 cm (women's 32)");
   // A top a quarter smaller than the body (a file's halves cut once, not
   // unfolded, say) gets no knit: it is warned.
   {
@@ -126,27 +130,11 @@ TEST(PrepareGarment, ASkirtSmallerRoundTheHipThanTheBodyIsCutFromTheKnit) {
   pattern::Style s = one_size("WM SKIRT", "40",
                               {panel("FRONT", 0.0, 0.40, 0.60, "40"), panel("BACK", 1.0, 0.40, 0.60, "40"),
                                panel("WAISTBAND", 2.0, 0.80, 0.04, "40")});
-  xvc::Document doc = xvc::from_style(s);
-  const Preparation p = prepare_garment(doc);
-  ASSERT_EQ(p.body_size, "40");
-  EXPECT_TRUE(p.warnings.empty()) << ::testing::PrintToString(p.warnings);
-  EXPECT_EQ(p.fabric, "cotton-jersey") << ::testing::PrintToString(p.decisions);
-  bool knit = false;
-  for (const auto& d : p.decisions)
-    knit = knit || d.find("the pattern's hip girth is 80 cm, 20 cm less than the body's 100 cm: it is cut for a "
-                          "stretch fabric") != std::string::npos;
-  EXPECT_TRUE(knit) << ::testing::PrintToString(p.decisions);
-
-  xvc::Document given = xvc::from_style(s);
-  PrepareOptions o;
-  o.fabric_given = true;
-  const Preparation w = prepare_garment(given, o);
-  EXPECT_EQ(w.fabric, "");
-  ASSERT_EQ(w.warnings.size(), 1u) << ::testing::PrintToString(w.decisions);
-  EXPECT_NE(w.warnings[0].find("too small for the body: the pattern's hip girth is 80 cm, 20 cm less than the "
-                               "body's 100 cm (women's 40)"),
-            std::string::npos)
-      << w.warnings[0];
+  expect_knit_or_warned(s,
+                        "the pattern's hip girth is 80 cm, 20 cm less than the body's 100 cm: it is cut for a "
+                        "stretch fabric",
+                        "too small for the body: the pattern's hip girth is 80 cm, 20 cm less than the body's 100 cm "
+                        "(women's 40)");
 }
 
 TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
