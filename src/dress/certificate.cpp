@@ -113,6 +113,35 @@ std::vector<OpenSide> open_sides(const scene::Scene& scene, const std::vector<Ve
       }
     if (underarm < 1e300) top = std::min(top, underarm - 0.02);
   }
+  // Without sleeves (a tank), the armhole ends where the side seams begin: the
+  // sides are read below the highest pair of the trunk's seams that run down
+  // a side (at least 10 cm tall, centred within 60° of the body's left or
+  // right). A tank's armhole drops below the bust in its larger sizes, and
+  // the slice at the bust was its armhole, read as a side left open.
+  {
+    const body::BodySegment* torso = av.segment("torso");
+    double side_top = -1e300;
+    for (const auto& seam : scene.seams) {
+      double lo = 1e300, hi = -1e300;
+      Vec3 mean = Vec3::Zero();
+      int n = 0;
+      for (const auto& [a, b] : seam.pairs) {
+        if (a < 0 || b < 0 || a >= static_cast<int>(points.size()) || b >= static_cast<int>(points.size())) continue;
+        if (!trunk[a] || !trunk[b]) continue;
+        lo = std::min(lo, points[a].y());
+        hi = std::max(hi, points[a].y());
+        mean += points[a];
+        ++n;
+      }
+      if (n == 0 || hi - lo < 0.10 || !torso) continue;
+      mean /= n;
+      const Vec3 q = mean - body::ring_at(*torso, std::clamp((mean.y() - torso->start.y()) / torso->axis.y(), 0.0,
+                                                               torso->length)).centre;
+      const double angle = std::atan2(q.dot(torso->side()), q.dot(torso->front)) * 180.0 / std::numbers::pi;
+      if (std::abs(std::abs(angle) - 90.0) <= 60.0) side_top = std::max(side_top, hi);
+    }
+    if (side_top > -1e300) top = std::min(top, side_top - 0.02);
+  }
   const double bottom = ymin + 0.08;
   OpenSide sides[2] = {{"left", 0, 0, 0}, {"right", 0, 0, 0}};
   for (double h = top; h >= bottom; h -= 0.02) {
