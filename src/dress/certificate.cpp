@@ -117,9 +117,9 @@ std::vector<OpenSide> open_sides(const scene::Scene& scene, const std::vector<Ve
   // sides are read below the highest pair of the trunk's seams that run down
   // a side (at least 10 cm tall, centred within 60° of the body's left or
   // right). A tank's armhole drops below the bust in its larger sizes, and
-  // the slice at the bust was its armhole, read as a side left open.
-  {
-    const body::BodySegment* torso = av.segment("torso");
+  // the slice at the bust was its armhole, read as a side left open. (With
+  // sleeves the side seams end at the underarm found above.)
+  if (const body::BodySegment* torso = av.segment("torso")) {
     double side_top = -1e300;
     for (const auto& seam : scene.seams) {
       double lo = 1e300, hi = -1e300;
@@ -133,7 +133,7 @@ std::vector<OpenSide> open_sides(const scene::Scene& scene, const std::vector<Ve
         mean += points[a];
         ++n;
       }
-      if (n == 0 || hi - lo < 0.10 || !torso) continue;
+      if (n == 0 || hi - lo < 0.10) continue;
       mean /= n;
       const Vec3 q = mean - body::ring_at(*torso, std::clamp((mean.y() - torso->start.y()) / torso->axis.y(), 0.0,
                                                                torso->length)).centre;

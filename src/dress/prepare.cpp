@@ -749,88 +749,78 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     }
   }
   // The pattern's girth against the body chosen: said with the decision
-  // (the girth's choice says it already), and a top (or skirt) more than
-  // kFitTooSmall smaller round the bust (hip) than the body is a warning,
-  // however the body was chosen (the nearest body may still be too large: a
-  // size below a table's smallest); the certificate would fail it after the
-  // drape, a woven cannot close round it. Legs smaller than the body, and a
-  // top or skirt the knit is chosen for, are cut for a stretch fabric
-  // (below), said there and not warned.
-  const bool knit_for_trunk = !options.fabric_given && xvc::garment_material(doc).empty() && legs.empty();
+  // (the girth's choice says it already). A garment smaller round it than
+  // the body, with no fabric of the document's or the caller's, is cut for a
+  // stretch fabric (below): legs smaller round the hip at all (negative ease:
+  // leggings, tights), a top or skirt more than kFitTooSmall smaller round
+  // the bust or hip and at least kKnitGirth of the body's (a tank graded with
+  // less ease in its larger sizes: Gerber's tank with bindings has 3 cm in
+  // size 36, -5 cm in size 50; in a woven its shoulders stood open with the
+  // body between them). A top or skirt more than kFitTooSmall smaller that
+  // is not so cut is a warning, however the body was chosen (the nearest
+  // body may still be too large: a size below a table's smallest): the
+  // certificate would fail it after the drape, a woven cannot close round
+  // it; below kKnitGirth it is most likely a file's front and back written
+  // as halves cut once that vgd did not unfold, which give half the girth.
+  double body_girth = 0;
+  body::BodyMeasurements chosen;
   if (girth > 0) {
     try {
-      const auto b = body::find_size(out.body_size, out.body_table);
-      const double body_girth = lower ? b.hip : b.bust;
-      const char* where = lower ? "hip" : "bust";
-      if (body_girth > 0) {
-        if (!by_girth)
-          why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
-                 format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
-                 format_fixed(100 * body_girth, 0) + " cm";
-        if (legs.empty() && girth < body_girth - kFitTooSmall &&
-            !(knit_for_trunk && girth >= kKnitTopGirth * body_girth))
-          out.warnings.push_back("the garment is too small for the body: the pattern's " + std::string(where) +
-                                 " girth is " +
-                                 format_fixed(100 * girth, 0) + " cm, " + format_fixed(100 * (body_girth - girth), 0) +
-                                 " cm less than the body's " + format_fixed(100 * body_girth, 0) + " cm (" +
-                                 (b.sex == "male" ? "men's " : "women's ") + b.label +
-                                 "); a woven cannot close round it: choose the body with --body-size, or a knit "
-                                 "with --material");
-      }
+      chosen = body::find_size(out.body_size, out.body_table);
+      body_girth = lower ? chosen.hip : chosen.bust;
     } catch (const Error&) {
     }
+  }
+  const char* where = lower ? "hip" : "bust";
+  const bool small = body_girth > 0 && girth < body_girth - (legs.empty() ? kFitTooSmall : 0.0);
+  // (A document whose only MATERIALs are pieces' own has no fabric of its own.)
+  const bool knit = small && !options.fabric_given && xvc::garment_material(doc).empty() &&
+                    (!legs.empty() || girth >= kKnitGirth * body_girth);
+  if (body_girth > 0) {
+    if (!by_girth)
+      why += "; its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
+             format_fixed(100 * (girth - body_girth), 0) + " cm of ease over the body's " +
+             format_fixed(100 * body_girth, 0) + " cm";
+    if (small && legs.empty() && !knit)
+      out.warnings.push_back("the garment is too small for the body: the pattern's " + std::string(where) +
+                             " girth is " + format_fixed(100 * girth, 0) + " cm, " +
+                             format_fixed(100 * (body_girth - girth), 0) + " cm less than the body's " +
+                             format_fixed(100 * body_girth, 0) + " cm (" +
+                             (chosen.sex == "male" ? "men's " : "women's ") + chosen.label +
+                             "); a woven cannot close round it: choose the body with --body-size, or a knit "
+                             "with --material");
   }
   out.decisions.push_back("body: the mannequin of size " + out.body_size + " from " +
                           (out.body_table.empty() ? std::string("the first size table that has it") : out.body_table) +
                           " (" + why + ")");
 
-  // The fabric, when the document has none and none is given: legs smaller
-  // round the hip than the body (negative ease: leggings, tights) are cut for
-  // a stretch fabric, and a woven (vgd's default, shirting) would have to
-  // stretch 20-40 % to close round them, pressing on the body with
-  // kilonewtons and never coming to rest. The shipped knit is written in the
-  // document. A top (or skirt) more than kFitTooSmall smaller round the bust
-  // (hip) than the body likewise: a tank graded with less ease in its larger sizes (Gerber's
-  // tank with bindings: 3 cm in size 36, -5 cm in size 50) is a knit, and in
-  // a woven its shoulders stand open with the body between them. Not below
-  // kKnitTopGirth of the body's girth: a file that writes a top's front and
-  // back as halves cut once that vgd does not unfold gives half its girth,
-  // which stays a warning (above).
-  const auto* materials = doc.container("MATERIALS");
-  // (A document whose only MATERIALs are pieces' own has no fabric of its own.)
-  if (!options.fabric_given && xvc::garment_material(doc).empty() && girth > 0) {
-    double body_girth = 0;
-    try {
-      const auto b = body::find_size(out.body_size, out.body_table);
-      body_girth = lower ? b.hip : b.bust;
-    } catch (const Error&) {
-    }
-    const bool stretch = !legs.empty() ? body_girth > 0 && girth < body_girth
-                                       : girth < body_girth - kFitTooSmall && girth >= kKnitTopGirth * body_girth;
-    if (stretch) {
-      const std::filesystem::path knit = data_file("materials/cotton-jersey.xvc");
-      const xvc::Document kdoc = xvc::load_file(knit);
-      const auto* kmats = kdoc.container("MATERIALS");
-      if (kmats && !kmats->children.empty()) {
-        const xvc::Node material = xvc::copy_node(kdoc, kmats->children.front().id());
-        std::string parent;
-        if (materials) {
-          parent = std::string(materials->id());
-        } else {
-          xvc::Node container;
-          container.tag = "MATERIALS";
-          xvc::execute(doc, *std::make_unique<xvc::AddNode>(std::string(doc.root().id()), container));
-          parent = std::string(doc.container("MATERIALS")->id());
-        }
-        xvc::execute(doc, *std::make_unique<xvc::AddNode>(parent, material));
-        out.fabric = std::string(material.attribute("id"));
-        out.decisions.push_back(
-            "fabric: the shipped knit " + out.fabric + " (written in the document): the pattern's " +
-            (lower ? "hip" : "bust") + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
-            format_fixed(100 * (body_girth - girth), 0) + " cm less than the body's " +
-            format_fixed(100 * body_girth, 0) + " cm: it is cut for a stretch fabric, which a woven is not; "
-            "choose another with --material");
+  // The shipped knit, written in the document (decided above): a woven
+  // (vgd's default, shirting) would have to stretch 20-40 % to close round
+  // legs cut smaller than the body, pressing on it with kilonewtons and never
+  // coming to rest.
+  if (knit) {
+    const auto* materials = doc.container("MATERIALS");
+    const xvc::Document kdoc = xvc::load_file(data_file("materials/cotton-jersey.xvc"));
+    const auto* kmats = kdoc.container("MATERIALS");
+    if (kmats && !kmats->children.empty()) {
+      const xvc::Node material = xvc::copy_node(kdoc, kmats->children.front().id());
+      std::string parent;
+      if (materials) {
+        parent = std::string(materials->id());
+      } else {
+        xvc::Node container;
+        container.tag = "MATERIALS";
+        xvc::execute(doc, *std::make_unique<xvc::AddNode>(std::string(doc.root().id()), container));
+        parent = std::string(doc.container("MATERIALS")->id());
       }
+      xvc::execute(doc, *std::make_unique<xvc::AddNode>(parent, material));
+      out.fabric = std::string(material.attribute("id"));
+      out.decisions.push_back(
+          "fabric: the shipped knit " + out.fabric + " (written in the document): the pattern's " +
+          std::string(where) + " girth is " + format_fixed(100 * girth, 0) + " cm, " +
+          format_fixed(100 * (body_girth - girth), 0) + " cm less than the body's " +
+          format_fixed(100 * body_girth, 0) + " cm: it is cut for a stretch fabric, which a woven is not; "
+          "choose another with --material");
     }
   }
   return out;

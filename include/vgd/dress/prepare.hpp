@@ -65,7 +65,7 @@ struct PrepareOptions {
 inline constexpr double kFitTooSmall = 0.04;
 // A top or skirt smaller than that round the bust or hip, and at least this
 // fraction of the body's, is cut for a knit (prepare_garment's fabric decision).
-inline constexpr double kKnitTopGirth = 0.75;
+inline constexpr double kKnitGirth = 0.75;
 
 struct Preparation {
   std::string size;                    // the size to drape
