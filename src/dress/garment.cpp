@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "vgd/core/strings.hpp"
 #include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -39,6 +40,9 @@ struct Seam {
 };
 
 double dist(const Vec2& a, const Vec2& b) { return (a - b).norm(); }
+
+// What a sewer eases in without a mark, m (xvc/seams.cpp scores alike).
+constexpr double kSewingSlack = 0.002;
 
 // Boundary vertices i, i+1, ..., j (cyclic, j reached), as points.
 std::vector<Vec2> span_points(const std::vector<ContourPoint>& bd, int i, int j) {
@@ -73,6 +77,52 @@ std::vector<Vec2> by_arc_length(const std::vector<Vec2>& p, int segments) {
   }
   out.push_back(p.back());
   return out;
+}
+
+// Cuts a strip short by `excess` m at the end where its long edge a..b
+// (boundary vertices, contour order) ends, square across: b moves back along
+// the edge, the vertex after it (c, across the strip's end) to where the
+// square cut meets the strip's other long edge, and the vertices they pass
+// are dropped. Only for a straight strip: a..b and the run after c straight
+// (within 0.5 mm) and parallel (c's run back along a..b's line, within
+// 0.5 mm of its own), long enough for the cut. Returns, per old vertex, its
+// new index (-1 dropped), or nothing when the strip is not such a strip.
+std::optional<std::vector<int>> trim_strip(std::vector<ContourPoint>& bd, int a, int b, double excess) {
+  const int n = static_cast<int>(bd.size());
+  const int c = (b + 1) % n;
+  const Vec2 pa = bd[a].p, pb = bd[b].p;
+  const double len = dist(pa, pb);
+  if (!(excess > 0) || len <= excess + 1e-3 || c == a) return std::nullopt;
+  const Vec2 u = (pb - pa) / len;
+  const auto off_line = [&](const Vec2& p, const Vec2& o) { return std::abs((p - o).x() * u.y() - (p - o).y() * u.x()); };
+  for (int v = a; v != b; v = (v + 1) % n)
+    if (off_line(bd[v].p, pa) > 5e-4) return std::nullopt;
+  // The new end: b moved back by the excess, and across from it on c's line.
+  const Vec2 nb = pb - excess * u;
+  const Vec2 nc = nb + ((bd[c].p - pb) - (bd[c].p - pb).dot(u) * u);
+  const double shift = (bd[c].p - nc).dot(u);  // how far c moves back along the other edge
+  if (!(shift > 0)) return std::nullopt;
+  std::vector<int> passed;  // vertices after c the new end passes
+  double reach = 0;
+  for (int v = (c + 1) % n; v != a && reach <= shift; v = (v + 1) % n) {
+    const Vec2 d = bd[v].p - bd[c].p;
+    if (off_line(bd[v].p, bd[c].p) > 5e-4 || d.dot(-u) <= 0) return std::nullopt;
+    reach = d.dot(-u);
+    if (reach <= shift + 1e-9) passed.push_back(v);
+  }
+  if (reach <= shift) return std::nullopt;
+  std::vector<bool> drop(n, false);
+  for (int v = (a + 1) % n; v != b; v = (v + 1) % n)
+    if ((bd[v].p - pa).dot(u) >= len - excess - 1e-9) drop[v] = true;
+  for (const int v : passed) drop[v] = true;
+  bd[b].p = nb;
+  bd[c].p = nc;
+  std::vector<int> index(n, -1);
+  std::vector<ContourPoint> kept;
+  for (int v = 0; v < n; ++v)
+    if (!drop[v]) index[v] = static_cast<int>(kept.size()), kept.push_back(bd[v]);
+  bd = std::move(kept);
+  return index;
 }
 
 // Corners of an outline: turn points and vertices turning by more than `deg`.
@@ -429,6 +479,48 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
         throw Error(file, hems[j].id, "hem overlaps hem " + hems[i].id + " on " + g.pieces[hems[i].piece].name +
                                           "; a stretch of outline can be sewn once");
     }
+
+  // A binding cut long is trimmed to the opening it binds (strips are cut
+  // long and cut off where the binding meets itself): where a seam's hem on
+  // a binding is longer than its other hems together, the strip is cut short,
+  // square, at the end where that hem ends (its ends, when a seam sews them
+  // to each other, then meet square).
+  for (const auto& s : seams) {
+    if (s.hems.size() < 2) continue;
+    Hem& h = hems[s.hems[0]];
+    GarmentPiece& gp = g.pieces[h.piece];
+    const auto* node = doc.find(gp.pattern_id);
+    if (!node || xvc::piece_role(doc, *node).role != pattern::Role::binding) continue;
+    double rest = 0;
+    for (std::size_t k = 1; k < s.hems.size(); ++k) {
+      const Hem& o = hems[s.hems[k]];
+      rest += polyline_length(span_points(g.pieces[o.piece].piece.boundary, o.a, o.b));
+    }
+    auto& bd = gp.piece.boundary;
+    const double mine = polyline_length(span_points(bd, h.a, h.b));
+    if (mine <= rest + kSewingSlack) continue;
+    auto trimmed = bd;
+    const auto index = trim_strip(trimmed, h.a, h.b, mine - rest);
+    bool fits = index.has_value();
+    for (int k = 0; fits && k < static_cast<int>(hems.size()); ++k)
+      fits = hems[k].piece != h.piece || ((*index)[hems[k].a] >= 0 && (*index)[hems[k].b] >= 0);
+    if (!fits) {
+      diag.warn(file, gp.pattern_id,
+                "binding " + gp.name + " is " + format_fixed(100 * (mine - rest), 1) +
+                    " cm longer than the opening it binds and is not a straight strip vgd can trim: it is eased in");
+      continue;
+    }
+    for (auto& o : hems)
+      if (o.piece == h.piece) o.a = (*index)[o.a], o.b = (*index)[o.b];
+    for (auto& nt : gp.piece.notches)
+      nt.boundary_index = nt.boundary_index >= 0 && nt.boundary_index < static_cast<int>(index->size())
+                              ? (*index)[nt.boundary_index]
+                              : -1;
+    bd = std::move(trimmed);
+    diag.info(file, gp.pattern_id,
+              "binding " + gp.name + " trimmed by " + format_fixed(100 * (mine - rest), 1) + " cm to the " +
+                  format_fixed(100 * rest, 1) + " cm it binds");
+  }
 
   // Segments per hem: a seam's first hem gets n, the others share n by length.
   for (const auto& s : seams) {

@@ -100,6 +100,9 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
                       : "no waist vgd found (a skirt's front and back, or whole legs) fits its length";
       break;
     case Role::binding:
+      why = "vgd sews a binding round a neckline (a front's and a back's, between their shoulder seams), not yet "
+            "round an armhole or another edge";
+      break;
     case Role::facing:
     case Role::belt_loop:
     case Role::fly:
@@ -584,7 +587,9 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   for (const auto& name : out.pieces) {
     const pattern::Role band_role = roles[name].role;
     const bool collar = band_role == pattern::Role::collar && !stand;
-    if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff && !collar) continue;
+    // A binding sewn round the neckline is folded over its raw edge: as a neckband.
+    const bool binding = band_role == pattern::Role::binding && band_to_opening(name);
+    if (band_role != pattern::Role::neckband && band_role != pattern::Role::cuff && !collar && !binding) continue;
     const std::string role_name(pattern::role_name(band_role));
     const std::string opening = band_role == pattern::Role::cuff ? "the sleeve's hem" : "the neckline";
     std::vector<std::unique_ptr<xvc::Command>> set;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "vgd/core/diagnostics.hpp"
@@ -188,7 +189,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   Arrangement a;
   a.clearance = opts.clearance;
   const bool band = role.role == Role::waistband || role.role == Role::neckband || role.role == Role::cuff ||
-                    role.role == Role::collar;
+                    role.role == Role::collar || role.role == Role::binding;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -306,6 +307,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       return {a};
     }
     case Role::neckband:
+    case Role::binding:  // one a SEAM sews round the neckline (suggest_arrangements)
       turn_band();
       a.segment = "neck";
       a.side = "front";
@@ -456,6 +458,21 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
     }
     const auto [lo, hi] = height_range(to_piece(doc, sl->id()), sleeve_list.front().angle_deg);
     for (auto& a : list) a.height = sleeve_list.front().height + (hi - lo);
+  }
+
+  // A binding is arranged round the neck as a neckband when a SEAM vgd
+  // suggests sews it round the neckline ("neck seam", of any size); vgd
+  // places no other binding.
+  std::set<std::string> neck_bindings;  // binding pieces
+  for (const auto& seam : list_seams(doc))
+    if (seam.name == "neck seam")
+      for (const auto& h : seam.hems)
+        if (const Node* b = doc.find(h.pattern); b && piece_role(doc, *b).role == pattern::Role::binding)
+          neck_bindings.insert(std::string(b->attribute("piece")));
+  for (auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (p && piece_role(doc, *p).role == pattern::Role::binding && !neck_bindings.count(std::string(p->attribute("piece"))))
+      list.clear();
   }
 
   // A collar goes on by the edge a SEAM sews to the neckline (a seam of any

@@ -250,7 +250,7 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke, collar };
+enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke, collar, binding };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
@@ -263,6 +263,7 @@ Role role_of(const Outline& o) {
     case pattern::Role::back: return Role::back;
     case pattern::Role::yoke: return Role::yoke;
     case pattern::Role::collar: return Role::collar;
+    case pattern::Role::binding: return Role::binding;
     default: return Role::other;
   }
 }
@@ -312,6 +313,10 @@ constexpr double kSideSeamTolerance = 0.04;
 // hem) a neckband or a cuff may be cut (a rib is stretched onto it:
 // typically 10-20 %).
 constexpr double kRibShorter = 0.25;
+// How much longer than the opening it binds a binding may be cut: strips are
+// cut long and trimmed where the binding meets itself (Gerber's tank: 72 cm
+// for a 58.5 cm neckline, 81 cm for a 48 cm armhole).
+constexpr double kBindingLonger = 1.0;
 
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
                     const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
@@ -351,7 +356,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     if (o.size != size || o.quantity == 0 || o.stretches.empty()) continue;
     const Role r = role_of(o);
     if (r == Role::other) continue;
-    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff && r != Role::collar), {}};
+    PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff && r != Role::collar &&
+                                          r != Role::binding), {}};
     pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
     ps.push_back(std::move(pi));
   }
@@ -821,6 +827,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   // longest, sewn to each other (`where`: centre back, or a cuff's under the
   // arm, where it is arranged to meet). In contour order one end runs up and
   // the other down, so the second is reversed: bottom corner to bottom corner.
+  // A binding's ends are sewn whatever their lengths: the strip is trimmed
+  // square to its neckline's length (dress::assemble_garment).
   const auto band_ends = [&](const PieceInfo& band, const std::string& name, const std::string& what,
                              const std::string& where = "at centre back") -> std::optional<SeamSuggestion> {
     double longest = 0;
@@ -829,8 +837,10 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     for (const auto& e : band.edges)
       if (e.length < 0.5 * longest) ends.push_back(&e);
     if (ends.size() != 2) return std::nullopt;
+    const bool binding = band.role == Role::binding;
     auto s = make(name, size, {{band.o, ends[0]->k0, ends[0]->k1, false}, {band.o, ends[1]->k0, ends[1]->k1, true}},
-                  1.0, what + " closed into a loop: its two ends, " + where, 0, 0, 0.02);
+                  1.0, what + " closed into a loop: its two ends, " + where + (binding ? " (cut square when trimmed)" : ""),
+                  binding ? -longest : 0.0, binding ? longest : 0.0, 0.02);
     if (s.score < opts.min_score) return std::nullopt;
     return s;
   };
@@ -1123,30 +1133,57 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
     return best;
   };
-  for (const auto& nb : ps) {
-    if (nb.role != Role::neckband) continue;
-    bool sewn = false;
+  //    A binding (a strip cut to finish an edge) is sewn there the same way
+  //    when no neckband or collar is, cut long (up to kBindingLonger) as
+  //    well as short: of the bindings, the one whose length is nearest the
+  //    neckline's.
+  const auto band_to_neckline = [&](const PieceInfo& nb) -> std::vector<SeamSuggestion> {
     for (const auto& fr : ps) {
-      if (fr.role != Role::front || sewn) continue;
+      if (fr.role != Role::front) continue;
       const auto nf = neckline(fr);
       for (const auto& bk : ps) {
-        if (bk.role != Role::back || sewn) continue;
+        if (bk.role != Role::back) continue;
         const auto nbk = neckline(bk);
         if (!nf || !nbk) continue;
         std::vector<Part> parts{{nb.o, 0, 0, false}};
         const auto around = split_round(fr, *nf, bk, *nbk);
         parts.insert(parts.end(), around.begin(), around.end());
         const double length = round_length(parts);
+        const std::string what = nb.role == Role::binding ? "binding " : "neckband ";
+        const bool binding = nb.role == Role::binding;
         const auto best = sew_band(nb, std::move(parts), "neck seam",
-                                   "neckband " + nb.o->piece + " to the neckline of " + bk.o->piece + " and " + fr.o->piece,
-                                   -kRibShorter * length, 0.0, 0.03);
+                                   what + nb.o->piece + " to the neckline of " + bk.o->piece + " and " + fr.o->piece +
+                                       (binding ? " (cut long: trimmed to the neckline when sewn)" : ""),
+                                   -kRibShorter * length, binding ? kBindingLonger * length : 0.0, 0.03);
         if (!best) continue;
-        found.push_back(*best);
+        std::vector<SeamSuggestion> sewn{*best};
         if (fr.o->quantity == 1 && fr.o->role.side == pattern::Side::none && nb.o->quantity == 1)
-          if (auto e = band_ends(nb, "neckband ends", "neckband " + nb.o->piece)) found.push_back(*e);
-        sewn = true;
+          if (auto e = band_ends(nb, what + "ends", what + nb.o->piece)) sewn.push_back(*e);
+        return sewn;
       }
     }
+    return {};
+  };
+  for (const auto& nb : ps) {
+    if (nb.role != Role::neckband) continue;
+    const auto s = band_to_neckline(nb);
+    found.insert(found.end(), s.begin(), s.end());
+  }
+  const bool collared = std::any_of(outs.begin(), outs.end(), [&](const Outline& o) {
+    return o.size == size && o.quantity > 0 &&
+           (o.role.role == pattern::Role::collar || o.role.role == pattern::Role::collar_stand);
+  });
+  if (!collared &&
+      std::none_of(found.begin(), found.end(), [](const SeamSuggestion& x) { return x.name == "neck seam"; })) {
+    std::vector<SeamSuggestion> best;
+    const auto closer = [](const SeamSuggestion& x, const SeamSuggestion& y) {
+      if (std::abs(x.score - y.score) > 1e-6) return x.score > y.score;
+      return std::abs(x.ease) < std::abs(y.ease);
+    };
+    for (const auto& nb : ps)
+      if (nb.role == Role::binding)
+        if (auto s = band_to_neckline(nb); !s.empty() && (best.empty() || closer(s[0], best[0]))) best = std::move(s);
+    found.insert(found.end(), best.begin(), best.end());
   }
 
   // 6. A one-piece collar (a polo's: the garment has no collar stand) to the

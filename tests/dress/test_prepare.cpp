@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <map>
 
+#include "support/test_paths.hpp"
 #include "support/trousers.hpp"
+#include "vgd/dress/garment.hpp"
+#include "vgd/io/dxf/import.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/body/sizes.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/dress/prepare.hpp"
@@ -504,6 +508,73 @@ TEST(PrepareGarment, FrontsAndBacksAsLongAsLegsAreTheHalvesOfTrouserLegs) {
   doc = xvc::from_style(vgd::test::trousers_in_halves("FRONT", "BACK", 4));
   prepare_garment(doc);
   for (const auto* pat : doc.patterns()) EXPECT_EQ(pat->attribute("quantity"), "4");
+}
+
+// Gerber's tank with bindings (simple.DXF, size 36): the neck binding, a
+// 3.8 cm strip cut long (67 cm along the edge sewn), is sewn round the
+// neckline (58.5 cm), folded lengthwise, arranged round the neck, and
+// trimmed square to the neckline when the garment is assembled: its seam as
+// long as the neckline, its mesh 1.9 cm wide in two layers, its ends (one
+// drawn slanted) both 1.9 cm and sewn to each other. The armhole binding is
+// left out saying what vgd does not sew yet.
+TEST(PrepareGarment, ATanksNeckBindingIsSewnFoldedAndTrimmedToTheNeckline) {
+  VGD_REQUIRE_SHARED();
+  dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  xvc::Document doc = xvc::from_style(dxf::import_file(vgd::test::shared_dxf("simple.DXF"), unfold).style);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_EQ(p.pieces, (std::vector<std::string>{"C-S1615WWO206-NB", "C-S1615WWO206-B", "C-S1615WWO206-F"}));
+  EXPECT_EQ(p.left_out, (std::vector<std::string>{"C-S1615WWO206-AB"}));
+  const auto said = [&](const std::string& what) {
+    return std::any_of(p.decisions.begin(), p.decisions.end(),
+                       [&](const std::string& d) { return d.find(what) != std::string::npos; });
+  };
+  EXPECT_TRUE(said("piece C-S1615WWO206-AB (binding) left out: no seam sews it: vgd sews a binding round a neckline"))
+      << ::testing::PrintToString(p.decisions);
+  EXPECT_TRUE(said("piece C-S1615WWO206-NB (binding) read as cut double and folded lengthwise"))
+      << ::testing::PrintToString(p.decisions);
+  for (const auto& [id, list] : xvc::suggest_arrangements(doc)) {
+    const auto piece = doc.find(id)->attribute("piece");
+    if (piece == "C-S1615WWO206-NB") {
+      ASSERT_EQ(list.size(), 1u);
+      EXPECT_EQ(list[0].segment, "neck") << "arranged round the neck";
+    }
+    if (piece == "C-S1615WWO206-AB") {
+      EXPECT_TRUE(list.empty()) << "no seam sews it: not arranged";
+    }
+  }
+
+  AssemblyOptions o;
+  o.pieces = p.pieces;
+  Diagnostics diag;
+  const Garment g = assemble_garment(doc, o, diag);
+  const GarmentPiece* nb = nullptr;
+  for (const auto& gp : g.pieces)
+    if (gp.name == "C-S1615WWO206-NB") nb = &gp;
+  ASSERT_NE(nb, nullptr);
+  EXPECT_EQ(nb->layers, 2);
+  double x0 = 1e9, x1 = -1e9;
+  for (const auto& n : nb->mesh.nodes) x0 = std::min(x0, n.x()), x1 = std::max(x1, n.x());
+  EXPECT_NEAR(x1 - x0, 0.019, 0.001) << "half the strip's width";
+  bool neck = false, ends = false;
+  for (const auto& s : g.seams) {
+    if (s.name == "binding ends") {
+      ends = true;
+      EXPECT_NEAR(s.length_a, 0.019, 1e-6) << "folded, cut square";
+      EXPECT_NEAR(s.length_b, 0.019, 1e-6) << "folded, cut square";
+    }
+    if (s.name != "neck seam") continue;
+    neck = true;
+    EXPECT_NEAR(s.length_a, s.length_b, 0.002) << "the binding trimmed to the neckline";
+    EXPECT_NEAR(s.length_b, 0.585, 0.001);
+  }
+  EXPECT_TRUE(neck);
+  EXPECT_TRUE(ends) << "its ends sewn to each other at centre back";
+  bool trimmed = false;
+  for (const auto& d : diag.items())
+    trimmed = trimmed || d.message.find("binding C-S1615WWO206-NB trimmed by 8.5 cm to the 58.5 cm it binds") !=
+                             std::string::npos;
+  EXPECT_TRUE(trimmed);
 }
 
 }  // namespace vgd::dress

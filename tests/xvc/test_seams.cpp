@@ -649,7 +649,9 @@ TEST(SeamSuggestions, AShirtsYokeTakesTheBackTheShouldersAndTheArmholesTop) {
     if (pieces.count(s.name)) continue;
     for (const auto& h : s.hems) pieces[s.name].push_back(piece(h));
     ease[s.name] = s.ease;
-    if (s.name.find("side seam") != std::string::npos) EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
+    if (s.name.find("side seam") != std::string::npos) {
+      EXPECT_NEAR(s.length_a, 0.454, 0.005) << s.name;
+    }
   }
   using V = std::vector<std::string>;
   EXPECT_EQ(pieces["yoke seam"], (V{"YOKE", "BACKPANEL"}));
@@ -697,3 +699,47 @@ TEST(FlipSeam, ReversesTheSecondSideAndTwiceIsNoChange) {
   FlipSeam wrong("pattern1");
   EXPECT_THROW(execute(doc, wrong), vgd::Error);
 }
+
+namespace {
+
+// Gerber's tank with bindings: the neck binding (a 3.8 cm strip cut long,
+// 67 cm along the edge sewn for a 58.5 cm neckline in size 36) is sewn round
+// the back's and the front's necklines between the shoulder seams, from
+// centre back, and its ends to each other there (one drawn square, one
+// slanted: trimmed, both are square); the armhole binding (81 cm), further
+// from the neckline's length, is not sewn there, nor anywhere yet. Graded:
+// the same in size 50.
+TEST(SeamSuggestions, ATanksNeckBindingIsSewnRoundItsNeckline) {
+  VGD_REQUIRE_SHARED();
+  const Document doc = shared_document("simple.DXF");
+  for (const auto& [size, neckline] : {std::pair{"36", 0.585}, std::pair{"50", 0.631}}) {
+    SCOPED_TRACE(size);
+    std::map<std::string, int> count;
+    for (const auto& s : at_size(doc, size)) {
+      ++count[s.name];
+      std::set<std::string> pieces;
+      for (const auto& h : s.hems) pieces.insert(std::string(doc.find(h.pattern)->attribute("piece")));
+      EXPECT_FALSE(pieces.count("C-S1615WWO206-AB")) << s.name;
+      if (s.name == "binding ends") {
+        EXPECT_EQ(pieces, (std::set<std::string>{"C-S1615WWO206-NB"}));
+        EXPECT_NE(s.reason.find("cut square when trimmed"), std::string::npos) << s.reason;
+      }
+      if (s.name != "neck seam") continue;
+      SCOPED_TRACE(s.reason);
+      EXPECT_EQ(doc.find(s.hems[0].pattern)->attribute("piece"), "C-S1615WWO206-NB");
+      EXPECT_EQ(pieces, (std::set<std::string>{"C-S1615WWO206-NB", "C-S1615WWO206-F", "C-S1615WWO206-B"}));
+      EXPECT_EQ(s.hems.size(), 4u) << "the binding; the back from centre back, the front, the back to centre back";
+      EXPECT_NEAR(s.length_b, neckline, 0.001);
+      EXPECT_GT(s.ease, 0.08) << "cut long";
+      EXPECT_NE(s.reason.find("cut long: trimmed to the neckline"), std::string::npos);
+    }
+    EXPECT_EQ(count, (std::map<std::string, int>{{"binding ends", 1},
+                                                  {"left shoulder", 1},
+                                                  {"left side seam", 1},
+                                                  {"neck seam", 1},
+                                                  {"right shoulder", 1},
+                                                  {"right side seam", 1}}));
+  }
+}
+
+}  // namespace
