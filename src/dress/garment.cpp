@@ -41,9 +41,6 @@ struct Seam {
 
 double dist(const Vec2& a, const Vec2& b) { return (a - b).norm(); }
 
-// What a sewer eases in without a mark, m (xvc/seams.cpp scores alike).
-constexpr double kSewingSlack = 0.002;
-
 // Boundary vertices i, i+1, ..., j (cyclic, j reached), as points.
 std::vector<Vec2> span_points(const std::vector<ContourPoint>& bd, int i, int j) {
   const int n = static_cast<int>(bd.size());
@@ -498,7 +495,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     }
     auto& bd = gp.piece.boundary;
     const double mine = polyline_length(span_points(bd, h.a, h.b));
-    if (mine <= rest + kSewingSlack) continue;
+    if (mine <= rest + xvc::kSewingSlack) continue;
     auto trimmed = bd;
     const auto index = trim_strip(trimmed, h.a, h.b, mine - rest);
     bool fits = index.has_value();

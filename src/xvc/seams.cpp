@@ -303,7 +303,6 @@ void score_notches(const std::vector<Part>& parts, SeamSuggestion& s, double& fa
   factor = want == 0 ? 1.0 : 0.6 + 0.4 * std::min(1.0, static_cast<double>(matched) / want);
 }
 
-constexpr double kSewingSlack = 0.002;  // m
 // How much longer a back may be than the yoke it is pleated or gathered into.
 constexpr double kYokeGathers = 0.15;
 // Relative length tolerance of a side seam (other seams: 0.02): a 2.5 % difference
@@ -1149,8 +1148,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         const auto around = split_round(fr, *nf, bk, *nbk);
         parts.insert(parts.end(), around.begin(), around.end());
         const double length = round_length(parts);
-        const std::string what = nb.role == Role::binding ? "binding " : "neckband ";
         const bool binding = nb.role == Role::binding;
+        const std::string what = binding ? "binding " : "neckband ";
         const auto best = sew_band(nb, std::move(parts), "neck seam",
                                    what + nb.o->piece + " to the neckline of " + bk.o->piece + " and " + fr.o->piece +
                                        (binding ? " (cut long: trimmed to the neckline when sewn)" : ""),

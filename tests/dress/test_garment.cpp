@@ -348,4 +348,79 @@ TEST(Garment, AFoldedPieceHangsAsTheHalfBesideItsSeamInTwoLayers) {
   }
 }
 
+// A binding sewn to an edge shorter than itself is trimmed to it: a
+// 2 × 40 cm strip with a slanted end (43 cm along its other edge) sewn by
+// its 40 cm edge to FRONT's 30 cm top is cut short, square, by 10 cm at the
+// end its sewn edge ends, and said. One that is not a straight strip (a
+// curved one) is not trimmed: eased in, with a warning naming it.
+TEST(Garment, ABindingLongerThanItsEdgeIsTrimmedSquareToIt) {
+  // The binding's stretch `edge` (its long edge) sewn to FRONT's top.
+  const auto document = [](std::vector<ContourPoint> binding, int edge) {
+    pattern::Style s;
+    s.name = "bound";
+    s.sample_size = "38";
+    s.sizes = {"38"};
+    pattern::Piece b;
+    b.block = "BINDING_38";
+    b.name = "BINDING";
+    b.size = "38";
+    b.boundary = std::move(binding);
+    s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), b};
+    xvc::Node root = xvc::from_style(s).root();
+    xvc::Document d(std::move(root), "bound.xvc");
+    const auto f = stretch_ids(d, 0), k = stretch_ids(d, 1);
+    xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "neck seam"}, {"type", "plain"}},
+                   {hem("hem1", k[edge], k[edge], "forward"), hem("hem2", f[2], f[2], "reverse")}};
+    root = d.root();
+    for (auto& c : root.children)
+      if (c.tag == "SEAMS") c.children = {seam};
+    return xvc::Document(std::move(root), "bound.xvc");
+  };
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  {
+    Diagnostics diag;
+    const Garment g = assemble_garment(document({{Vec2(2.0, 0), PointKind::turn},
+                                                 {Vec2(2.02, 0), PointKind::turn},
+                                                 {Vec2(2.02, 0.40), PointKind::turn},
+                                                 {Vec2(2.0, 0.43), PointKind::turn}},
+                                                1),
+                                       opt, diag);
+    ASSERT_EQ(g.seams.size(), 1u);
+    EXPECT_NEAR(g.seams[0].length_a, 0.30, 1e-12);
+    EXPECT_NEAR(g.seams[0].length_b, 0.30, 1e-12);
+    double y0 = 1e9, y1 = -1e9;
+    for (const auto& n : g.pieces[1].mesh.nodes) y0 = std::min(y0, n.y()), y1 = std::max(y1, n.y());
+    EXPECT_NEAR(y1 - y0, 0.30, 1e-12) << "cut square: its other edge as long";
+    bool said = false;
+    for (const auto& d : diag.items())
+      said = said || (d.entity == g.pieces[1].pattern_id &&
+                      d.message == "binding BINDING trimmed by 10.0 cm to the 30.0 cm it binds");
+    EXPECT_TRUE(said);
+  }
+  {
+    std::vector<ContourPoint> arc;  // a quarter ring, 2 cm wide: its outer edge 0.40 m
+    const double r = 0.40 / (M_PI / 2);
+    for (int k = 0; k <= 8; ++k) {
+      const double t = M_PI / 2 * k / 8;
+      arc.push_back({Vec2(2.0 + r * std::cos(t), r * std::sin(t)), k == 0 || k == 8 ? PointKind::turn : PointKind::curve});
+    }
+    for (int k = 8; k >= 0; --k) {
+      const double t = M_PI / 2 * k / 8;
+      arc.push_back({Vec2(2.0 + (r - 0.02) * std::cos(t), (r - 0.02) * std::sin(t)),
+                     k == 0 || k == 8 ? PointKind::turn : PointKind::curve});
+    }
+    Diagnostics diag;
+    const Garment g = assemble_garment(document(arc, 0), opt, diag);
+    ASSERT_EQ(g.seams.size(), 1u);
+    EXPECT_GT(g.seams[0].length_a, 0.39) << "not trimmed";
+    bool warned = false;
+    for (const auto& d : diag.items())
+      warned = warned || (d.severity == Severity::warning && d.entity == g.pieces[1].pattern_id &&
+                          d.message.find("binding BINDING is ") == 0 &&
+                          d.message.find("not a straight strip vgd can trim: it is eased in") != std::string::npos);
+    EXPECT_TRUE(warned);
+  }
+}
+
 }  // namespace vgd::dress

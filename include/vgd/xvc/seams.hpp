@@ -26,6 +26,11 @@
 
 namespace vgd::xvc {
 
+// What a sewer eases in without a mark, m: a seam's hems this much apart in
+// length sew as equal (suggestions score them alike; dress::assemble_garment
+// trims a binding only when it is longer than its opening by more).
+inline constexpr double kSewingSlack = 0.002;
+
 // One HEM: the boundary stretches from..to (C2DSEQ ids, inclusive) of one PATTERN.
 struct HemRef {
   std::string pattern;       // PATTERN id
