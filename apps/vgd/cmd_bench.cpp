@@ -20,7 +20,8 @@ namespace vgd::cli {
 // cmd_accuracy.cpp
 int bench_accuracy(bool quick, bool json, const std::filesystem::path& out_dir, const std::vector<std::string>& problems);
 // cmd_bench_dress.cpp
-int bench_dress(double spacing, const std::string& size, double time_limit, bool between_particles, bool json);
+int bench_dress(double spacing, const std::string& size, double time_limit, bool between_particles, bool json,
+                int threads);
 int bench_server(int clients, int workers, const std::string& job, bool json);
 int bench_robustness(const RobustnessArgs& args);
 }  // namespace vgd::cli
@@ -94,14 +95,15 @@ nlohmann::json to_json(const study::SceneRecord& r) {
 }
 
 // `vgd bench drape-sphere` / `sew-cylinder`: 1 thread, then every core with
-// the threads adapted to the machine's load and (thr "2f") fixed.
-int scene_bench(const std::string& name, bool json, double duration, bool self_collision) {
+// the threads adapted to the machine's load and (thr "2f") fixed; with
+// --threads N, N threads only (adapted, and fixed when N > 1).
+int scene_bench(const std::string& name, bool json, double duration, bool self_collision, int threads) {
   std::vector<study::SceneRecord> records;
   if (!json)
     std::printf("%-13s %3s %9s %9s %7s %8s %12s %12s %8s %9s %7s %9s  %s\n", "scene", "thr", "particles", "body tris",
                 "sim s", "wall s", "wall/sim-s", "Blender", "speedup", "pen. mm", "seams", "crossings", "status");
   std::vector<std::pair<int, bool>> runs;  // threads, adapted
-  for (const int t : study::thread_counts()) {
+  for (const int t : study::thread_counts(threads)) {
     runs.emplace_back(t, true);
     if (t > 1) runs.emplace_back(t, false);
   }
@@ -193,7 +195,8 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       ->capture_default_str();
   auto* dress = sub->add_subcommand(
       "dress", "The A-line skirt and the T-shirt over it, flat pieces to rest on the size-38 mannequin (about 5 000 "
-               "particles), 1 thread and every core, per stage and per effect, against the 10 s target");
+               "particles), 1 thread and every core (only --threads N when given), per stage and per effect, against the "
+               "10 s target");
   dress->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
   auto dress_spacing = std::make_shared<double>(0.019);
   auto dress_size = std::make_shared<std::string>("38");
@@ -248,8 +251,8 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
        {std::pair{"drape-sphere", "A 71 x 71 cloth dropped on a 4 992-triangle sphere, 2.4 s (data/scenes/drape-sphere.json)"},
         std::pair{"sew-cylinder", "Two 40 x 30 panels sewn into a tube round a cylinder, 2 s (data/scenes/sew-cylinder.json)"}}) {
     auto* c = sub->add_subcommand(name, std::string(what) +
-                                            "; 1 thread and every core (adapted to the load, and fixed), against "
-                                            "Blender's figures");
+                                            "; 1 thread and every core (adapted to the load, and fixed; only --threads N "
+                                            "when given), against Blender's figures");
     c->add_flag("--json", o->json, "Print the records as a JSON list on stdout");
     c->add_option("--duration", *scene_duration, "Simulated seconds instead of the scene's (a smoke test)")
         ->check(CLI::PositiveNumber);
@@ -267,10 +270,11 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       return vgd::cli::bench_robustness(*ra);
     }
     if (effects->parsed()) return effects_bench(o->json, o->quick);
-    if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, *dress_between, o->json);
+    if (dress->parsed()) return vgd::cli::bench_dress(*dress_spacing, *dress_size, *dress_limit, *dress_between, o->json,
+                                                     common.threads);
     if (accuracy->parsed()) return vgd::cli::bench_accuracy(o->quick, o->json, *accuracy_out, *accuracy_problems);
     for (auto* c : scene_cmds)
-      if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self);
+      if (c->parsed()) return scene_bench(c->get_name(), o->json, *scene_duration, *scene_self, common.threads);
     if (!engine->parsed()) return vgd::cli::kUsage;
     const auto file = o->scene_file.empty() ? vgd::shipped_scene("flag") : std::filesystem::path(o->scene_file);
     scene::SceneDef base = scene::load_scene(file);

@@ -21,7 +21,8 @@
 
 namespace vgd::study {
 
-std::vector<int> thread_counts() {
+std::vector<int> thread_counts(int only) {
+  if (only > 0) return {only};
   const int cores = std::max(1, omp_get_num_procs());
   std::vector<int> t{1};
   if (cores > 1) t.push_back(cores);
@@ -289,7 +290,8 @@ std::vector<EffectsRecord> effects_study(bool quick, const std::function<void(co
 }
 
 std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
-                                     bool between_particles, const std::function<void(const DressRecord&)>& on_record) {
+                                     bool between_particles, const std::function<void(const DressRecord&)>& on_record,
+                                     int threads_only) {
   dress::DrapeOptions o;
   o.garment = data_file("garments/a-line-skirt.xvc");
   o.over = {data_file("garments/t-shirt.xvc")};
@@ -300,7 +302,7 @@ std::vector<DressRecord> dress_study(double spacing, const std::string& size, do
   const scene::SceneDef def = dress::drape_scene(o);
   const int threads = omp_get_max_threads();
   std::vector<DressRecord> records;
-  for (const int t : thread_counts()) {
+  for (const int t : thread_counts(threads_only)) {
     omp_set_num_threads(t);
     dress::DrapeResult r = dress::run_drape(def, {});
     DressRecord rec{t, std::move(r.certificate),

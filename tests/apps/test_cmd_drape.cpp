@@ -536,7 +536,7 @@ TEST(CliDrape, ATightTShirtShowsTheBodyThroughItsCloth) {
   ASSERT_EQ(run_vgd({"mannequin", "--size", "46", "-o", (dir / "m46.obj").string(), "-q"}).code, 0);
   const auto out = dir / "drape";
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--size", "42", "--avatar",
-                          (dir / "m46.obj").string(), "-o", out.string(), "--time-limit", "8"});
+                          (dir / "m46.obj").string(), "-o", out.string(), "--time-limit", "5"});
   ASSERT_TRUE(r.code == 0 || r.code == 3) << r.err;
   EXPECT_NE(r.err.find("too small for the body: size 42 is cut for a bust of 96 cm"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("check failed: penetration: the body passes through"), std::string::npos) << r.err;

@@ -24,8 +24,9 @@
 
 namespace vgd::study {
 
-// 1 and, on a machine with more, every core.
-std::vector<int> thread_counts();
+// The thread counts a benchmark compares: 1 and, on a machine with more,
+// every core; only `only` when it is given (> 0: the user's --threads).
+std::vector<int> thread_counts(int only = 0);
 
 // ---- the engine ---------------------------------------------------------------------
 
@@ -104,11 +105,12 @@ struct DressRecord {
 
 // The project's A-line skirt with the T-shirt over it, from flat pieces to
 // rest on the mannequin of `size`, at `spacing` (m; 0.019 gives about 5 000
-// particles), on 1 thread and every core, the body kept out between
+// particles), on thread_counts(threads), the body kept out between
 // particles or not (DrapeOptions::between_particles). `on_record` sees each record.
 std::vector<DressRecord> dress_study(double spacing, const std::string& size, double time_limit,
                                      bool between_particles = true,
-                                     const std::function<void(const DressRecord&)>& on_record = {});
+                                     const std::function<void(const DressRecord&)>& on_record = {},
+                                     int threads = 0);
 
 // ---- robustness ---------------------------------------------------------------------
 
