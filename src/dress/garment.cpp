@@ -479,7 +479,8 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
 
   // A binding cut long is trimmed to the opening it binds (strips are cut
   // long and cut off where the binding meets itself): where a seam's hem on
-  // a binding is longer than its other hems together, the strip is cut short,
+  // a binding is longer than its other hems together (on other pieces: not
+  // the seam that sews its ends to each other), the strip is cut short,
   // square, at the end where that hem ends (its ends, when a seam sews them
   // to each other, then meet square).
   for (const auto& s : seams) {
@@ -489,10 +490,13 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     const auto* node = doc.find(gp.pattern_id);
     if (!node || xvc::piece_role(doc, *node).role != pattern::Role::binding) continue;
     double rest = 0;
+    bool ends = false;
     for (std::size_t k = 1; k < s.hems.size(); ++k) {
       const Hem& o = hems[s.hems[k]];
+      ends = ends || o.piece == h.piece;
       rest += polyline_length(span_points(g.pieces[o.piece].piece.boundary, o.a, o.b));
     }
+    if (ends) continue;
     auto& bd = gp.piece.boundary;
     const double mine = polyline_length(span_points(bd, h.a, h.b));
     if (mine <= rest + xvc::kSewingSlack) continue;

@@ -515,8 +515,8 @@ TEST(PrepareGarment, FrontsAndBacksAsLongAsLegsAreTheHalvesOfTrouserLegs) {
 // neckline (58.5 cm), folded lengthwise, arranged round the neck, and
 // trimmed square to the neckline when the garment is assembled: its seam as
 // long as the neckline, its mesh 1.9 cm wide in two layers, its ends (one
-// drawn slanted) both 1.9 cm and sewn to each other. The armhole binding is
-// left out saying what vgd does not sew yet.
+// drawn slanted) both 1.9 cm and sewn to each other, with no warning. The
+// armhole binding is left out saying what vgd does not sew yet.
 TEST(PrepareGarment, ATanksNeckBindingIsSewnFoldedAndTrimmedToTheNeckline) {
   VGD_REQUIRE_SHARED();
   dxf::ImportOptions unfold;
@@ -575,6 +575,10 @@ TEST(PrepareGarment, ATanksNeckBindingIsSewnFoldedAndTrimmedToTheNeckline) {
     trimmed = trimmed || d.message.find("binding C-S1615WWO206-NB trimmed by 8.5 cm to the 58.5 cm it binds") !=
                              std::string::npos;
   EXPECT_TRUE(trimmed);
+  // The seam sewing its ends to each other is not a seam it binds: no warning
+  // that the strip is longer than it and cannot be trimmed.
+  for (const auto& d : diag.items())
+    EXPECT_EQ(d.message.find("not a straight strip vgd can trim"), std::string::npos) << d.message;
 }
 
 }  // namespace vgd::dress
