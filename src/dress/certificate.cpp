@@ -212,7 +212,21 @@ std::vector<Failure> Certificate::failures() const {
   std::vector<Failure> out;
   auto pct = [](double v) { return format_fixed(100 * v, 0) + " %"; };
   if (stop_reason == "error") out.push_back({"error", stop_message});
-  else if (stop_reason != "rest") out.push_back({"no rest", "stopped at the time limit, " + format_fixed(simulated_s, 2) + " s simulated"});
+  else if (stop_reason != "rest") {
+    std::string detail = "stopped at the time limit, " + format_fixed(simulated_s, 2) + " s simulated";
+    if (still_moving) {
+      const StillMoving& m = *still_moving;
+      detail += "; still moving: a particle " + format_fixed(100 * m.path, 1) + " cm over the last " +
+                format_fixed(m.window_s, 2) + " s, at (" + format_fixed(m.at.x(), 3) + ", " + format_fixed(m.at.y(), 3) +
+                ", " + format_fixed(m.at.z(), 3) + ") m";
+      if (m.near.size() == 1) detail += " by the " + m.near[0];
+      if (m.near.size() >= 2) detail += " between the " + m.near[0] + " and the " + m.near[1];
+      std::string pieces;
+      for (const auto& [piece, n] : m.pieces) pieces += (pieces.empty() ? "" : ", ") + piece + " " + std::to_string(n);
+      if (!pieces.empty()) detail += " (particles moving half as far or more: " + pieces + ")";
+    }
+    out.push_back({"no rest", detail});
+  }
   for (const auto& s : seams)
     if (s.closed != s.pairs)
       out.push_back({"seams open", s.name + ": " + std::to_string(s.closed) + "/" + std::to_string(s.pairs) +
@@ -488,6 +502,13 @@ std::string to_json(const Certificate& c) {
   j["settings"] = settings;
   j["stop"] = {{"reason", c.stop_reason}, {"message", c.stop_message}, {"simulated_s", c.simulated_s},
                {"wall_s", c.wall_s}, {"frames", c.frames}, {"frames_on_fewer_threads", c.frames_on_fewer_threads}};
+  if (c.still_moving) {
+    const StillMoving& m = *c.still_moving;
+    json pieces = json::object();
+    for (const auto& [piece, n] : m.pieces) pieces[piece] = n;
+    j["still_moving"] = {{"window_s", m.window_s}, {"path_m", m.path}, {"at_m", {m.at.x(), m.at.y(), m.at.z()}},
+                         {"pieces", pieces}, {"near", m.near}};
+  }
   json stages = json::array();
   for (const auto& s : c.stages) stages.push_back({{"name", s.name}, {"wall_s", s.wall_s}, {"simulated_s", s.simulated_s}});
   j["stages"] = stages;
@@ -652,6 +673,21 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
   c.wall_s = r.number(r.at(stop, "wall_s", "stop"), "stop.wall_s");
   c.frames = r.int32(r.at(stop, "frames", "stop"), "stop.frames");
   c.frames_on_fewer_threads = r.int32(r.at(stop, "frames_on_fewer_threads", "stop"), "stop.frames_on_fewer_threads");
+  if (j.contains("still_moving")) {
+    const json& m = j["still_moving"];
+    const std::string p = "still_moving";
+    StillMoving sm;
+    sm.window_s = r.number(r.at(m, "window_s", p), p + ".window_s");
+    sm.path = r.number(r.at(m, "path_m", p), p + ".path_m");
+    sm.at = r.vec3(r.at(m, "at_m", p), p + ".at_m");
+    const json& pieces = r.at(m, "pieces", p);
+    if (!pieces.is_object()) r.fail(p + ".pieces", "expected an object");
+    for (const auto& [k, v] : pieces.items()) sm.pieces.emplace_back(k, r.int32(v, p + ".pieces." + k));
+    std::stable_sort(sm.pieces.begin(), sm.pieces.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    const json& near = r.array(r.at(m, "near", p), p + ".near");
+    for (std::size_t i = 0; i < near.size(); ++i) sm.near.push_back(r.text(near[i], p + ".near[" + std::to_string(i) + "]"));
+    c.still_moving = std::move(sm);
+  }
   const json& stages = r.array(r.at(j, "stages", ""), "stages");
   for (std::size_t i = 0; i < stages.size(); ++i) {
     const std::string p = "stages[" + std::to_string(i) + "]";

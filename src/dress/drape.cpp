@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
 #include <optional>
 
 #include "vgd/core/data.hpp"
@@ -27,6 +31,68 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string metres(double v) { return format_double(v) + " m"; }
+
+// The last frames of a run (a second of simulated time: fps + 1 frames), to
+// say where a drape that did not come to rest still moves.
+class MotionWindow : public sim::FrameSink {
+ public:
+  explicit MotionWindow(int frames) : keep_(std::max(2, frames + 1)) {}
+  void frame(int, double t, const sim::VecX& x) override {
+    frames_.push_back(x);
+    times_.push_back(t);
+    if (static_cast<int>(frames_.size()) > keep_) {
+      frames_.pop_front();
+      times_.pop_front();
+    }
+  }
+
+  // Certificate::still_moving from the frames kept; nullopt with fewer than two.
+  std::optional<StillMoving> still_moving(const scene::Scene& scene) const {
+    if (frames_.size() < 2) return std::nullopt;
+    const auto n = static_cast<int>(frames_.back().size() / 3);
+    std::vector<double> path(n, 0.0);
+    for (std::size_t k = 1; k < frames_.size(); ++k) {
+      if (frames_[k].size() != frames_[k - 1].size()) return std::nullopt;
+      for (int i = 0; i < n; ++i) path[i] += (sim::at(frames_[k], i) - sim::at(frames_[k - 1], i)).norm();
+    }
+    StillMoving m;
+    m.window_s = times_.back() - times_.front();
+    const int top = static_cast<int>(std::max_element(path.begin(), path.end()) - path.begin());
+    m.path = path[top];
+    m.at = sim::at(frames_.back(), top);
+    std::map<std::string, int> by_piece;
+    for (const auto& p : scene.pieces)
+      for (int i = p.first; i < p.first + p.count && i < n; ++i)
+        if (path[i] >= 0.5 * m.path) ++by_piece[p.name];
+    m.pieces.assign(by_piece.begin(), by_piece.end());
+    std::stable_sort(m.pieces.begin(), m.pieces.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    if (scene.avatar && !scene.avatar->segments.empty()) {
+      // Each segment's nearest triangle centre to the particle.
+      const auto& surf = scene.avatar->surface;
+      const auto& segs = scene.avatar->segments;
+      std::vector<double> nearest(segs.size(), std::numeric_limits<double>::infinity());
+      for (std::size_t t = 0; t < surf.triangles.size() && t < scene.avatar->triangle_segment.size(); ++t) {
+        const int sg = scene.avatar->triangle_segment[t];
+        if (sg < 0 || sg >= static_cast<int>(segs.size())) continue;
+        const auto& tri = surf.triangles[t];
+        const Vec3 c = (surf.vertices[tri[0]] + surf.vertices[tri[1]] + surf.vertices[tri[2]]) / 3.0;
+        nearest[sg] = std::min(nearest[sg], (c - m.at).norm());
+      }
+      std::vector<std::size_t> order(segs.size());
+      for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return nearest[a] < nearest[b]; });
+      for (const std::size_t k : order)
+        if (std::isfinite(nearest[k]) && nearest[k] <= nearest[order.front()] + kNearCrease && m.near.size() < 2)
+          m.near.push_back(segs[k].name);
+    }
+    return m;
+  }
+
+ private:
+  int keep_;
+  std::deque<sim::VecX> frames_;
+  std::deque<double> times_;
+};
 
 }  // namespace
 
@@ -225,7 +291,10 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     if (progress) progress(d);
   };
   if (progress) progress({"placing", 0.0, def.run.duration, placing_wall, 0, 0, 0.0, &r.scene});
-  r.summary = sim::run(sys, *integrator, r.state, r.scene.run, sinks, on_frame);
+  MotionWindow window(static_cast<int>(std::lround(r.scene.run.fps)));
+  std::vector<sim::FrameSink*> all_sinks = sinks;
+  all_sinks.push_back(&window);
+  r.summary = sim::run(sys, *integrator, r.state, r.scene.run, all_sinks, on_frame);
   r.positions = sys.expand(r.state.x);
 
   // The certificate.
@@ -265,6 +334,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
                           def.effects.collision && def.effects.collision->vertex_clearance > 0.0 ? "on" : "off");
   c.stop_reason = !r.summary.ok ? "error" : r.summary.at_rest ? "rest" : "time limit";
   c.stop_message = r.summary.error;
+  if (c.stop_reason == "time limit") c.still_moving = window.still_moving(r.scene);
   c.simulated_s = r.summary.simulated_s;
   c.wall_s = seconds_since(t_start);
   c.frames = r.summary.frames;

@@ -303,6 +303,36 @@ TEST(CliDrape, TwoThreadsGiveTheOneThreadDrapeBitForBit) {
 // untangling, the body's push after self-collision and sewn hems left exempt
 // left 1–207 crossing pairs depending on the run and the size, most at the
 // armholes (docs/collisions.md); without self-collision ~500.
+// A drape stopped at its time limit says where its cloth still moves: the
+// particle that moved furthest over the run's last second (here the whole
+// 0.4 s, the T-shirt still sewing), beside which body segments, and the
+// pieces moving half as far; in the certificate and in what vgd prints.
+TEST(CliDrape, ADrapeStoppedAtItsTimeLimitSaysWhereItStillMoves) {
+  const auto out = scratch_dir("drape-still-moving");
+  const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "-o", out.string(),
+                          "--time-limit", "0.4"});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("no rest: stopped at the time limit, 0.40 s simulated; still moving: a particle "),
+            std::string::npos)
+      << r.err;
+  const json c = read_json(out / "certificate.json");
+  ASSERT_TRUE(c.contains("still_moving")) << c.dump();
+  const json& m = c["still_moving"];
+  EXPECT_NEAR(m["window_s"].get<double>(), 0.4, 1e-9);
+  EXPECT_GT(m["path_m"].get<double>(), 0.01);
+  std::set<std::string> placed;
+  for (const auto& p : c["placement"]) placed.insert(p["piece"].get<std::string>());
+  ASSERT_FALSE(m["pieces"].empty());
+  for (const auto& [piece, n] : m["pieces"].items()) {
+    EXPECT_TRUE(placed.count(piece)) << piece;
+    EXPECT_GE(n.get<int>(), 1);
+  }
+  const std::set<std::string> segments{"head", "neck", "torso", "hips", "left-arm", "right-arm", "left-leg", "right-leg"};
+  ASSERT_FALSE(m["near"].empty());
+  EXPECT_LE(m["near"].size(), 2u);
+  for (const auto& s : m["near"]) EXPECT_TRUE(segments.count(s.get<std::string>())) << s;
+}
+
 TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
   const auto out = scratch_dir("drape-tshirt");
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "-o", out.string(),
@@ -312,6 +342,7 @@ TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
   ASSERT_EQ(c["seams"].size(), 8u);  // sides, shoulders, armholes, underarms
   EXPECT_EQ(closed_pairs(c), all_pairs(c)) << c["seams"].dump();
   EXPECT_EQ(c["stop"]["reason"], "rest") << c["stop"].dump();
+  EXPECT_FALSE(c.contains("still_moving")) << "at rest: nothing still moves";
   EXPECT_LE(c["penetration"]["max_m"].get<double>(), 1e-3);
   EXPECT_EQ(c["triangle_intersections"].get<int>(), 0) << c["triangle_intersections_by_pieces"].dump();
   EXPECT_GT(c["contact"]["particles"].get<int>(), 200);

@@ -196,6 +196,32 @@ TEST(Certificate, ItsJsonReadsBackToTheSameCertificate) {
   EXPECT_EQ(back.placement.front().raised, 0.0);
 }
 
+// A drape stopped at the time limit says where its cloth still moves: the
+// particle that moved furthest over the last second, where, beside which
+// body segments, and the pieces moving half as far; read back the same.
+TEST(Certificate, ANoRestSaysWhereTheClothStillMoves) {
+  Certificate c = good();
+  c.stop_reason = "time limit";
+  c.simulated_s = 8.0;
+  EXPECT_EQ(c.failures().front().detail, "stopped at the time limit, 8.00 s simulated");
+  c.still_moving = StillMoving{1.0, 0.4213, Vec3(0.214, 1.33, -0.018), {{"SL1_58", 6}, {"FR_58", 3}}, {"torso", "left-arm"}};
+  const auto f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].kind, "no rest");
+  EXPECT_EQ(f[0].detail,
+            "stopped at the time limit, 8.00 s simulated; still moving: a particle 42.1 cm over the last 1.00 s, at "
+            "(0.214, 1.330, -0.018) m between the torso and the left-arm (particles moving half as far or more: "
+            "SL1_58 6, FR_58 3)");
+  const std::string text = to_json(c);
+  const Certificate back = certificate_from_json(text, "certificate.json");
+  ASSERT_TRUE(back.still_moving.has_value());
+  EXPECT_EQ(back.still_moving->pieces, c.still_moving->pieces) << "most first";
+  EXPECT_EQ(back.failures().front().detail, f[0].detail);
+  EXPECT_EQ(to_json(back), text);
+  c.still_moving->near = {"left-arm"};
+  EXPECT_NE(c.failures().front().detail.find("m by the left-arm ("), std::string::npos) << c.failures().front().detail;
+}
+
 TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {
   const auto error_of = [](const std::string& text) {
     try {

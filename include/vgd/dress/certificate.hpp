@@ -16,6 +16,7 @@
 //                  the cloth puts on it (normal force / particle area, Pa);
 //   energy         the mean kinetic energy per particle at every frame, J.
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -88,6 +89,21 @@ struct OpenSide {
   double widest_deg = 0;       // deg: the widest arc without cloth
 };
 
+// Where a drape that did not come to rest still moves: over the run's last
+// second of simulated time, the particle that moved furthest (the sum of its
+// moves from frame to frame: a particle jumping back and forth moves far and
+// ends where it was), where it is at the end, the pieces holding particles
+// that moved at least half as far, and the body segments beside it (one, or
+// two at a crease: an armpit is the torso and an arm).
+inline constexpr double kNearCrease = 0.02;  // m
+struct StillMoving {
+  double window_s = 0;     // s: the span measured (the last second, or the whole run when shorter)
+  double path = 0;         // m: the furthest a particle moved over it
+  Vec3 at = Vec3::Zero();  // m: that particle at the end
+  std::vector<std::pair<std::string, int>> pieces;  // (piece, particles moving at least path / 2), most first
+  std::vector<std::string> near;  // body segments whose surface is within kNearCrease of the nearest's
+};
+
 struct StageTime {
   std::string name;         // placing, sewing, settling
   double wall_s = 0;        // wall-clock seconds
@@ -102,6 +118,7 @@ struct Certificate {
   // Why it stopped: "rest", "time limit", "error".
   std::string stop_reason;
   std::string stop_message;
+  std::optional<StillMoving> still_moving;  // stopped at the time limit: where the cloth still moves
   double simulated_s = 0, wall_s = 0;
   int frames = 0;
   int frames_on_fewer_threads = 0;  // frames run on fewer threads than asked, cores being busy (sim/threads.hpp)
