@@ -363,6 +363,12 @@ std::pair<RobustnessRecord, sim::VecX> drape_case(const RobustnessCase& k, const
   for (const auto& f : failures) {
     if (r.failure.find(f.kind) != std::string::npos) continue;
     r.failure += (r.failure.empty() ? "" : ", ") + f.kind;
+    // Where a run that did not come to rest still moves: the body segments beside it.
+    if (f.kind == "no rest" && r.certificate.still_moving && !r.certificate.still_moving->near.empty()) {
+      std::string near;
+      for (const auto& n : r.certificate.still_moving->near) near += (near.empty() ? "" : "/") + n;
+      r.failure += " (" + near + ")";
+    }
   }
   r.clean = failures.empty();
   for (const auto& s : r.certificate.strain) r.max_strain = std::max({r.max_strain, s.warp.p95, s.weft.p95});

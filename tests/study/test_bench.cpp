@@ -40,5 +40,28 @@ TEST(StudyRobustness, TheTShirtRestsCleanAsPlacedAndJittered) {
   EXPECT_GT(records[1].spread, 1e-6);
 }
 
+// A run that does not come to rest (0.4 s: the T-shirt still sewing) says
+// where it still moves: the body segments beside the particle that moved
+// furthest, as its certificate gives them.
+TEST(StudyRobustness, ARunThatDoesNotRestSaysBesideWhichSegmentsItMoves) {
+  RobustnessOptions o;
+  o.garments = {data_file("garments/t-shirt.xvc")};
+  o.spacings = {0.019};
+  o.sizes = {"38"};
+  o.materials = {""};
+  o.models = {scene::ClothModel::mass_spring};
+  o.jitters = 0;
+  o.time_limit = 0.4;
+  const auto records = robustness_study(o, {});
+  ASSERT_EQ(records.size(), 1u);
+  const auto& r = records.front();
+  EXPECT_FALSE(r.clean);
+  ASSERT_TRUE(r.certificate.still_moving.has_value());
+  std::string near;
+  for (const auto& n : r.certificate.still_moving->near) near += (near.empty() ? "" : "/") + n;
+  EXPECT_FALSE(near.empty());
+  EXPECT_EQ(r.failure.rfind("no rest (" + near + ")", 0), 0u) << r.failure;
+}
+
 }  // namespace
 }  // namespace vgd::study

@@ -131,7 +131,8 @@ struct RobustnessRecord {
   RobustnessCase run;
   dress::Certificate certificate;
   bool clean = false;        // passed: rest, seams closed, no penetration, no crossing, no failure
-  std::string failure;       // the failure classes, comma-separated ("" when clean)
+  std::string failure;       // the failure classes, comma-separated ("" when clean); a run not at
+                             // rest says where it still moves: "no rest (torso/left-arm)"
   double max_strain = 0.0;   // the largest warp or weft strain p95 over the pieces (1)
   double max_moved = 0.0;    // m: the largest placement displacement
   // m: the largest distance of a particle from where the same case's run
