@@ -305,8 +305,9 @@ TEST(CliDrape, TwoThreadsGiveTheOneThreadDrapeBitForBit) {
 // armholes (docs/collisions.md); without self-collision ~500.
 // A drape stopped at its time limit says where its cloth still moves: the
 // particle that moved furthest over the run's last second (here the whole
-// 0.4 s, the T-shirt still sewing), beside which body segments, and the
-// pieces moving half as far; in the certificate and in what vgd prints.
+// 0.4 s, the T-shirt still sewing), beside which body segments (on the
+// mannequin and on a body file), and the pieces moving half as far; in the
+// certificate and in what vgd prints.
 TEST(CliDrape, ADrapeStoppedAtItsTimeLimitSaysWhereItStillMoves) {
   const auto out = scratch_dir("drape-still-moving");
   const auto r = run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "-o", out.string(),
@@ -331,6 +332,20 @@ TEST(CliDrape, ADrapeStoppedAtItsTimeLimitSaysWhereItStillMoves) {
   ASSERT_FALSE(m["near"].empty());
   EXPECT_LE(m["near"].size(), 2u);
   for (const auto& s : m["near"]) EXPECT_TRUE(segments.count(s.get<std::string>())) << s;
+
+  // On a body file (its triangles not labelled: segments from its
+  // landmarks) the segments beside it are found as well.
+  const auto body = out / "m38.obj";
+  ASSERT_EQ(run_vgd({"mannequin", "--size", "38", "-o", body.string(), "-q"}).code, 0);
+  const auto on_file = out / "on-file";
+  EXPECT_EQ(run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--avatar", body.string(), "-o",
+                     on_file.string(), "--time-limit", "0.4", "-q"})
+                .code,
+            3);
+  const json f = read_json(on_file / "certificate.json");
+  ASSERT_TRUE(f.contains("still_moving")) << f.dump();
+  ASSERT_FALSE(f["still_moving"]["near"].empty()) << f["still_moving"].dump();
+  for (const auto& s : f["still_moving"]["near"]) EXPECT_TRUE(segments.count(s.get<std::string>())) << s;
 }
 
 TEST(CliDrape, DraftedTShirtSewsEverySeamAndComesToRest) {
