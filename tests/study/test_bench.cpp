@@ -12,14 +12,21 @@
 namespace vgd::study {
 namespace {
 
-TEST(StudyRobustness, TheTShirtRestsCleanAsPlacedAndJittered) {
+// The project's T-shirt in size 38 at `spacing` (m), in its own fabric,
+// mass-spring, with `jitters` jittered runs.
+RobustnessOptions tshirt(double spacing, int jitters) {
   RobustnessOptions o;
   o.garments = {data_file("garments/t-shirt.xvc")};
-  o.spacings = {0.015};
+  o.spacings = {spacing};
   o.sizes = {"38"};
   o.materials = {""};
   o.models = {scene::ClothModel::mass_spring};
-  o.jitters = 1;
+  o.jitters = jitters;
+  return o;
+}
+
+TEST(StudyRobustness, TheTShirtRestsCleanAsPlacedAndJittered) {
+  const RobustnessOptions o = tshirt(0.015, 1);
   const int threads = omp_get_max_threads();
   int seen = 0;
   const auto records = robustness_study(o, [&](const RobustnessRecord&) { ++seen; });
@@ -44,13 +51,7 @@ TEST(StudyRobustness, TheTShirtRestsCleanAsPlacedAndJittered) {
 // where it still moves: the body segments beside the particle that moved
 // furthest, as its certificate gives them.
 TEST(StudyRobustness, ARunThatDoesNotRestSaysBesideWhichSegmentsItMoves) {
-  RobustnessOptions o;
-  o.garments = {data_file("garments/t-shirt.xvc")};
-  o.spacings = {0.019};
-  o.sizes = {"38"};
-  o.materials = {""};
-  o.models = {scene::ClothModel::mass_spring};
-  o.jitters = 0;
+  RobustnessOptions o = tshirt(0.019, 0);
   o.time_limit = 0.4;
   const auto records = robustness_study(o, {});
   ASSERT_EQ(records.size(), 1u);
