@@ -23,7 +23,7 @@ struct Options {
       model = "mass-spring";
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
-  double time_limit = 8.0, spacing = 0.0;
+  double time_limit = 8.0, spacing = 0.0, repulsion_damping = 0.0;
   bool self_collision = true, frames = false, json = false, between = true, offset_contact = false, sleeves_first = false;
 };
 
@@ -68,6 +68,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("--self-collision,!--no-self-collision", o->self_collision,
                 "Keep the cloth from passing through itself (default on; --no-self-collision is about 3x "
                 "faster and leaves cloth crossing cloth)");
+  sub->add_option("--repulsion-damping", o->repulsion_damping,
+                  "Damp the self-collision's repulsion, as a fraction of critical (default 0: none; 1 took a flap "
+                  "standing against other cloth to rest: docs/collisions.md, \"Damped repulsion\")")
+      ->check(CLI::NonNegativeNumber);
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
                 "heels, a crotch under a seam junction; docs/collisions.md)");
@@ -107,6 +111,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.spacing = o->spacing;
     d.quality = scene::parse_quality(o->quality);
     d.self_collision = o->self_collision;
+    d.repulsion_damping = o->repulsion_damping;
     d.between_particles = o->between;
     d.offset_contact = o->offset_contact;
     d.sleeves_first = o->sleeves_first;

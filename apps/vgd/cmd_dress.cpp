@@ -31,7 +31,7 @@ struct Options {
   bool previews = true, json = false, between = true, sleeves_first = false;
   std::string model = "mass-spring";
   std::string material, material_id, quality = "standard", preview_size = "768", seams;
-  double spacing = 0.0;
+  double spacing = 0.0, repulsion_damping = 0.0;
 };
 
 vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common) {
@@ -65,6 +65,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("--sleeves-first", o->sleeves_first,
                 "Sew each sleeve into a tube round its arm before pulling its cap to the armhole (vgd drape "
                 "--sleeves-first)");
+  sub->add_option("--repulsion-damping", o->repulsion_damping,
+                  "Damp the self-collision's repulsion, as a fraction of critical (vgd drape --repulsion-damping)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--model", o->model, "Cloth model: mass-spring (the default) or strain-rosette (vgd drape --model)")
       ->check(CLI::IsMember({"mass-spring", "strain-rosette"}))
       ->capture_default_str();
@@ -151,6 +154,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.time_limit = o->time_limit;
     run.options.between_particles = o->between;
     run.options.sleeves_first = o->sleeves_first;
+    run.options.repulsion_damping = o->repulsion_damping;
     run.options.model = vgd::scene::parse_cloth_model(o->model);
     run.options.material_xvc = o->material;
     run.options.material_id = o->material_id;

@@ -238,6 +238,7 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
   e.seams = seams;
   if (o.self_collision) {
     e.self_collision = sim::SelfCollisionDef{};
+    e.self_collision->damping = o.repulsion_damping;
     // Seams accelerate particles to tens of m/s; capped at 1 m/s (a 20 cm gap
     // closes in 0.2 s), each particle's motion over a 10 ms step stays under
     // 1 cm and self-collision tests stay local (minutes per simulated second
@@ -351,6 +352,8 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
     c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
   }
   c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
+  if (def.effects.self_collision && def.effects.self_collision->damping > 0.0)
+    c.settings.emplace_back("repulsion_damping", format_double(def.effects.self_collision->damping) + " of critical");
   if (def.effects.contact) c.settings.emplace_back("contact", "offset");
   c.settings.emplace_back("between_particles",
                           def.effects.collision && def.effects.collision->vertex_clearance > 0.0 ? "on" : "off");

@@ -469,6 +469,8 @@ EffectsDef read_effects(Object o) {
     sim::SelfCollisionDef d;
     c.number("thickness", d.thickness, dim::length);
     c.number("stiffness", d.stiffness, dim::stiffness);
+    c.number("damping", d.damping, dim::none);
+    if (d.damping < 0.0) o.context().fail(c.at("damping"), "damping must be >= 0 (a fraction of critical)");
     c.flag("skip_one_ring", d.skip_one_ring);
     c.integer("passes", d.passes);
     if (c.enabled()) e.self_collision = d;

@@ -334,15 +334,19 @@ TEST(CliDrape, ADrapeStoppedAtItsTimeLimitSaysWhereItStillMoves) {
   for (const auto& s : m["near"]) EXPECT_TRUE(segments.count(s.get<std::string>())) << s;
 
   // On a body file (its triangles not labelled: segments from its
-  // landmarks) the segments beside it are found as well.
+  // landmarks) the segments beside it are found as well (the repulsion
+  // damped: vgd drape --repulsion-damping).
   const auto body = out / "m38.obj";
   ASSERT_EQ(run_vgd({"mannequin", "--size", "38", "-o", body.string(), "-q"}).code, 0);
   const auto on_file = out / "on-file";
   EXPECT_EQ(run_vgd({"drape", (source_dir() / "data/garments/t-shirt.xvc").string(), "--avatar", body.string(), "-o",
-                     on_file.string(), "--time-limit", "0.4", "-q"})
+                     on_file.string(), "--time-limit", "0.4", "--repulsion-damping", "1", "-q"})
                 .code,
             3);
   const json f = read_json(on_file / "certificate.json");
+  // The repulsion's damping, when asked for, is in the settings.
+  EXPECT_FALSE(c["settings"].contains("repulsion_damping"));
+  EXPECT_EQ(f["settings"]["repulsion_damping"], "1 of critical");
   ASSERT_TRUE(f.contains("still_moving")) << f.dump();
   ASSERT_FALSE(f["still_moving"]["near"].empty()) << f["still_moving"].dump();
   for (const auto& s : f["still_moving"]["near"]) EXPECT_TRUE(segments.count(s.get<std::string>())) << s;

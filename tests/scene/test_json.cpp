@@ -71,6 +71,20 @@ TEST(SceneFile, TheSeamsLastStitchReads) {
                      "effects.seams.last_stitch_distance", ">= 0");
 }
 
+// The self-collision's repulsion damping (docs/collisions.md, "Damped
+// repulsion"): a fraction of critical, none by default, never negative.
+TEST(SceneFile, TheRepulsionsDampingReads) {
+  json j = tiny_scene();
+  j["effects"]["self_collision"] = json::object();
+  const SceneDef none = parse(j);
+  ASSERT_TRUE(none.effects.self_collision);
+  EXPECT_EQ(none.effects.self_collision->damping, 0.0);
+  j["effects"]["self_collision"]["damping"] = 0.5;
+  EXPECT_EQ(parse(j).effects.self_collision->damping, 0.5);
+  expect_scene_error([](json& k) { k["effects"]["self_collision"] = {{"damping", -0.5}}; },
+                     "effects.self_collision.damping", ">= 0");
+}
+
 TEST(SceneFile, HeldContactsAreAnIntegratorFlagOffByDefault) {
   json j = tiny_scene();
   EXPECT_FALSE(parse(j).integrator.settings.hold_contacts);

@@ -40,6 +40,7 @@ struct DrapeOptions {
   // orthotropic membrane with bending; slower, docs/fabric-model.md).
   scene::ClothModel model = scene::ClothModel::mass_spring;
   bool self_collision = true;  // cloth kept from passing through cloth (docs/drape.md)
+  double repulsion_damping = 0.0;  // SelfCollisionDef::damping: fraction of critical (0 = none)
   // The body kept out of the cloth between particles as well (sharp body
   // parts and the cloth's edge midpoints and triangle centres;
   // docs/collisions.md, "Between particles"). Off, a crotch or a heel shows

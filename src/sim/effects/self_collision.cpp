@@ -205,17 +205,24 @@ class SelfCollision final : public Effect {
       double dn;
       if (!pressed(e.x, pr, nrm, dn, w)) continue;
       const double sgn = pr.side != 0.0 ? pr.side : (dn >= 0.0 ? 1.0 : -1.0);
-      const Vec3 fp = (k * (th - sgn * dn) * sgn) * nrm;
+      Vec3 fp = (k * (th - sgn * dn) * sgn) * nrm;
+      if (def_.damping > 0.0) {
+        Vec3 vr = at(e.v, pr.p);
+        for (int q = 0; q < 3; ++q) vr -= w[q] * at(e.v, tr[q]);
+        fp -= damping(pr.p) * vr.dot(nrm) * nrm;
+      }
       at(f, pr.p) += fp;
       for (int q = 0; q < 3; ++q) at(f, tr[q]) -= w[q] * fp;
     }
   }
+  // N·s/m: the repulsion's damping on particle p (SelfCollisionDef::damping).
+  double damping(int p) const { return def_.damping * 2.0 * std::sqrt(def_.stiffness * mass_[p]); }
   // f = k (th − |dn|) sgn(dn) n on the particle and −w_q f on the triangle's
   // corners; with n held fixed, ∂f_i/∂x_j = −k c_i c_j n nᵀ, c = (1, −w₀, −w₁,
   // −w₂): negative semi-definite. Explicitly, a 1 N/m spring on a 40 mg
   // particle is unstable above a 13 ms step (k h²/m > 4 for two springs) —
   // pressed layers (a sleeve cap under a bodice) blew up at 10 ms.
-  bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets&) override {
+  bool add_jacobian(const Eval& e, Triplets& dfdx, Triplets& dfdv) override {
     if (def_.stiffness <= 0.0) return true;
     if (!searched_) find_near(e.x);
     const double k = def_.stiffness;
@@ -229,6 +236,11 @@ class SelfCollision final : public Effect {
       const double c[4] = {1.0, -w[0], -w[1], -w[2]};
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) add_block(dfdx, idx[i], idx[j], (c[i] * c[j]) * nn);
+      if (def_.damping > 0.0) {
+        const Mat3 dd = -damping(pr.p) * nrm * nrm.transpose();
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j) add_block(dfdv, idx[i], idx[j], (c[i] * c[j]) * dd);
+      }
     }
     return true;
   }

@@ -41,6 +41,13 @@ struct SelfCollisionDef {
   // bound (2k per particle: a particle rarely presses on more than two
   // triangles at once). 0 = impulses and corrections only.
   double stiffness = 1.0;
+  // Damping of the repulsion, as a fraction of critical (0 = none): a pressed
+  // pair's relative normal velocity is taken off at 2 ζ √(k m) (m the pressed
+  // particle's mass), with its velocity Jacobian in the implicit step. A flap
+  // standing against other cloth (the men's tee's sleeve tip over the
+  // shoulder) swayed on the undamped spring as its pairs came and went, and
+  // the drape never came to rest (docs/collisions.md, "Damped repulsion").
+  double damping = 0.0;
   bool skip_one_ring = false;  // also skip particles sharing an edge with the triangle
   int passes = 4;              // Gauss–Seidel passes of the after-step correction
   // Detections per step: after the correction, the whole step's motion (start
