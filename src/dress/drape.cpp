@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
-#include <limits>
 #include <map>
 #include <optional>
 
@@ -66,47 +65,7 @@ class MotionWindow : public sim::FrameSink {
         if (path[i] >= 0.5 * m.path) ++by_piece[p.name];
     m.pieces.assign(by_piece.begin(), by_piece.end());
     std::stable_sort(m.pieces.begin(), m.pieces.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-    if (scene.avatar && !scene.avatar->segments.empty()) {
-      // Each segment's distance from the particle: its nearest triangle
-      // centre where the body's triangles are labelled (a mannequin), else
-      // its nearest point of the segment's elliptic cross-sections (an
-      // imported body, its segments found from its landmarks).
-      const auto& surf = scene.avatar->surface;
-      const auto& segs = scene.avatar->segments;
-      std::vector<double> nearest(segs.size(), std::numeric_limits<double>::infinity());
-      const auto& labels = scene.avatar->triangle_segment;
-      const bool labelled = labels.size() == surf.triangles.size() &&
-                            std::any_of(labels.begin(), labels.end(), [](int l) { return l >= 0; });
-      for (std::size_t t = 0; labelled && t < surf.triangles.size(); ++t) {
-        const int sg = scene.avatar->triangle_segment[t];
-        if (sg < 0 || sg >= static_cast<int>(segs.size())) continue;
-        const auto& tri = surf.triangles[t];
-        const Vec3 c = (surf.vertices[tri[0]] + surf.vertices[tri[1]] + surf.vertices[tri[2]]) / 3.0;
-        nearest[sg] = std::min(nearest[sg], (c - m.at).norm());
-      }
-      for (std::size_t k = 0; !labelled && k < segs.size(); ++k) {
-        const body::BodySegment& sg = segs[k];
-        if (sg.rings.empty()) continue;
-        const double along = (m.at - sg.start).dot(sg.axis);
-        const double s = std::clamp(along, 0.0, sg.length);
-        const body::SegmentRing ring = body::ring_at(sg, s);
-        Vec3 r = m.at - ring.centre;
-        r -= r.dot(sg.axis) * sg.axis;
-        const double u = r.dot(sg.side()), v = r.dot(sg.front), len = r.norm();
-        double radial = 0.0;
-        if (len > 1e-12 && ring.half_width > 0.0 && ring.half_depth > 0.0) {
-          const double a = u / len / ring.half_width, b = v / len / ring.half_depth;
-          radial = std::max(0.0, len - 1.0 / std::sqrt(a * a + b * b));
-        }
-        nearest[k] = std::hypot(radial, along - s);
-      }
-      std::vector<std::size_t> order(segs.size());
-      for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return nearest[a] < nearest[b]; });
-      for (const std::size_t k : order)
-        if (std::isfinite(nearest[k]) && nearest[k] <= nearest[order.front()] + kNearCrease && m.near.size() < 2)
-          m.near.push_back(segs[k].name);
-    }
+    if (scene.avatar) m.near = body::segments_beside(*scene.avatar, m.at, kNearCrease);
     return m;
   }
 

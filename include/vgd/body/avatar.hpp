@@ -106,4 +106,11 @@ struct Avatar {
   const BodySegment* segment(std::string_view name) const;
 };
 
+// The body's segments beside point p (m), nearest first: the nearest, and
+// a second within `within` m of it (two at a crease: an armpit is the torso
+// and an arm). A segment's distance is that of its nearest triangle centre
+// where the body's triangles are labelled (a mannequin), else of its
+// elliptic cross-sections (an imported body, its segments from landmarks).
+std::vector<std::string> segments_beside(const Avatar& body, const Vec3& p, double within);
+
 }  // namespace vgd::body
