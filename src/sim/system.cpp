@@ -271,27 +271,46 @@ int JacobianAssembler::slot(int i, int j) {
 // and every diagonal block (the step matrix always has M there).
 void System::grow_pattern(const std::vector<std::array<int, 2>>& blocks) {
   const int n = num_particles();
-  std::vector<std::array<int, 2>> all;
-  all.reserve(pattern_.col.size() + 2 * blocks.size() + n);
-  if (pattern_.n == n)
-    for (int i = 0; i < n; ++i)
-      for (int q = pattern_.row[i]; q < pattern_.row[i + 1]; ++q) all.push_back({i, pattern_.col[q]});
-  for (int i = 0; i < n; ++i) all.push_back({i, i});
-  for (const auto& [i, j] : blocks) all.push_back({i, j}), all.push_back({j, i});
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
+  // The old pattern is sorted row by row: only the new blocks are sorted,
+  // then merged into it (the pattern of a drape holds ~10 blocks a particle,
+  // and grows every time contact meets new pairs).
+  const bool keep = pattern_.n == n;
+  std::vector<std::array<int, 2>> add;
+  add.reserve(2 * blocks.size() + (keep ? 0 : n));
+  if (!keep)
+    for (int i = 0; i < n; ++i) add.push_back({i, i});
+  for (const auto& [i, j] : blocks) add.push_back({i, j}), add.push_back({j, i});
+  std::sort(add.begin(), add.end());
+  add.erase(std::unique(add.begin(), add.end()), add.end());
   BlockPattern p;
   p.n = n;
   p.row.assign(n + 1, 0);
-  p.col.resize(all.size());
-  for (std::size_t q = 0; q < all.size(); ++q) ++p.row[all[q][0] + 1], p.col[q] = all[q][1];
-  for (int i = 0; i < n; ++i) p.row[i + 1] += p.row[i];
+  p.col.reserve((keep ? pattern_.col.size() : 0) + add.size());
+  std::size_t a = 0;
+  for (int i = 0; i < n; ++i) {
+    int q = keep ? pattern_.row[i] : 0;
+    const int end = keep ? pattern_.row[i + 1] : 0;
+    for (;;) {
+      const bool more_new = a < add.size() && add[a][0] == i;
+      if (!more_new && q >= end) break;
+      if (more_new && (q >= end || add[a][1] <= pattern_.col[q])) {
+        if (q < end && pattern_.col[q] == add[a][1]) ++q;
+        p.col.push_back(add[a++][1]);
+      } else {
+        p.col.push_back(pattern_.col[q++]);
+      }
+    }
+    p.row[i + 1] = static_cast<int>(p.col.size());
+  }
+  // The pattern is symmetric: walking rows in order meets the blocks (i, j)
+  // of column j in the order row j lists its (j, i).
   p.diag.resize(n);
-  p.transpose.resize(all.size());
+  p.transpose.resize(p.col.size());
+  std::vector<int> next(p.row.begin(), p.row.end() - 1);
   for (int i = 0; i < n; ++i)
     for (int q = p.row[i]; q < p.row[i + 1]; ++q) {
       if (p.col[q] == i) p.diag[i] = q;
-      p.transpose[q] = p.find(p.col[q], i);
+      p.transpose[q] = next[p.col[q]]++;
     }
   p.version = ++pattern_versions_;
   pattern_ = std::move(p);

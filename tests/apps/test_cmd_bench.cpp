@@ -34,14 +34,16 @@ TEST(CliBench, DrapeSphereWithSelfCollisionHasNoCrossingsAndNoPenetration) {
   }
 }
 
-// vgd bench dress: the scene of the dressing target (two garments, about
-// 5 000 particles, a 5 000–20 000-triangle body) comes to rest with every
-// check passed. Given --threads 1 it runs on one thread only (without, on
-// one thread and every core: the same run on both, as the drape is,
-// CliDrape.TwoThreadsGiveTheOneThreadDrapeBitForBit). Its speed is the
-// benchmark's to report (docs/performance.md).
+// vgd bench dress: the scene of the dressing target (two garments, a
+// 5 000–20 000-triangle body) comes to rest with every check passed, here on
+// a 2.5 cm mesh (about 3 000 particles; the bench's own 1.9 cm, about 5 000,
+// is the benchmark's to run and report, docs/performance.md; the two layered
+// garments at the drape's 1.5 cm are CliDrape.SkirtAndTShirtOverItComeToRestUntangled).
+// Given --threads 1 it runs on one thread only (without, on one thread and
+// every core: the same run on both, as the drape is,
+// CliDrape.TwoThreadsGiveTheOneThreadDrapeBitForBit).
 TEST(CliBench, DressComesToRestWithEveryCheckPassed) {
-  const auto r = run_vgd({"--threads", "1", "bench", "dress", "--json"});
+  const auto r = run_vgd({"--threads", "1", "bench", "dress", "--spacing", "0.025", "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const json list = json::parse(r.out);
   ASSERT_EQ(list.size(), 1u) << list.dump();
@@ -52,7 +54,7 @@ TEST(CliBench, DressComesToRestWithEveryCheckPassed) {
     EXPECT_EQ(rec["stop"], "rest");
     EXPECT_EQ(rec["seams_closed"], rec["seam_pairs"]);
     EXPECT_EQ(rec["crossing_triangle_pairs"].get<int>(), 0);
-    EXPECT_NEAR(rec["particles"].get<int>(), 5000, 500);
+    EXPECT_NEAR(rec["particles"].get<int>(), 3000, 300);
     EXPECT_GE(rec["body_triangles"].get<int>(), 5000);
     EXPECT_LE(rec["body_triangles"].get<int>(), 20000);
     for (const char* stage : {"placing", "sewing", "settling"}) EXPECT_TRUE(rec["stages"].contains(stage)) << stage;

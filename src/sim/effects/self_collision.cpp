@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <tuple>
 
 #include <omp.h>
@@ -77,6 +78,22 @@ inline bool closest_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, con
   return true;
 }
 
+// Per particle, its mesh neighbours (in the order the edges list them), all
+// in one array: the detection walks them for every particle a triangle
+// meets, and one allocation per particle cost a cache miss each time.
+struct Adjacency {
+  std::vector<int> start, item;
+  void build(int n, const std::vector<std::array<int, 2>>& edges) {
+    start.assign(n + 1, 0);
+    for (const auto& e : edges) ++start[e[0] + 1], ++start[e[1] + 1];
+    for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+    item.resize(start[n]);
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const auto& e : edges) item[fill[e[0]]++] = e[1], item[fill[e[1]]++] = e[0];
+  }
+  std::span<const int> operator[](int i) const { return {item.data() + start[i], item.data() + start[i + 1]}; }
+};
+
 // Two edges (a0, a1) and (b0, b1) to be kept `thickness` apart along dir
 // (from b towards a, as before the step).
 struct EdgePair {
@@ -102,18 +119,7 @@ class SelfCollision final : public Effect {
     for (const auto& e : edges) sum += (at(m.x0, e[0]) - at(m.x0, e[1])).norm();
     const double mean_edge = edges.empty() ? d.thickness : sum / edges.size();
     cell_ = std::max(mean_edge, 2.0 * d.thickness);
-    adj_.resize(n_);
-    for (const auto& e : edges) {
-      adj_[e[0]].push_back(e[1]);
-      adj_[e[1]].push_back(e[0]);
-    }
-    if (d.skip_one_ring) {
-      ring_.resize(n_);
-      for (const auto& e : edges) {
-        ring_[e[0]].push_back(e[1]);
-        ring_[e[1]].push_back(e[0]);
-      }
-    }
+    adj_.build(n_, edges);
     stats_.min_distance = d.thickness;
     group_.resize(n_);
     for (int i = 0; i < n_; ++i) group_[i] = i;
@@ -792,9 +798,9 @@ class SelfCollision final : public Effect {
   bool skip(int p, const std::array<int, 3>& tr) const {
     if (same(p, tr[0]) || same(p, tr[1]) || same(p, tr[2])) return true;
     if (hem_[p] && (hem_[tr[0]] == hem_[p] || hem_[tr[1]] == hem_[p] || hem_[tr[2]] == hem_[p])) return true;
-    if (!ring_.empty())
+    if (def_.skip_one_ring)
       for (int q : tr)
-        for (int r : ring_[q])
+        for (int r : adj_[q])
           if (r == p) return true;
     return false;
   }
@@ -916,7 +922,6 @@ class SelfCollision final : public Effect {
   VecX mass_;             // kg
   std::vector<int> rep_;  // per particle: its merged particle (empty before the first merge)
   static constexpr int kMaxReverts = 16;  // detections of the fail-safe per step
-  std::vector<std::vector<int>> ring_;
   SpatialHash hash_;
   std::vector<SpatialHash> layer_hash_;           // per layer, its particles only (layered_)
   std::vector<std::vector<int>> layer_particles_;  // per layer
@@ -933,7 +938,7 @@ class SelfCollision final : public Effect {
   SpatialHash tri_hash_;     // untangling: triangles by their boxes
   VecX tri_lo_, tri_hi_;     // m: the triangles' boxes
   std::vector<EdgePair> edge_pairs_;
-  std::vector<std::vector<int>> adj_;  // per particle: its mesh neighbours
+  Adjacency adj_;  // per particle: its mesh neighbours
   VecX x_prev_;
   std::vector<double> disp_;  // m: per particle, how far it moved in the last step
   std::vector<int> group_;
