@@ -233,6 +233,7 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   // so the front and back halves meet at the leg's sides instead of overlapping
   // (a back half is cut wider than the leg's half for the seat).
   const bool half_leg = ar.segment.find("leg") != std::string::npos && (ar.side == "front" || ar.side == "back");
+  const bool whole_leg = limb && ar.segment.find("leg") != std::string::npos && !half_leg;
   const auto room = [&] { return half_leg ? 0.5 * curve.perimeter - 0.5 * gap : curve.perimeter - gap; };
   if (width > room()) {
     // Wider than the body: grow the clearance until the piece fits once around.
@@ -258,9 +259,13 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   // A half piece on the trunk (front or back, at most half way round) follows
   // the body's taper (below); a wider one is wrapped on the one curve.
   // A half leg follows its leg the same way (round the foot below the ankle,
-  // round the calf above it), however much wider than the leg it is cut.
-  const bool follow = (half_leg || (!limb && (ar.side == "front" || ar.side == "back") &&
-                                    width <= 0.5 * curve.perimeter)) &&
+  // round the calf above it), however much wider than the leg it is cut. So
+  // does a whole leg (leggings, tights: one piece round the leg), once round
+  // at each height: on one cylinder as wide as its top, a leggings' ankle
+  // covered a third of it, the inseam pulled its edges together across the
+  // rest, and in sizes 38 and 40 the lower legs crumpled through the body.
+  const bool follow = (half_leg || whole_leg ||
+                       (!limb && (ar.side == "front" || ar.side == "back") && width <= 0.5 * curve.perimeter)) &&
                       !nodes.empty();
   if (!follow && nest > 0.0 && ar.side == "back") {
     curve.c += nest;
@@ -282,11 +287,16 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
   if (follow) {
     const int nb = static_cast<int>(std::ceil((smax - smin) / kBin)) + 1;
     std::vector<double> half(nb, 0.0);  // the piece's largest |u| near each bin
+    std::vector<double> u_lo(nb, 0.0), u_hi(nb, 0.0);  // its u range there (a whole leg)
     for (std::size_t i = 0; i < uv.size(); ++i) {
       const double s = s_ref + sign_s * uv[i].y();
       const int lo = std::max(0, static_cast<int>(std::floor((s - smin - 2 * kBin) / kBin)));
       const int hi = std::min(nb - 1, static_cast<int>(std::ceil((s - smin + 2 * kBin) / kBin)));
-      for (int k = lo; k <= hi; ++k) half[k] = std::max(half[k], std::abs(uv[i].x()));
+      for (int k = lo; k <= hi; ++k) {
+        half[k] = std::max(half[k], std::abs(uv[i].x()));
+        u_lo[k] = std::min(u_lo[k], uv[i].x());
+        u_hi[k] = std::max(u_hi[k], uv[i].x());
+      }
     }
     std::vector<std::pair<double, double>> ab(nb);
     for (int k = 0; k < nb; ++k) ab[k] = envelope(smin + k * kBin - kWindow, smin + k * kBin + kWindow);
@@ -311,7 +321,11 @@ PiecePlacement place_piece(const std::vector<pattern::Vec2>& nodes, const xvc::A
       e.c = 0;
       e.build();
       const double quarter = 0.25 * e.perimeter;
-      c[k] = std::max(std::max(0.0, ar.clearance), (half[k] + 0.5 * gap - quarter) / (0.5 * M_PI));
+      // A whole leg: once round, its edges the gap apart where it is wider
+      // than the curve (a full turn adds 2π c).
+      const double grown = whole_leg ? (u_hi[k] - u_lo[k] + gap - e.perimeter) / (2.0 * M_PI)
+                                     : (half[k] + 0.5 * gap - quarter) / (0.5 * M_PI);
+      c[k] = std::max(std::max(0.0, ar.clearance), grown);
     }
     // Grown clearances spread a few centimetres up and down, so the surface has
     // no kinks.

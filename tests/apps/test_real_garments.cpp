@@ -159,7 +159,7 @@ INSTANTIATE_TEST_SUITE_P(
         // out between particles (RealGarmentsBetweenParticles below).
         RealGarment{"tights_aama_36", "GLX4802S19_AAMA.DXF", "", 0, "left-leg right-leg",
                     "piece GLX4802SLS left out: an alternative to the leg GLX4802S19SLL"},
-        RealGarment{"tights_astm_40", "GLX4802S19_ASTM.DXF", "40", 0, "left-leg right-leg",
+        RealGarment{"tights_astm_46", "GLX4802S19_ASTM.DXF", "46", 0, "left-leg right-leg",
                     "piece GLX4802SLS left out: an alternative to the leg GLX4802S19SLL"},
         // CLO: pieces named by number, the front and the back each written
         // as a left and a right half, the sleeve written twice: joined, and
@@ -172,6 +172,12 @@ INSTANTIATE_TEST_SUITE_P(
         RealGarment{"leggings_36", "ORILEGWB_AAMA.DXF", "", 0, "hips left-leg right-leg",
                     "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 81 "
                     "cm, 11 cm less than the body's 92 cm"},
+        // A large size: each leg wrapped once round its leg at every height
+        // (on one cylinder as wide as its top it crumpled through the body
+        // below the knee, docs/drape.md).
+        RealGarment{"leggings_44", "ORILEGWB_AAMA.DXF", "44", 0, "hips left-leg right-leg",
+                    "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 92 "
+                    "cm, 16 cm less than the body's 108 cm"},
         // Valentina's shirt: front, back and yoke drawn as halves, every
         // piece cut once: unfolded, the short sleeve cut twice, the back
         // pleated into the yoke, each armhole the back's, the yoke's and the
