@@ -310,6 +310,80 @@ TEST(PiecePlacement, AHalfLegCutToTheFloorStartsRoundTheFoot) {
   EXPECT_GT(inside, 50);
 }
 
+// A whole leg (leggings, tights: one piece round the leg, its inseam's edges
+// meeting on the inside) goes once round its leg at every height: where the
+// piece is narrower than the leg (negative ease at the ankle) it lies at the
+// clearance from that height's ring, its edges apart by the difference; where
+// it is wider (the top) the clearance grows until its edges are the gap apart.
+// On one cylinder as wide as its top, the ankle lay 5 cm off the leg.
+TEST(PiecePlacement, AWholeLegGoesOnceRoundItsLegAtEveryHeight) {
+  Avatar av;
+  av.source = "hand-built legs";
+  for (const double x : {0.1, -0.1}) {
+    BodySegment leg;
+    leg.name = x > 0 ? "left-leg" : "right-leg";
+    leg.start = Vec3(x, 0.9, 0);
+    leg.axis = -Vec3::UnitY();
+    leg.length = 0.8;
+    leg.front = Vec3::UnitZ();
+    for (const auto& [s, r] : {std::pair{0.0, 0.08}, {0.4, 0.05}, {0.8, 0.04}})
+      leg.rings.push_back({s, leg.start + s * leg.axis, r, r});
+    av.segments.push_back(leg);
+  }
+  const auto ring = [](double s) { return s < 0.4 ? 0.08 - 0.03 * s / 0.4 : 0.05 - 0.01 * (s - 0.4) / 0.4; };
+  // 70 cm long, 60 cm wide at the top (more than the 50 cm round the leg
+  // there), 20 cm at the bottom (less than the 25 cm round the leg there).
+  const int n = 60, m = 70;
+  const auto width = [&](double depth) { return 0.6 - 0.4 * depth / 0.7; };
+  std::vector<Vec2> nodes;
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double depth = 0.7 * j / m;
+      nodes.emplace_back(width(depth) * (static_cast<double>(i) / n - 0.5), -depth);
+    }
+  xvc::Arrangement a;
+  a.segment = "left-leg";
+  a.side = "left";
+  a.height = 0.0;
+  a.clearance = 0.01;
+  const auto placed = place_piece(nodes, a, av);
+  ASSERT_EQ(placed.points.size(), nodes.size());
+  for (int j = 0; j <= m; j += 5) {
+    const double depth = 0.7 * j / m;
+    double turned = 0, along = 0;
+    double prev = std::atan2(placed.points[j * (n + 1)].z(), placed.points[j * (n + 1)].x() - 0.1);
+    for (int i = 0; i <= n; ++i) {
+      const Vec3& q = placed.points[j * (n + 1) + i];
+      EXPECT_NEAR(q.y(), 0.9 - depth, 1e-9);
+      const double r = std::hypot(q.x() - 0.1, q.z());
+      // Off its ring by the clearance, or more where it is wider than the leg
+      // (the rings within 3 cm above bound it too), never inside it.
+      EXPECT_GT(r, ring(depth) + 0.01 - 1e-3) << "row " << j << ", node " << i;
+      // Narrower than the leg within 5 cm (the grown clearance spreads 3 cm
+      // up and down from where the piece is wider): at the clearance.
+      if (width(std::max(0.0, depth - 0.05)) + 0.02 < 2 * M_PI * (ring(depth) + 0.01)) {
+        EXPECT_LT(r, ring(std::max(0.0, depth - 0.03)) + 0.01 + 1e-3) << "row " << j << ", node " << i;
+      }
+      if (i > 0) {
+        const double ang = std::atan2(q.z(), q.x() - 0.1);
+        double d = ang - prev;
+        if (d < -M_PI) d += 2 * M_PI;
+        if (d > M_PI) d -= 2 * M_PI;
+        turned += d;
+        prev = ang;
+        along += (q - placed.points[j * (n + 1) + i - 1]).norm();
+      }
+    }
+    // Once round at most, the widths kept (chords of 1 cm arcs).
+    EXPECT_LT(std::abs(turned), 2 * M_PI) << "row " << j;
+    EXPECT_NEAR(along, width(depth), 0.01 * width(depth)) << "row " << j;
+    // At the top the edges meet the gap apart: nearly once round.
+    if (j == 0) {
+      EXPECT_GT(std::abs(turned), 2 * M_PI * 0.9);
+    }
+  }
+}
+
 TEST(PiecePlacement, MissingSegmentIsAnError) {
   xvc::Arrangement a;
   a.segment = "neck";
