@@ -699,8 +699,33 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
           continue;
         inseam = std::max(inseam, s.hems[0].length);
       }
-    const double ease = lower ? kHipEase : kBustEase;
     const char* where = lower ? "hip" : "bust";
+    // A size the style's table lacks (its name's or its graded sizes'): the
+    // ease the style is cut with in the nearest size (by girth) that table
+    // has, not the usual. Leggings are cut 11-21 cm smaller round the hip
+    // than their bodies: with the usual 5 cm, size 52 went on the women's 40
+    // and hung loose round its legs.
+    double ease = lower ? kHipEase : kBustEase;
+    std::string ease_why = format_fixed(100 * ease, 0) + " cm wanted";
+    if (!out.body_table.empty() && !has_size && girth > 0) {
+      double nearest = 1e300;
+      for (const auto& row : body::load_size_table(body::size_table_file(out.body_table))) {
+        std::vector<const xvc::Node*> t2, l2;
+        for (const auto* p : doc.patterns()) {
+          if (p->attribute("size") != row.label) continue;
+          const std::string name(p->attribute("piece"));
+          if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
+          const pattern::Role r = roles[name].role;
+          if (r == pattern::Role::front || r == pattern::Role::back) t2.push_back(p);
+          if (r == pattern::Role::leg) l2.push_back(p);
+        }
+        const double g2 = pattern_girth(doc, t2) + pattern_girth(doc, l2, 0.05, 0.20, true);
+        if (g2 <= 0 || std::abs(g2 - girth) >= nearest) continue;
+        nearest = std::abs(g2 - girth);
+        ease = g2 - (lower ? row.hip : row.bust);
+        ease_why = format_fixed(100 * ease, 0) + " cm wanted: the style's in size " + row.label + ", the table's nearest";
+      }
+    }
     std::vector<std::string> tables;
     if (!out.body_table.empty()) tables = {out.body_table};
     else tables = body::size_table_names();
@@ -733,7 +758,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       why = (table_why.empty() ? "" : table_why + ", which has no size " + out.size + "; ") +
             "nearest the pattern: its " + std::string(where) + " girth is " + format_fixed(100 * girth, 0) +
             " cm, " + format_fixed(100 * (girth - best.body), 0) + " cm of ease over the body's " +
-            format_fixed(100 * best.body, 0) + " cm (" + format_fixed(100 * ease, 0) + " cm wanted" +
+            format_fixed(100 * best.body, 0) + " cm (" + ease_why +
             (inseam > 0 ? ", its inseam " + format_fixed(100 * inseam, 1) + " cm for a crotch height of " +
                               format_fixed(100 * best.inseam, 1) + " cm (" + format_fixed(100 * kInseamEase, 0) +
                               " cm shorter wanted)"

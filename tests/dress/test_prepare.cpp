@@ -294,6 +294,40 @@ TEST(PrepareGarment, TheBodyTableFollowsTheStylesSizes) {
   EXPECT_TRUE(said(p, "(nearest the pattern: its bust girth is 110 cm")) << ::testing::PrintToString(p.decisions);
 }
 
+// A size the style's table lacks goes on the body that keeps the ease the
+// style is cut with in the nearest size the table has, not the usual 10 cm:
+// a top graded 32-52 (4 cm a size) 14 cm smaller round the bust than the
+// women's 50 in size 50 goes in size 52 (no women's size) on the women's 50
+// (with 10 cm of ease wanted, the women's 44).
+TEST(PrepareGarment, ASizeTheTableLacksKeepsTheStylesEase) {
+  pattern::Style s;
+  s.name = "GX400";
+  for (int z = 32; z <= 52; z += 2) s.sizes.push_back(std::to_string(z));
+  s.sample_size = "40";
+  const auto rows = body::load_size_table(body::size_table_file("en13402-women"));
+  double bust50 = 0;
+  for (const auto& r : rows)
+    if (r.label == "50") bust50 = r.bust;
+  ASSERT_GT(bust50, 0.0);
+  for (int z = 32; z <= 52; z += 2) {
+    const double girth = bust50 - 0.14 + 0.04 * (z - 50) / 2;  // m round the bust
+    s.pieces.push_back(panel("FR", 0.0, girth / 2, 0.7, std::to_string(z)));
+    s.pieces.back().category = "FRONT";
+    s.pieces.push_back(panel("BK", 1.0, girth / 2, 0.7, std::to_string(z)));
+    s.pieces.back().category = "BACK";
+  }
+  xvc::Document doc = xvc::from_style(s);
+  PrepareOptions at52;
+  at52.size = "52";
+  const Preparation p = prepare_garment(doc, at52);
+  EXPECT_EQ(p.body_table, "en13402-women");
+  EXPECT_EQ(p.body_size, "50") << ::testing::PrintToString(p.decisions);
+  EXPECT_TRUE(std::any_of(p.decisions.begin(), p.decisions.end(), [](const std::string& d) {
+    return d.find("which has no size 52; nearest the pattern: its bust girth is") != std::string::npos &&
+           d.find("(-14 cm wanted: the style's in size 50, the table's nearest)") != std::string::npos;
+  })) << ::testing::PrintToString(p.decisions);
+}
+
 // Pieces left out say why, from their role: bonded interfacings, pockets sewn
 // on a face, linings, pieces nobody cuts.
 TEST(PrepareGarment, PiecesLeftOutSayWhy) {
