@@ -674,18 +674,28 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   }
   bool lower = false;
   for (const auto& [name, g] : roles) lower = lower || g.role == pattern::Role::leg || g.role == pattern::Role::waistband;
-  std::vector<const xvc::Node*> trunk, legs;  // the fronts and backs draped; the legs (halves or whole)
-  for (const auto* p : mine) {
-    const std::string name(p->attribute("piece"));
-    const pattern::Role r = roles[name].role;
-    if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
-    if (r == pattern::Role::front || r == pattern::Role::back) trunk.push_back(p);
-    if (r == pattern::Role::leg) legs.push_back(p);
-  }
+  // Of the draped pieces in a size's patterns: the fronts and backs, and the
+  // legs (halves or whole).
+  const auto trunk_and_legs = [&](const std::vector<const xvc::Node*>& patterns) {
+    std::pair<std::vector<const xvc::Node*>, std::vector<const xvc::Node*>> out_parts;
+    for (const auto* p : patterns) {
+      const std::string name(p->attribute("piece"));
+      const pattern::Role r = roles[name].role;
+      if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
+      if (r == pattern::Role::front || r == pattern::Role::back) out_parts.first.push_back(p);
+      if (r == pattern::Role::leg) out_parts.second.push_back(p);
+    }
+    return out_parts;
+  };
   // Trousers: their hip is the legs' width 5-20 % of their length below the
   // waist (the seat, above the crotch's extension): halves' front and back,
   // a whole leg's both (leggings cut in one piece per leg).
-  const double girth = pattern_girth(doc, trunk) + pattern_girth(doc, legs, 0.05, 0.20, true);
+  const auto girth_of = [&](const auto& parts) {
+    return pattern_girth(doc, parts.first) + pattern_girth(doc, parts.second, 0.05, 0.20, true);
+  };
+  const auto parts = trunk_and_legs(mine);
+  const auto& [trunk, legs] = parts;
+  const double girth = girth_of(parts);
   if (options.body_size.empty() && (out.body_table.empty() || !has_size)) {
     // Trousers: their inseam (the longest seam named so that sews a leg) is
     // matched to the body's crotch height too, less kInseamEase (the hem clear of
@@ -710,16 +720,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     if (!out.body_table.empty() && !has_size && girth > 0) {
       double nearest = 1e300;
       for (const auto& row : body::load_size_table(body::size_table_file(out.body_table))) {
-        std::vector<const xvc::Node*> t2, l2;
-        for (const auto* p : doc.patterns()) {
-          if (p->attribute("size") != row.label) continue;
-          const std::string name(p->attribute("piece"));
-          if (std::find(out.pieces.begin(), out.pieces.end(), name) == out.pieces.end()) continue;
-          const pattern::Role r = roles[name].role;
-          if (r == pattern::Role::front || r == pattern::Role::back) t2.push_back(p);
-          if (r == pattern::Role::leg) l2.push_back(p);
-        }
-        const double g2 = pattern_girth(doc, t2) + pattern_girth(doc, l2, 0.05, 0.20, true);
+        const double g2 = girth_of(trunk_and_legs(patterns_of(row.label)));
         if (g2 <= 0 || std::abs(g2 - girth) >= nearest) continue;
         nearest = std::abs(g2 - girth);
         ease = g2 - (lower ? row.hip : row.bust);

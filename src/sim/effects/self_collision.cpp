@@ -79,8 +79,8 @@ inline bool closest_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, con
 }
 
 // Per particle, its mesh neighbours (in the order the edges list them), all
-// in one array: the detection walks them for every particle a triangle
-// meets, and one allocation per particle cost a cache miss each time.
+// in one array (no allocation per particle): the detection's edge tests and
+// the one-ring exemption both walk them.
 struct Adjacency {
   std::vector<int> start, item;
   void build(int n, const std::vector<std::array<int, 2>>& edges) {
