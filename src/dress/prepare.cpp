@@ -80,10 +80,14 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
   std::string why;
   switch (role) {
     case Role::collar:
-      why = "vgd sews a one-piece collar (no stand) round a whole front's and a back's necklines from centre front, not "
-            "yet a collar to its stand or a stand to the neckline";
+      why = "vgd sews a one-piece collar (no stand) round a whole front's and a back's necklines from centre front, or a "
+            "collar to the top of its stand (within 15 % of its length), where no neckband is sewn, and neither fits "
+            "this one";
       break;
     case Role::collar_stand:
+      why = "vgd sews a collar stand round a whole front's and a back's (or yoke's) necklines from centre front, within "
+            "15 % of their length, where no neckband is sewn, and none fits this one";
+      break;
     case Role::hood:
       why = "vgd does not yet suggest the seam that sews a " + r + " to the neckline";
       break;
@@ -451,7 +455,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                  return other != name && sewn.count(other) && roles[other].role == role &&
                         roles[other].half == roles[name].half && roles[other].side == roles[name].side;
                });
-               (role == pattern::Role::sleeve || role == pattern::Role::leg) && alt != mine.end())
+               (role == pattern::Role::sleeve || role == pattern::Role::leg || role == pattern::Role::collar) &&
+               alt != mine.end())
         leave("an alternative to the " + std::string(pattern::role_name(role)) + " " +
               std::string((*alt)->attribute("piece")) + ", whose seams fit the garment's other pieces better");
       else

@@ -67,8 +67,11 @@ std::vector<ContourPoint> laid_on(const std::vector<ContourPoint>& b, const Vec2
 
 // The longest straight run of the outline along `up` with the whole piece on
 // one side of its line: its two end vertices. Runs of consecutive edges
-// within `tol` of the line through their ends.
-std::optional<Segment> centre_edge(const std::vector<ContourPoint>& o, const Vec2& up, double tol) {
+// within `tol` of the line through their ends. With `square`, only a run
+// the outline leaves at right angles at both ends (its chord over the next
+// 2 cm within 10 degrees of square: the outline goes on smoothly across the
+// fold once unfolded; a collar's centre back, not its pointed front end).
+std::optional<Segment> centre_edge(const std::vector<ContourPoint>& o, const Vec2& up, double tol, bool square = false) {
   const int n = static_cast<int>(o.size());
   const Vec2 across(-up.y(), up.x());
   auto along = [&](int i) {  // edge i runs along up (within 0.5 degree)
@@ -91,6 +94,17 @@ std::optional<Segment> centre_edge(const std::vector<ContourPoint>& o, const Vec
     const Vec2 a = o[i].p, b = o[j % n].p;
     const double len = (b - a).norm();
     if (len <= best_len) continue;
+    if (square) {
+      // The chord from the run's end to the first vertex 2 cm away (or the
+      // farthest within n vertices), stepping `step` along the outline.
+      const auto leaves_square = [&](int from, int step) {
+        const Vec2 p0 = o[((from % n) + n) % n].p;
+        Vec2 e = Vec2::Zero();
+        for (int k = 1; k < n && e.norm() < 0.02; ++k) e = o[(((from + step * k) % n) + n) % n].p - p0;
+        return e.norm() > 0 && std::abs(e.normalized().dot(up)) <= std::sin(10 * M_PI / 180);
+      };
+      if (!leaves_square(i, -1) || !leaves_square(j, +1)) continue;
+    }
     double lo = 0, hi = 0;
     for (const auto& c : o) {
       const double s = (c.p - a).dot(across);
@@ -176,6 +190,12 @@ std::string describe(const JoinedPieces& j) {
 
 TopHalves unfold_top_halves(Style& style, double tol) {
   TopHalves out;
+  // Every piece cut 0 times: the field left at its default by a file that
+  // says its cutting in the annotations (mirrored.DXF's "2XFABRIC"), not one
+  // that states nothing.
+  if (!style.pieces.empty() &&
+      std::all_of(style.pieces.begin(), style.pieces.end(), [](const Piece& p) { return p.quantity == 0; }))
+    return out;
   bool sleeve = false;
   for (const auto& p : style.pieces) {
     if (p.quantity > 1 || p.mirror_line) return out;  // the file states quantities or folds
@@ -184,13 +204,21 @@ TopHalves unfold_top_halves(Style& style, double tol) {
     sleeve = sleeve || r == Role::sleeve;
   }
   if (!sleeve) return out;
+  bool bodice = false;  // a front, back or yoke unfolded
   for (auto& p : style.pieces) {
     const RoleGuess g = piece_role(p.name, p.category, p.annotation, style.name);
-    if ((g.role != Role::front && g.role != Role::back && g.role != Role::yoke) || g.side != Side::none || !p.closed ||
-        p.boundary.size() < 3)
+    const bool band = g.role == Role::collar || g.role == Role::collar_stand;
+    if ((g.role != Role::front && g.role != Role::back && g.role != Role::yoke && !band) || g.side != Side::none ||
+        !p.closed || p.boundary.size() < 3)
       continue;
-    const Vec2 up = up_of(p);
-    const auto c = centre_edge(p.boundary, up, tol);
+    // A collar's or a stand's centre back runs across its length, whatever
+    // its grain: along the shorter of its two extents.
+    Vec2 up = up_of(p);
+    if (band) {
+      const Vec2 e = extents(p.boundary, up);
+      if (e.x() < e.y()) up = Vec2(up.y(), -up.x());
+    }
+    const auto c = centre_edge(p.boundary, up, tol, band);
     if (!c || (c->b - c->a).norm() < 0.4 * extent_along(p.boundary, up)) continue;
     if (mirror_symmetric(p.boundary, up, tol)) continue;  // a whole piece with straight sides
     Piece whole = p;
@@ -200,8 +228,9 @@ TopHalves unfold_top_halves(Style& style, double tol) {
     whole.quantity = 1;
     p = std::move(whole);
     out.unfolded.push_back({p.size, p.block, (c->b - c->a).norm()});
+    bodice = bodice || !band;
   }
-  if (out.unfolded.empty()) return out;
+  if (!bodice) return out;
   for (auto& p : style.pieces) {
     const RoleGuess g = piece_role(p.name, p.category, p.annotation, style.name);
     if (g.role != Role::sleeve || g.side != Side::none || g.half != Half::none) continue;

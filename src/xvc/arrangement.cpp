@@ -17,6 +17,10 @@ namespace vgd::xvc {
 
 namespace {
 
+// How much further out than its stand a collar turned down over it starts (m):
+// clear of the stand's cloth and its repulsion.
+constexpr double kOverStand = 0.01;
+
 bool has(const std::string& s, std::string_view w) { return s.find(w) != std::string::npos; }
 
 pattern::Vec2 rotate(const pattern::Vec2& p, double deg) {
@@ -189,7 +193,7 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
   Arrangement a;
   a.clearance = opts.clearance;
   const bool band = role.role == Role::waistband || role.role == Role::neckband || role.role == Role::cuff ||
-                    role.role == Role::collar || role.role == Role::binding;
+                    role.role == Role::collar || role.role == Role::collar_stand || role.role == Role::binding;
   a.angle_deg = band ? 0.0 : upright_angle(piece);
   const auto ref = reference_point(piece, a.angle_deg);
   a.x = ref.x();
@@ -337,8 +341,11 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
       a.height = opts.neck_point_height + box_h;
       return {a};
     case Role::collar_stand:
+      // As a collar: its bottom edge (the one sewn) at the neck point, its
+      // ends meeting at centre front.
+      turn_band();
       a.segment = "neck";
-      a.side = "front";
+      a.side = "back";
       a.height = opts.neck_point_height + box_h;
       return {a};
     case Role::front:
@@ -475,35 +482,63 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       list.clear();
   }
 
-  // A collar goes on by the edge a SEAM sews to the neckline (a seam of any
-  // size: the same stretches in every size), whichever of its long edges
-  // that is: turned half round when it would be the top as arranged.
-  std::map<std::string, std::pair<std::size_t, std::size_t>> collar_run;  // collar piece -> stretches sewn
+  // A collar or a stand goes on by the edge a SEAM sews to the neckline (a
+  // seam of any size: the same stretches in every size), whichever of its
+  // long edges that is: turned half round when it would be the top as
+  // arranged. A collar sewn to a stand is turned down over it about that
+  // seam: its sewn edge at the stand's top, the rest hanging over the
+  // stand (reflected top to bottom: its drawing's left end stays at the
+  // stand's left, as the seam pairs them), `kOverStand` further out.
+  struct Run {
+    std::pair<std::size_t, std::size_t> stretches;
+    std::string stand;  // the stand's piece, for a collar sewn to one
+  };
+  std::map<std::string, Run> collar_run;  // collar or stand piece -> stretches sewn
+  const auto collar_like = [](pattern::Role r) { return r == pattern::Role::collar || r == pattern::Role::collar_stand; };
   for (const auto& seam : list_seams(doc))
     for (const auto& h : seam.hems) {
       const Node* c = doc.find(h.pattern);
-      if (!c || piece_role(doc, *c).role != pattern::Role::collar) continue;
+      if (!c || !collar_like(piece_role(doc, *c).role)) continue;
+      const bool is_collar = piece_role(doc, *c).role == pattern::Role::collar;
       const std::string piece(c->attribute("piece"));
-      const bool to_another = std::any_of(seam.hems.begin(), seam.hems.end(), [&](const HemRef& k) {
-        const Node* q = doc.find(k.pattern);
-        return q && q->attribute("piece") != piece;
-      });
-      if (to_another) collar_run.emplace(piece, stretch_range(*c, h));
+      std::string other, stand;
+      for (const auto& k : seam.hems)
+        if (const Node* q = doc.find(k.pattern); q && q->attribute("piece") != piece) {
+          other = std::string(q->attribute("piece"));
+          if (is_collar && piece_role(doc, *q).role == pattern::Role::collar_stand) stand = other;
+        }
+      if (!other.empty()) collar_run.emplace(piece, Run{stretch_range(*c, h), stand});
     }
+  const auto stand_top = [&](const std::string& stand) -> std::optional<Arrangement> {
+    for (const auto& [sid, slist] : out)
+      if (const Node* q = doc.find(sid); q && q->attribute("piece") == stand && !slist.empty()) return slist.front();
+    return std::nullopt;
+  };
   for (auto& [id, list] : out) {
     const Node* p = doc.find(id);
-    if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::collar) continue;
+    if (!p || list.empty() || !collar_like(piece_role(doc, *p).role)) continue;
     const auto found = collar_run.find(std::string(p->attribute("piece")));
     if (found == collar_run.end()) continue;
     const pattern::Piece piece = to_piece(doc, id);
-    const auto sewn = run_points(piece, boundary_stretches(*p), found->second.first, found->second.second);
+    const auto sewn = run_points(piece, boundary_stretches(*p), found->second.stretches.first, found->second.stretches.second);
     if (sewn.empty()) continue;
+    const auto over = found->second.stand.empty() ? std::nullopt : stand_top(found->second.stand);
     for (auto& a : list) {
       const auto [lo, hi] = height_range(piece, a.angle_deg);
       double mean = 0;
       for (const auto& q : sewn) mean += rotate(q, a.angle_deg).y() / static_cast<double>(sewn.size());
-      if (mean <= 0.5 * (lo + hi)) continue;
-      a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+      const bool sewn_on_top = mean > 0.5 * (lo + hi);
+      if (over) {
+        // Reflected top to bottom: turned half round and flipped, or flipped only.
+        if (!sewn_on_top) a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+        a.flip = true;
+        a.height = over->height;
+        a.clearance = over->clearance + kOverStand;
+      } else if (sewn_on_top) {
+        a.angle_deg = a.angle_deg > 0 ? a.angle_deg - 180 : a.angle_deg + 180;
+      } else {
+        continue;
+      }
       const auto ref = reference_point(piece, a.angle_deg);
       a.x = ref.x();
       a.y = ref.y();

@@ -250,7 +250,7 @@ std::optional<Edge> joined(const Outline& o, const Edge& a, const Edge& b, doubl
 
 // ---- roles ----------------------------------------------------------------------------
 
-enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke, collar, binding };
+enum class Role { other, front, back, sleeve, waistband, neckband, cuff, leg, yoke, collar, stand, binding };
 
 Role role_of(const Outline& o) {
   switch (o.role.role) {
@@ -263,6 +263,7 @@ Role role_of(const Outline& o) {
     case pattern::Role::back: return Role::back;
     case pattern::Role::yoke: return Role::yoke;
     case pattern::Role::collar: return Role::collar;
+    case pattern::Role::collar_stand: return Role::stand;
     case pattern::Role::binding: return Role::binding;
     default: return Role::other;
   }
@@ -312,6 +313,13 @@ constexpr double kSideSeamTolerance = 0.04;
 // hem) a neckband or a cuff may be cut (a rib is stretched onto it:
 // typically 10-20 %).
 constexpr double kRibShorter = 0.25;
+// How much longer or shorter than the neckline a collar stand may be cut:
+// its ends overlap at centre front by the button extension, and a front
+// drawn with its extension, unfolded about its edge, has it in its neckline
+// on both sides (Valentina's shirt: a 50.4 cm stand for 55.9 cm of
+// neckline). So too how much shorter than the stand's top the collar sewn
+// to it (the stand's ends reach past the collar's by the extension).
+constexpr double kStandLonger = 0.15;
 // How much longer than the opening it binds a binding may be cut: strips are
 // cut long and trimmed where the binding meets itself (Gerber's tank: 72 cm
 // for a 58.5 cm neckline, 81 cm for a 48 cm armhole).
@@ -356,7 +364,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     const Role r = role_of(o);
     if (r == Role::other) continue;
     PieceInfo pi{&o, r, upright_frame(o, r != Role::waistband && r != Role::neckband && r != Role::cuff && r != Role::collar &&
-                                          r != Role::binding), {}};
+                                          r != Role::stand && r != Role::binding), {}};
     pi.edges = edges(o, pi.frame, opts.merge_angle_deg);
     ps.push_back(std::move(pi));
   }
@@ -467,6 +475,9 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         used.insert({yk.o, mine[0]});
         used.insert(fs);
         found.push_back(*sh);
+        shoulders[yk.o].push_back({ys.k0, ys.k1});
+        for (const auto& fr : ps)
+          if (fr.o == fs.first) shoulders[fr.o].push_back({fr.edges[fs.second].k0, fr.edges[fs.second].k1});
         if (mine.size() >= 2) yoke_armhole[sigma] = {yk.o, mine[1]};
       }
     }
@@ -1223,6 +1234,74 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         sewn = true;
       }
     }
+  }
+
+  // 6b. A shirt's collar on a stand. The stand's long edge that best fits
+  //     the neckline, sewn from centre front round the back's neckline (or
+  //     the yoke's: a shirt's back neckline is on its yoke, which carries
+  //     the shoulders) to centre front, as a one-piece collar is; its ends
+  //     reach past centre front by the button extension and overlap there,
+  //     so it is cut longer than the neckline (up to kStandLonger). Then the
+  //     collar's long edge that best fits the stand's other long edge (its
+  //     top), the collar's ends short of the stand's by the extension (up to
+  //     kStandLonger shorter), its drawing's left end to the stand's left.
+  //     Both hems forward: the collar turns down over the stand about that
+  //     seam, folded flat on it rather than opened flat beside it, so its
+  //     face is sewn to the stand's back (seams.hpp). Only for a
+  //     front cut once (a whole front, closed at its centre as buttoned).
+  for (const auto& st : ps) {
+    if (st.role != Role::stand || st.o->quantity != 1 || necked) continue;
+    std::optional<SeamSuggestion> to_neck;
+    for (const auto& fr : ps) {
+      if (fr.role != Role::front || fr.o->quantity != 1 || fr.o->role.side != pattern::Side::none || to_neck) continue;
+      const auto nf = neckline(fr);
+      if (!nf) continue;
+      const auto split = centre_split(fr, *nf);
+      if (!split) continue;
+      const std::size_t nsf = fr.o->stretches.size();
+      for (const auto& bk : ps) {
+        if ((bk.role != Role::back && bk.role != Role::yoke) || to_neck) continue;
+        const auto nbk = neckline(bk);
+        if (!nbk) continue;
+        std::vector<Part> parts{{st.o, 0, 0, false},
+                                {fr.o, nf->first, *split, true},
+                                {bk.o, nbk->first, nbk->second, true},
+                                {fr.o, (*split + 1) % nsf, nf->second, true}};
+        const double length = round_length(parts);
+        to_neck = sew_band(st, std::move(parts), "stand seam",
+                           "collar stand " + st.o->piece + " to the neckline of " + fr.o->piece + " and " + bk.o->piece +
+                               " from centre front (its ends overlap there)",
+                           -kStandLonger * length, kStandLonger * length, 0.03);
+      }
+    }
+    if (!to_neck) continue;
+    found.push_back(*to_neck);
+    // The stand's top: its other long edge (a run at least half as long as its longest edge).
+    double longest = 0;
+    for (const auto& e : st.edges) longest = std::max(longest, e.length);
+    const auto& sewn = to_neck->hems[0];
+    // Of the other long edges the highest, the whole of it (its longest run).
+    std::optional<std::pair<std::size_t, std::size_t>> top;
+    double top_v = -1e300, top_length = 0;
+    for (const auto& r : stretch_runs_of(st)) {
+      const Edge& e = st.edges[r.edge];
+      if (e.length < 0.5 * longest) continue;
+      const HemRef h = hem_ref(*st.o, r.k0, r.k1, false);
+      if (h.from == sewn.from || h.to == sewn.to) continue;  // the edge sewn to the neckline
+      const double length = arc_range(*st.o, r.k0, r.k1).second;
+      if (e.v_mean > top_v + 1e-9 || (std::abs(e.v_mean - top_v) <= 1e-9 && length > top_length))
+        top_v = e.v_mean, top_length = length, top = std::pair{r.k0, r.k1};
+    }
+    if (!top) continue;
+    std::optional<SeamSuggestion> best;
+    for (const auto& co : ps) {
+      if (co.role != Role::collar || co.o->quantity != 1) continue;
+      auto s = sew_band(co, {{co.o, 0, 0, false}, {st.o, top->first, top->second, false}}, "collar seam",
+                        "collar " + co.o->piece + " to the top of its stand " + st.o->piece, -kStandLonger * top_length,
+                        0.0, 0.03);
+      if (s && (!best || s->score > best->score)) best = s;
+    }
+    if (best) found.push_back(*best);
   }
 
   // 7. Cuff -> sleeve hem (a rib cuff): a sleeve cut twice whose cap a seam

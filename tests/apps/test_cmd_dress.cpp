@@ -234,19 +234,24 @@ TEST(CliDress, ASeamFileSewsADxfInsteadOfTheSuggestions) {
 // the document it saves and said with both girths; a fabric given with
 // --material is kept, and trousers with ease stay in the woven.
 // A piece left out because no suggested seam sews it says which seam vgd
-// does not suggest yet, and what the designer can do about it.
+// does not suggest yet, and what the designer can do about it. A shirt's
+// collar drawn two ways: the one sewn to the stand is draped, the other is
+// left out as its alternative.
 TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("dress-not-sewn");
   const auto shirt = run_vgd({"dress", shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf").string(), "-o",
                               (out / "s").string(), "--no-previews", "--time-limit", "0.05"});
   for (const char* says :
-       {"piece COLLAR (collar) left out: no seam sews it: vgd sews a one-piece collar (no stand) round a whole front's "
-        "and a back's necklines from centre front, not yet a collar to its stand or a stand to the neckline; sew it "
-        "with 'vgd seams add' and arrange it with 'vgd place', then dress the document again",
-        "piece COLLARBASE (collar stand) left out: no seam sews it: vgd does not yet suggest the seam that sews a "
-        "collar stand to the neckline"})
+       {"block COLLARBASE is half a piece (cut once, no side or fold line in the file, a straight 5.3 cm centre edge): "
+        "unfolded about that edge into the whole piece",
+        "seam 'stand seam' suggested at size base: COLLARBASE to FRONTPANEL + YOKE + FRONTPANEL",
+        "seam 'collar seam' suggested at size base: COLLARTOP to COLLARBASE",
+        "piece COLLAR (collar) left out: an alternative to the collar COLLARTOP, whose seams fit the garment's other "
+        "pieces better"})
     EXPECT_NE(shirt.err.find(says), std::string::npos) << says << "\n" << shirt.err;
+  for (const char* sewn : {"piece COLLARBASE (collar stand) left out", "piece COLLARTOP (collar) left out"})
+    EXPECT_EQ(shirt.err.find(sewn), std::string::npos) << sewn << "\n" << shirt.err;
   const auto trousers = run_vgd({"dress", shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "-o",
                                  (out / "t").string(), "--no-previews", "--time-limit", "0.05"});
   for (const char* band : {"WAISTBAND1", "WAISTBAND2"}) {

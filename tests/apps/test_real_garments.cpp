@@ -178,14 +178,14 @@ INSTANTIATE_TEST_SUITE_P(
         RealGarment{"leggings_44", "ORILEGWB_AAMA.DXF", "44", 0, "hips left-leg right-leg",
                     "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 92 "
                     "cm, 16 cm less than the body's 108 cm"},
-        // Valentina's shirt: front, back and yoke drawn as halves, every
-        // piece cut once: unfolded, the short sleeve cut twice, the back
-        // pleated into the yoke, each armhole the back's, the yoke's and the
-        // front's.
+        // Valentina's shirt: front, back, yoke, collar and stand drawn as
+        // halves, every piece cut once: unfolded, the short sleeve cut twice,
+        // the back pleated into the yoke, each armhole the back's, the
+        // yoke's and the front's, the stand round the neckline and the collar
+        // turned down over it.
         RealGarment{"valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 0,
-                    "left-arm right-arm torso torso torso",
-                    "block BACKPANEL is half a piece (cut once, no side or fold line in the file, a straight 70.5 cm "
-                    "centre edge): unfolded"},
+                    "left-arm neck neck right-arm torso torso torso",
+                    "seam 'collar seam' suggested at size base: COLLARTOP to COLLARBASE"},
         // Valentina's trousers: cut as half legs, in place on the men's body
         // its hip fits; cut to the floor, longer than the body's legs, they
         // start 5 cm above the soles instead of held open round the feet, and

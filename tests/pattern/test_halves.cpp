@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "vgd/pattern/contour.hpp"
 #include "vgd/pattern/halves.hpp"
@@ -159,6 +160,67 @@ TEST(TopHalves, HalvesOfAShirtDrawnOnceAreUnfoldedAndItsSleeveCutTwice) {
   EXPECT_NE(said[2].find("sleeve SLEEVE_M is cut twice"), std::string::npos) << said[2];
 }
 
+// A shirt's collar and stand drawn as halves from centre back (Valentina's
+// COLLARTOP and COLLARBASE): the straight end the outline leaves at right
+// angles is centre back, not the longer straight front end it leaves
+// aslant (the collar's point); each is unfolded about it into the whole band.
+// A whole collar (symmetric about its middle) is left whole.
+TEST(TopHalves, ACollarAndAStandDrawnFromCentreBackAreUnfoldedThere) {
+  Style s;
+  s.name = "shirt";
+  s.pieces = {half_front("FRONT"), half_front("BACK", 1.0), sleeve("SLEEVE", 2.0)};
+  // Half a collar, counter-clockwise: the neck edge from the front (x = 3.0)
+  // to centre back (x = 3.22), rising 4 cm to the back (leaving the front
+  // end at 16 degrees) and meeting centre back square; centre back 6 cm; the
+  // outer edge back to the collar's point, 3 cm higher: a straight front end
+  // 13 cm long, longer than centre back.
+  Piece collar;
+  collar.block = "COLLARTOP_M";
+  collar.name = "COLLARTOP";
+  collar.size = "M";
+  for (int k = 0; k <= 10; ++k) {
+    const double t = k / 10.0;
+    collar.boundary.push_back({Vec2(3.0 + 0.22 * t, 0.04 * std::sin(0.5 * M_PI * t))});
+  }
+  collar.boundary.push_back({Vec2(3.22, 0.10)});
+  for (int k = 1; k < 10; ++k) {
+    const double t = k / 10.0;
+    collar.boundary.push_back({Vec2(3.22 - 0.22 * t, 0.10 + 0.03 * t * t)});
+  }
+  collar.boundary.push_back({Vec2(3.0, 0.13)});
+  // Half a stand: the neck edge from its rounded front end to centre back,
+  // the top back to the front, 4 cm high at centre back, cut with its grain
+  // along its length.
+  Piece stand;
+  stand.block = "COLLARBASE_M";
+  stand.name = "COLLARBASE";
+  stand.size = "M";
+  stand.boundary = {{Vec2(4.0, 0.0)}, {Vec2(4.1, -0.005)}, {Vec2(4.25, 0.0)}, {Vec2(4.25, 0.04)},
+                    {Vec2(4.1, 0.038)}, {Vec2(4.01, 0.03)}, {Vec2(3.995, 0.015)}};
+  stand.grain_line = Segment{Vec2(4.05, 0.02), Vec2(4.2, 0.02)};  // along its length: centre back runs across the grain
+  Piece whole;  // a whole collar: symmetric about its middle
+  whole.block = "COLLAR_M";
+  whole.name = "COLLAR";
+  whole.size = "M";
+  whole.boundary = {{Vec2(5.0, 0)}, {Vec2(5.31, 0)}, {Vec2(5.31, 0.08)}, {Vec2(5.0, 0.08)}};
+  s.pieces.insert(s.pieces.end(), {collar, stand, whole});
+  const double collar_area = area_of(collar), stand_area = area_of(stand);
+  const auto h = unfold_top_halves(s);
+  ASSERT_EQ(h.unfolded.size(), 4u);
+  EXPECT_EQ(h.unfolded[2].block, "COLLARTOP_M");
+  EXPECT_NEAR(h.unfolded[2].centre_length, 0.06, 1e-9) << "centre back, not the 13 cm front end";
+  EXPECT_EQ(h.unfolded[3].block, "COLLARBASE_M");
+  EXPECT_NEAR(h.unfolded[3].centre_length, 0.04, 1e-9);
+  for (const auto& [p, half, centre] : {std::tuple{&s.pieces[3], collar_area, 3.22}, std::tuple{&s.pieces[4], stand_area, 4.25}}) {
+    EXPECT_NEAR(area_of(*p), 2 * half, 1e-9) << p->name;
+    EXPECT_FALSE(is_self_intersecting(p->boundary)) << p->name;
+    for (const auto& c : p->boundary)
+      EXPECT_LT(nearest_vertex(p->boundary, Vec2(2 * centre - c.p.x(), c.p.y())).distance, 1e-9) << p->name;
+  }
+  EXPECT_NEAR(area_of(s.pieces[5]), 0.31 * 0.08, 1e-12) << "a whole collar is left whole";
+  EXPECT_NE(describe(h)[2].find("block COLLARTOP_M is half a piece"), std::string::npos);
+}
+
 // Left alone: a file that states a quantity or a fold line anywhere, a
 // garment without a sleeve (a half of a vest is drawn for a fold the file
 // may not say) or with a leg, and a half whose side is named.
@@ -173,6 +235,10 @@ TEST(TopHalves, AFileThatStatesQuantitiesOrFoldsOrHasNoSleeveIsLeftAlone) {
   quantity.pieces[2].quantity = 2;
   EXPECT_TRUE(unfold_top_halves(quantity).unfolded.empty());
   EXPECT_NEAR(area_of(quantity.pieces[0]), area_of(half_front("FRONT")), 1e-12);
+
+  Style zero = shirt();  // every piece 0 times: the cutting is in the annotations (mirrored.DXF)
+  for (auto& p : zero.pieces) p.quantity = 0;
+  EXPECT_TRUE(unfold_top_halves(zero).unfolded.empty());
 
   Style fold = shirt();
   fold.pieces[1].mirror_line = Segment{Vec2(1.0, 0.0), Vec2(1.0, 0.58)};

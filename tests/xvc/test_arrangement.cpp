@@ -10,7 +10,9 @@
 #include "shared_style.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
+#include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/draft.hpp"
+#include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
@@ -351,4 +353,72 @@ TEST(Arrangement, APolosCollarGoesOnByTheEdgeSewnToTheNeckline) {
   EXPECT_LT(edge / n - lo, 0.1 * (hi - lo)) << "the sewn edge lies in the bottom tenth of the collar's height";
   // Its reference point is the top's middle: the edge sewn sits a whole collar below it.
   EXPECT_NEAR(up(pattern::Vec2(sewn[0].x, sewn[0].y)), hi, 1e-9);
+}
+
+// A shirt's stand goes round the neck as a collar does (centred at the back,
+// its sewn lower edge at the neck point); the collar sewn to the stand's top
+// is turned down over it: reflected top to bottom (its sewn edge at the top,
+// its drawing's left end on the stand's left, as the seam pairs them), its
+// top at the stand's, 1 cm further out. Valentina's shirt, its halves unfolded.
+TEST(Arrangement, AShirtsCollarIsTurnedDownOverItsStand) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
+  vgd::pattern::unfold_top_halves(style);
+  Document doc = from_style(style);
+  std::vector<Node> seams;
+  std::optional<SeamSuggestion> collar;
+  SeamOptions at_base;
+  at_base.size = "base";
+  for (const auto& s : suggest_seams(doc, at_base)) {
+    seams.push_back(seam_node(s));
+    if (s.name == "collar seam") collar = s;
+  }
+  ASSERT_TRUE(collar);
+  execute(doc, *std::make_unique<AddSeams>(std::move(seams)));
+  std::map<std::string, std::vector<Arrangement>> arranged;
+  for (const auto& [id, list] : suggest_arrangements(doc)) arranged[std::string(doc.find(id)->attribute("piece"))] = list;
+  const ArrangementOptions defaults;
+  const auto& stand = arranged.at("COLLARBASE");
+  ASSERT_EQ(stand.size(), 1u);
+  EXPECT_EQ(stand[0].segment, "neck");
+  EXPECT_EQ(stand[0].side, "back");
+  EXPECT_FALSE(stand[0].flip);
+  const pattern::Piece sp = to_piece(doc, collar->hems[1].pattern), cp = to_piece(doc, collar->hems[0].pattern);
+  const auto height_of = [](const pattern::Piece& p, double angle_deg) {
+    const double a = angle_deg * M_PI / 180.0;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& c : p.boundary) {
+      const double y = std::sin(a) * c.p.x() + std::cos(a) * c.p.y();
+      lo = std::min(lo, y), hi = std::max(hi, y);
+    }
+    return hi - lo;
+  };
+  EXPECT_NEAR(stand[0].height, defaults.neck_point_height + height_of(sp, stand[0].angle_deg), 1e-9);
+  const auto& top = arranged.at("COLLARTOP");
+  ASSERT_EQ(top.size(), 1u);
+  EXPECT_EQ(top[0].segment, "neck");
+  EXPECT_EQ(top[0].side, "back");
+  EXPECT_TRUE(top[0].flip);
+  EXPECT_NEAR(std::abs(top[0].angle_deg), 180.0, 1e-12) << "drawn with its neck edge at the bottom";
+  EXPECT_NEAR(top[0].height, stand[0].height, 1e-12);
+  EXPECT_NEAR(top[0].clearance, stand[0].clearance + 0.01, 1e-12);
+  // The sewn edge is at the top as arranged: on average in the top fifth of
+  // the collar's height (the collar's up is -y once turned; the edge curves).
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : cp.boundary) lo = std::min(lo, -c.p.y()), hi = std::max(hi, -c.p.y());
+  const auto st = boundary_stretches(*doc.find(collar->hems[0].pattern));
+  std::size_t from = 0, to = 0;
+  for (std::size_t k = 0; k < st.size(); ++k) {
+    if (st[k].id == collar->hems[0].from) from = st[k].first;
+    if (st[k].id == collar->hems[0].to) to = k + 1 < st.size() ? st[k + 1].first : 0;
+  }
+  double edge = 0;
+  int n = 0;
+  for (std::size_t i = from;; i = (i + 1) % cp.boundary.size()) {
+    edge += -cp.boundary[i].p.y(), ++n;
+    if (i == to) break;
+  }
+  EXPECT_GT(edge / n - lo, 0.8 * (hi - lo)) << "the sewn edge lies in the collar's top fifth as arranged";
 }

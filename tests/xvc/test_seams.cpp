@@ -365,10 +365,14 @@ TEST(SeamSuggestions, APolosCollarIsSewnRoundTheNecklineFromCentreFront) {
   EXPECT_EQ(collar->notches_matched, 2);
   // Its ends are not sewn to each other (the placket's opening is between them).
   for (const auto& s : found) EXPECT_EQ(s.name.find("collar ends"), std::string::npos);
-  // A garment with a collar stand sews no collar this way.
+  // A garment with a collar stand sews no collar to its neckline.
   for (const char* file : {"mirrored.DXF", "Valentina_MaleShirt_AAMA_R12.dxf"}) {
     const auto other = vgd::test::shared_style(file);
-    for (const auto& s : suggest_seams(other.doc, other.sample)) EXPECT_NE(s.name, "collar seam") << file;
+    for (const auto& s : suggest_seams(other.doc, other.sample))
+      if (s.name == "collar seam")
+        for (const auto& h : s.hems)
+          EXPECT_NE(vgd::xvc::piece_role(other.doc, *other.doc.find(h.pattern)).role, vgd::pattern::Role::front)
+              << file;
   }
 }
 
@@ -640,7 +644,7 @@ TEST(SeamSuggestions, AShirtsYokeTakesTheBackTheShouldersAndTheArmholesTop) {
   vgd::dxf::ImportOptions unfold;
   unfold.unfold_mirrored = true;
   auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
-  ASSERT_EQ(vgd::pattern::unfold_top_halves(style).unfolded.size(), 3u);
+  ASSERT_EQ(vgd::pattern::unfold_top_halves(style).unfolded.size(), 5u);  // with the collar and its stand
   const Document doc = vgd::xvc::from_style(style);
   const auto piece = [&](const vgd::xvc::HemRef& h) { return std::string(doc.find(h.pattern)->attribute("piece")); };
   std::map<std::string, std::vector<std::string>> pieces;  // seam name -> its hems' pieces (the first sleeve's)
@@ -665,6 +669,58 @@ TEST(SeamSuggestions, AShirtsYokeTakesTheBackTheShouldersAndTheArmholesTop) {
   EXPECT_NEAR(ease["left armhole"], 0.0015, 0.001);
   EXPECT_EQ(pieces["left side seam"], (V{"FRONTPANEL", "BACKPANEL"}));
   EXPECT_EQ(pieces["right side seam"], (V{"FRONTPANEL", "BACKPANEL"}));
+}
+
+// Valentina's shirt, its halves unfolded (the collar COLLARTOP and the stand
+// COLLARBASE too, about their centre backs): the stand's lower edge (500 mm)
+// is sewn round the neckline from centre front, the front's half, the yoke's
+// (which carries the back neckline), the front's other half (558 mm: the
+// front is drawn with its button extension, in its neckline on both sides
+// once unfolded); its ends are not sewn (they overlap at centre front). The
+// collar's neck edge (444 mm) is sewn to the stand's top (488 mm, the stand's
+// ends reaching past the collar's), both hems forward: the collar turns down
+// over the stand. The other collar (COLLAR, a 31 cm rectangle) is sewn nowhere.
+TEST(SeamSuggestions, AShirtsStandIsSewnRoundTheNecklineAndItsCollarToTheStandsTop) {
+  VGD_REQUIRE_SHARED();
+  vgd::dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
+  vgd::pattern::unfold_top_halves(style);
+  const Document doc = vgd::xvc::from_style(style);
+  const auto found = at_size(doc, "base");
+  const auto named = [&](const std::string& n) {
+    return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == n; });
+  };
+  const auto stand = named("stand seam");
+  ASSERT_NE(stand, found.end());
+  const SeamKey k = key(doc, stand->hems);
+  ASSERT_EQ(k.size(), 4u);
+  EXPECT_EQ(std::get<0>(k[0]), "COLLARBASE");
+  EXPECT_EQ(std::get<0>(k[1]), "FRONTPANEL");
+  EXPECT_EQ(std::get<0>(k[2]), "YOKE");
+  EXPECT_EQ(std::get<0>(k[3]), "FRONTPANEL");
+  const int nf = static_cast<int>(boundary_stretches(*doc.find(stand->hems[1].pattern)).size());
+  EXPECT_EQ((std::get<2>(k[1]) + 1) % nf, std::get<1>(k[3])) << "the front's halves meet at centre front";
+  EXPECT_NEAR(stand->length_a, 0.5001, 0.001);
+  EXPECT_NEAR(stand->length_b, 0.5585, 0.001);
+  EXPECT_FALSE(stand->hems[0].reverse);
+  for (std::size_t i = 1; i < stand->hems.size(); ++i) EXPECT_TRUE(stand->hems[i].reverse);
+  const auto collar = named("collar seam");
+  ASSERT_NE(collar, found.end());
+  ASSERT_EQ(collar->hems.size(), 2u);
+  EXPECT_EQ(std::string(doc.find(collar->hems[0].pattern)->attribute("piece")), "COLLARTOP");
+  EXPECT_EQ(std::string(doc.find(collar->hems[1].pattern)->attribute("piece")), "COLLARBASE");
+  EXPECT_NEAR(collar->length_a, 0.4440, 0.001);
+  EXPECT_NEAR(collar->length_b, 0.4883, 0.001);
+  EXPECT_FALSE(collar->hems[0].reverse);
+  EXPECT_FALSE(collar->hems[1].reverse) << "turned down over the stand: not opened flat beside it";
+  // The stand's top is the edge the neckline seam leaves: they share no stretch.
+  EXPECT_NE(collar->hems[1].from, stand->hems[0].from);
+  EXPECT_NE(collar->hems[1].to, stand->hems[0].to);
+  for (const auto& s : found) {
+    EXPECT_EQ(s.name.find("ends"), std::string::npos) << s.name;
+    for (const auto& h : s.hems) EXPECT_NE(std::string(doc.find(h.pattern)->attribute("piece")), "COLLAR") << s.name;
+  }
 }
 
 // A seam flipped: hem B's HEMs in reverse order, each direction flipped; hem

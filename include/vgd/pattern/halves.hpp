@@ -40,11 +40,15 @@ std::string describe(const JoinedPieces& joined);
 // shirt: FRONTPANEL, BACKPANEL and YOKE cut once, no side, no fold line, the
 // centre front or back a straight edge along the grain with the whole piece
 // on one side of it, and one SHORTSLEEVE). In a style with a sleeve and no
-// leg, where every piece is cut at most once and none has a fold line:
+// leg, where every piece is cut at most once, not every piece 0 times (a
+// file that says its cutting in the annotations) and none has a fold line:
 //  - each front, back or yoke whose outline is such a half (its centre edge
 //    at least 40 % of its length along the grain, the piece not its own
 //    mirror image across its middle) is unfolded about that edge into the
 //    whole piece (a front so made is closed at its centre, as buttoned);
+//  - so is each collar or collar stand drawn as its half from centre back
+//    (Valentina's COLLARBASE and COLLARTOP: a straight end across the band,
+//    at least 40 % of its width, the other end shaped for the front);
 //  - once a half is unfolded, each sleeve cut once naming no side is cut
 //    twice (one sleeve is never a garment).
 struct UnfoldedHalf {
