@@ -255,7 +255,9 @@ TEST(DressBuild, TrousersLongerThanTheLegsStartAboveTheSoles) {
     EXPECT_NE(said.find(k.says), std::string::npos) << said;
     EXPECT_GT(s.pieces.front().raised, 0.03);
     EXPECT_LT(lowest - soles, kAboveSoles + 1e-3);
-    if (k.inseam < 0.8) EXPECT_GT(lowest - soles, 0.03);  // as drawn it reaches below the soles
+    if (k.inseam < 0.8) {
+      EXPECT_GT(lowest - soles, 0.03);  // as drawn it reaches below the soles
+    }
   }
   std::filesystem::remove_all(dir);
 }
