@@ -1206,33 +1206,41 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     return o.size == size && o.quantity > 0 && o.role.role == pattern::Role::collar_stand;
   });
   const bool necked = std::any_of(found.begin(), found.end(), [](const SeamSuggestion& x) { return x.name == "neck seam"; });
-  for (const auto& co : ps) {
-    if (co.role != Role::collar || co.o->quantity != 1 || stand || necked) continue;
-    bool sewn = false;
+  // The runs round a whole front's (cut once) neckline from centre front,
+  // over the front's half, a back's neckline (or a yoke's, with `yoke`) and
+  // the front's other half: parts[0] left for the band, per front and back.
+  const auto from_centre_front = [&](const PieceInfo& band, bool yoke) {
+    std::vector<std::vector<Part>> runs;
     for (const auto& fr : ps) {
-      if (fr.role != Role::front || fr.o->quantity != 1 || fr.o->role.side != pattern::Side::none || sewn) continue;
+      if (fr.role != Role::front || fr.o->quantity != 1 || fr.o->role.side != pattern::Side::none) continue;
       const auto nf = neckline(fr);
       if (!nf) continue;
       const auto split = centre_split(fr, *nf);
       if (!split) continue;
       const std::size_t nsf = fr.o->stretches.size();
       for (const auto& bk : ps) {
-        if (bk.role != Role::back || sewn) continue;
+        if (bk.role != Role::back && !(yoke && bk.role == Role::yoke)) continue;
         const auto nbk = neckline(bk);
         if (!nbk) continue;
-        std::vector<Part> parts{{co.o, 0, 0, false},
-                                {fr.o, nf->first, *split, true},
-                                {bk.o, nbk->first, nbk->second, true},
-                                {fr.o, (*split + 1) % nsf, nf->second, true}};
-        const double length = round_length(parts);
-        const auto best = sew_band(co, std::move(parts), "collar seam",
-                                   "collar " + co.o->piece + " to the neckline of " + fr.o->piece + " and " + bk.o->piece +
-                                       " from centre front",
-                                   -kRibShorter * length, 0.0, 0.03);
-        if (!best) continue;
-        found.push_back(*best);
-        sewn = true;
+        runs.push_back({{band.o, 0, 0, false},
+                       {fr.o, nf->first, *split, true},
+                       {bk.o, nbk->first, nbk->second, true},
+                       {fr.o, (*split + 1) % nsf, nf->second, true}});
       }
+    }
+    return runs;
+  };
+  for (const auto& co : ps) {
+    if (co.role != Role::collar || co.o->quantity != 1 || stand || necked) continue;
+    for (auto& parts : from_centre_front(co, false)) {
+      const double length = round_length(parts);
+      const std::string fr = parts[1].o->piece, bk = parts[2].o->piece;
+      const auto best = sew_band(co, std::move(parts), "collar seam",
+                                 "collar " + co.o->piece + " to the neckline of " + fr + " and " + bk + " from centre front",
+                                 -kRibShorter * length, 0.0, 0.03);
+      if (!best) continue;
+      found.push_back(*best);
+      break;
     }
   }
 
@@ -1240,8 +1248,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //     the neckline, sewn from centre front round the back's neckline (or
   //     the yoke's: a shirt's back neckline is on its yoke, which carries
   //     the shoulders) to centre front, as a one-piece collar is; its ends
-  //     reach past centre front by the button extension and overlap there,
-  //     so it is cut longer than the neckline (up to kStandLonger). Then the
+  //     reach past centre front by the button extension and overlap there
+  //     (within kStandLonger of the neckline's length either way). Then the
   //     collar's long edge that best fits the stand's other long edge (its
   //     top), the collar's ends short of the stand's by the extension (up to
   //     kStandLonger shorter), its drawing's left end to the stand's left.
@@ -1252,27 +1260,14 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   for (const auto& st : ps) {
     if (st.role != Role::stand || st.o->quantity != 1 || necked) continue;
     std::optional<SeamSuggestion> to_neck;
-    for (const auto& fr : ps) {
-      if (fr.role != Role::front || fr.o->quantity != 1 || fr.o->role.side != pattern::Side::none || to_neck) continue;
-      const auto nf = neckline(fr);
-      if (!nf) continue;
-      const auto split = centre_split(fr, *nf);
-      if (!split) continue;
-      const std::size_t nsf = fr.o->stretches.size();
-      for (const auto& bk : ps) {
-        if ((bk.role != Role::back && bk.role != Role::yoke) || to_neck) continue;
-        const auto nbk = neckline(bk);
-        if (!nbk) continue;
-        std::vector<Part> parts{{st.o, 0, 0, false},
-                                {fr.o, nf->first, *split, true},
-                                {bk.o, nbk->first, nbk->second, true},
-                                {fr.o, (*split + 1) % nsf, nf->second, true}};
-        const double length = round_length(parts);
-        to_neck = sew_band(st, std::move(parts), "stand seam",
-                           "collar stand " + st.o->piece + " to the neckline of " + fr.o->piece + " and " + bk.o->piece +
-                               " from centre front (its ends overlap there)",
-                           -kStandLonger * length, kStandLonger * length, 0.03);
-      }
+    for (auto& parts : from_centre_front(st, true)) {
+      const double length = round_length(parts);
+      const std::string fr = parts[1].o->piece, bk = parts[2].o->piece;
+      to_neck = sew_band(st, std::move(parts), "stand seam",
+                         "collar stand " + st.o->piece + " to the neckline of " + fr + " and " + bk +
+                             " from centre front (its ends overlap there)",
+                         -kStandLonger * length, kStandLonger * length, 0.03);
+      if (to_neck) break;
     }
     if (!to_neck) continue;
     found.push_back(*to_neck);
