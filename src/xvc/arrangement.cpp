@@ -509,9 +509,11 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
         }
       if (!other.empty()) collar_run.emplace(piece, Run{stretch_range(*c, h), stand});
     }
-  const auto stand_top = [&](const std::string& stand) -> std::optional<Arrangement> {
+  // The stand's arrangement in a size (a graded stand's height differs by size).
+  const auto stand_top = [&](const std::string& stand, std::string_view size) -> std::optional<Arrangement> {
     for (const auto& [sid, slist] : out)
-      if (const Node* q = doc.find(sid); q && q->attribute("piece") == stand && !slist.empty()) return slist.front();
+      if (const Node* q = doc.find(sid); q && q->attribute("piece") == stand && q->attribute("size") == size && !slist.empty())
+        return slist.front();
     return std::nullopt;
   };
   for (auto& [id, list] : out) {
@@ -522,7 +524,7 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
     const pattern::Piece piece = to_piece(doc, id);
     const auto sewn = run_points(piece, boundary_stretches(*p), found->second.stretches.first, found->second.stretches.second);
     if (sewn.empty()) continue;
-    const auto over = found->second.stand.empty() ? std::nullopt : stand_top(found->second.stand);
+    const auto over = found->second.stand.empty() ? std::nullopt : stand_top(found->second.stand, p->attribute("size"));
     for (auto& a : list) {
       const auto [lo, hi] = height_range(piece, a.angle_deg);
       double mean = 0;

@@ -1271,21 +1271,21 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     }
     if (!to_neck) continue;
     found.push_back(*to_neck);
-    // The stand's top: its other long edge (a run at least half as long as its longest edge).
+    // The stand's top: of its other long edges (at least half as long as its
+    // longest), the highest, the whole of it (its longest run).
     double longest = 0;
     for (const auto& e : st.edges) longest = std::max(longest, e.length);
-    const auto& sewn = to_neck->hems[0];
-    // Of the other long edges the highest, the whole of it (its longest run).
+    const std::size_t s0 = stretch_index(*st.o, to_neck->hems[0].from), s1 = stretch_index(*st.o, to_neck->hems[0].to);
+    std::optional<std::size_t> sewn_edge;
+    for (const auto& r : stretch_runs_of(st))
+      if (r.k0 == s0 && r.k1 == s1) sewn_edge = r.edge;
     std::optional<std::pair<std::size_t, std::size_t>> top;
     double top_v = -1e300, top_length = 0;
     for (const auto& r : stretch_runs_of(st)) {
       const Edge& e = st.edges[r.edge];
-      if (e.length < 0.5 * longest) continue;
-      const HemRef h = hem_ref(*st.o, r.k0, r.k1, false);
-      if (h.from == sewn.from || h.to == sewn.to) continue;  // the edge sewn to the neckline
-      const double length = arc_range(*st.o, r.k0, r.k1).second;
-      if (e.v_mean > top_v + 1e-9 || (std::abs(e.v_mean - top_v) <= 1e-9 && length > top_length))
-        top_v = e.v_mean, top_length = length, top = std::pair{r.k0, r.k1};
+      if (e.length < 0.5 * longest || (sewn_edge && r.edge == *sewn_edge)) continue;
+      if (e.v_mean > top_v + 1e-9 || (std::abs(e.v_mean - top_v) <= 1e-9 && r.length > top_length))
+        top_v = e.v_mean, top_length = r.length, top = std::pair{r.k0, r.k1};
     }
     if (!top) continue;
     std::optional<SeamSuggestion> best;

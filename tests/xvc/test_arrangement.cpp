@@ -10,9 +10,7 @@
 #include "shared_style.hpp"
 #include "support/test_paths.hpp"
 #include "vgd/core/diagnostics.hpp"
-#include "vgd/io/dxf/import.hpp"
 #include "vgd/pattern/draft.hpp"
-#include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
@@ -362,15 +360,9 @@ TEST(Arrangement, APolosCollarGoesOnByTheEdgeSewnToTheNeckline) {
 // top at the stand's, 1 cm further out. Valentina's shirt, its halves unfolded.
 TEST(Arrangement, AShirtsCollarIsTurnedDownOverItsStand) {
   VGD_REQUIRE_SHARED();
-  vgd::dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
-  vgd::pattern::unfold_top_halves(style);
-  Document doc = from_style(style);
+  auto [doc, at_base] = vgd::test::shared_style_halves_unfolded("Valentina_MaleShirt_AAMA_R12.dxf");
   std::vector<Node> seams;
   std::optional<SeamSuggestion> collar;
-  SeamOptions at_base;
-  at_base.size = "base";
   for (const auto& s : suggest_seams(doc, at_base)) {
     seams.push_back(seam_node(s));
     if (s.name == "collar seam") collar = s;

@@ -41,6 +41,11 @@ int stretch_of(const Document& doc, const std::string& pattern, const std::strin
   return -1;
 }
 
+// The first suggestion of that name, or found.end().
+std::vector<SeamSuggestion>::const_iterator named(const std::vector<SeamSuggestion>& found, const std::string& name) {
+  return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == name; });
+}
+
 SeamKey key(const Document& doc, const std::vector<HemRef>& hems) {
   SeamKey k;
   for (const auto& h : hems)
@@ -302,10 +307,7 @@ TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
     SCOPED_TRACE(c.file);
     const auto [doc, sample] = vgd::test::shared_style(c.file);
     const auto found = suggest_seams(doc, sample);
-    const auto named = [&](const std::string& n) {
-      return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == n; });
-    };
-    const auto neck = named("neck seam");
+    const auto neck = named(found, "neck seam");
     ASSERT_NE(neck, found.end());
     const SeamKey k = key(doc, neck->hems);
     ASSERT_EQ(k.size(), 4u);
@@ -330,7 +332,7 @@ TEST(SeamSuggestions, ACrewNecksRibIsSewnRoundTheNecklineBetweenTheShoulders) {
       }
       EXPECT_TRUE(part == 1 ? before : part == 3 ? after : before && after) << "part " << part;
     }
-    const auto ends = named("neckband ends");
+    const auto ends = named(found, "neckband ends");
     ASSERT_NE(ends, found.end());
     EXPECT_EQ(std::get<0>(key(doc, ends->hems)[0]), c.rib);
     EXPECT_NEAR(ends->length_a, 0.040, 0.001);
@@ -346,7 +348,7 @@ TEST(SeamSuggestions, APolosCollarIsSewnRoundTheNecklineFromCentreFront) {
   VGD_REQUIRE_SHARED();
   const auto [doc, sample] = vgd::test::shared_style("drill-holes.DXF");
   const auto found = suggest_seams(doc, sample);
-  const auto collar = std::find_if(found.begin(), found.end(), [](const SeamSuggestion& s) { return s.name == "collar seam"; });
+  const auto collar = named(found, "collar seam");
   ASSERT_NE(collar, found.end());
   const SeamKey k = key(doc, collar->hems);
   ASSERT_EQ(k.size(), 4u);
@@ -683,16 +685,9 @@ TEST(SeamSuggestions, AShirtsYokeTakesTheBackTheShouldersAndTheArmholesTop) {
 // over the stand. The other collar (COLLAR, a 31 cm rectangle) is sewn nowhere.
 TEST(SeamSuggestions, AShirtsStandIsSewnRoundTheNecklineAndItsCollarToTheStandsTop) {
   VGD_REQUIRE_SHARED();
-  vgd::dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  auto style = vgd::dxf::import_file(vgd::test::shared_dxf("Valentina_MaleShirt_AAMA_R12.dxf"), unfold).style;
-  vgd::pattern::unfold_top_halves(style);
-  const Document doc = vgd::xvc::from_style(style);
+  const Document doc = vgd::test::shared_style_halves_unfolded("Valentina_MaleShirt_AAMA_R12.dxf").doc;
   const auto found = at_size(doc, "base");
-  const auto named = [&](const std::string& n) {
-    return std::find_if(found.begin(), found.end(), [&](const SeamSuggestion& s) { return s.name == n; });
-  };
-  const auto stand = named("stand seam");
+  const auto stand = named(found, "stand seam");
   ASSERT_NE(stand, found.end());
   const SeamKey k = key(doc, stand->hems);
   ASSERT_EQ(k.size(), 4u);
@@ -706,7 +701,7 @@ TEST(SeamSuggestions, AShirtsStandIsSewnRoundTheNecklineAndItsCollarToTheStandsT
   EXPECT_NEAR(stand->length_b, 0.5585, 0.001);
   EXPECT_FALSE(stand->hems[0].reverse);
   for (std::size_t i = 1; i < stand->hems.size(); ++i) EXPECT_TRUE(stand->hems[i].reverse);
-  const auto collar = named("collar seam");
+  const auto collar = named(found, "collar seam");
   ASSERT_NE(collar, found.end());
   ASSERT_EQ(collar->hems.size(), 2u);
   EXPECT_EQ(std::string(doc.find(collar->hems[0].pattern)->attribute("piece")), "COLLARTOP");
