@@ -122,6 +122,45 @@ std::optional<std::vector<int>> trim_strip(std::vector<ContourPoint>& bd, int a,
   return index;
 }
 
+// Do segments pq and rs cross (touching at an end counts)?
+bool segments_meet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
+  const auto side = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const double d = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    return d > 0 ? 1 : d < 0 ? -1 : 0;
+  };
+  return side(p, q, r) * side(p, q, s) <= 0 && side(r, s, p) * side(r, s, q) <= 0;
+}
+
+// An ear: the unsewn outline e..s (contour order, e ≠ s) of a piece whose
+// ends the garment's seams sew to one point, sticking out of the piece
+// beyond the chord es: at least kEarBulge times longer than the chord, with
+// the chord inside the outline, the cloth beyond it no more than
+// kEarShare of the piece. It is an allowance's corner (a sleeve's back half
+// with its cap's and over-arm's allowances run on to where they meet):
+// sewn on the cut lines both ends of it go to one point and the cloth
+// between stands off the garment as a horn. Returns the cloth beyond the
+// chord (m²), 0 when e..s is no ear.
+constexpr double kEarBulge = 1.5;
+constexpr double kEarShare = 0.1;
+double ear_area(const std::vector<ContourPoint>& bd, int e, int s) {
+  const int n = static_cast<int>(bd.size());
+  const std::vector<Vec2> run = span_points(bd, e, s);
+  if (run.size() < 3) return 0.0;
+  const double chord = dist(bd[e].p, bd[s].p);
+  if (!(chord > 0) || polyline_length(run) < kEarBulge * chord) return 0.0;
+  const double whole = pattern::signed_area(bd);
+  const double ear = pattern::signed_area(run);  // closed by the chord
+  // Cloth beyond the chord (the ear turns the way the outline does), a small share of the piece.
+  if (!(ear * whole > 0) || std::abs(ear) > kEarShare * std::abs(whole)) return 0.0;
+  // The chord inside: no edge of the rest of the outline meets it.
+  for (int v = s; v != e; v = (v + 1) % n) {
+    const int w = (v + 1) % n;
+    if (v == s || w == e) continue;  // the edges at the chord's ends
+    if (segments_meet(bd[e].p, bd[s].p, bd[v].p, bd[w].p)) return 0.0;
+  }
+  return std::abs(ear);
+}
+
 // Corners of an outline: turn points and vertices turning by more than `deg`.
 std::vector<bool> corners(const std::vector<ContourPoint>& bd, double deg) {
   const int n = static_cast<int>(bd.size());
@@ -521,6 +560,108 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     diag.info(file, gp.pattern_id,
               "binding " + gp.name + " trimmed by " + format_fixed(100 * (mine - rest), 1) + " cm to the " +
                   format_fixed(100 * rest, 1) + " cm it binds");
+  }
+
+  // Ears cut off (ear_area). Where each hem's ends go is found from the
+  // seams: a seam sews its first hem's first vertex to its second hem's
+  // first and its first hem's last to its last hem's last (distance 0), and
+  // an unsewn run of outline under kEarGap between two hems of a piece
+  // (a notch's allowance at a shoulder point) keeps its ends that close. On
+  // each piece the unsewn outline between two hems whose ends the garment
+  // brings within half its chord of each other is cut along that chord when
+  // it is an ear.
+  {
+    constexpr double kEarGap = 0.025;  // m
+    using End = std::pair<int, int>;   // (piece, boundary vertex)
+    std::map<End, std::vector<std::pair<End, double>>> links;
+    const auto link = [&](End x, End y, double d) {
+      links[x].push_back({y, d});
+      links[y].push_back({x, d});
+    };
+    const auto first = [](const Hem& h) { return End{h.piece, h.forward ? h.a : h.b}; };
+    const auto last = [](const Hem& h) { return End{h.piece, h.forward ? h.b : h.a}; };
+    for (const auto& s : seams) {
+      if (s.hems.size() < 2) continue;
+      link(first(hems[s.hems[0]]), first(hems[s.hems[1]]), 0.0);
+      link(last(hems[s.hems[0]]), last(hems[s.hems.back()]), 0.0);
+    }
+    // Per piece, its hems in contour order and the runs between them.
+    const auto hems_of = [&](int pi) {
+      std::vector<int> mine;
+      for (int h = 0; h < static_cast<int>(hems.size()); ++h)
+        if (hems[h].piece == pi) mine.push_back(h);
+      std::sort(mine.begin(), mine.end(), [&](int x, int y) { return hems[x].a < hems[y].a; });
+      return mine;
+    };
+    for (int pi = 0; pi < static_cast<int>(g.pieces.size()); ++pi) {
+      const auto mine = hems_of(pi);
+      const auto& bd = g.pieces[pi].piece.boundary;
+      for (std::size_t k = 0; k < mine.size() && mine.size() > 1; ++k) {
+        const int e = hems[mine[k]].b, s = hems[mine[(k + 1) % mine.size()]].a;
+        if (e == s) continue;
+        if (const double run = polyline_length(span_points(bd, e, s)); run < kEarGap) link({pi, e}, {pi, s}, run);
+      }
+    }
+    // How far apart the garment holds two ends at most (shortest path; infinity when not linked).
+    const auto apart = [&](End from, End to) {
+      std::map<End, double> best{{from, 0.0}};
+      std::set<std::pair<double, End>> open{{0.0, from}};
+      while (!open.empty()) {
+        const auto [d, at] = *open.begin();
+        open.erase(open.begin());
+        if (at == to) return d;
+        const auto it = links.find(at);
+        if (it == links.end()) continue;
+        for (const auto& [next, w] : it->second)
+          if (const auto b = best.find(next); b == best.end() || d + w < b->second) {
+            if (b != best.end()) open.erase({b->second, next});
+            best[next] = d + w;
+            open.insert({d + w, next});
+          }
+      }
+      return std::numeric_limits<double>::infinity();
+    };
+    const auto seam_of = [&](int h) -> std::string {
+      for (const auto& s : seams)
+        if (std::find(s.hems.begin(), s.hems.end(), h) != s.hems.end()) return s.name.empty() ? s.id : s.name;
+      return hems[h].id;
+    };
+    for (int pi = 0; pi < static_cast<int>(g.pieces.size()); ++pi) {
+      const auto mine = hems_of(pi);
+      GarmentPiece& gp = g.pieces[pi];
+      auto& bd = gp.piece.boundary;
+      const int n = static_cast<int>(bd.size());
+      std::vector<bool> cut(n, false);
+      bool any = false;
+      for (std::size_t k = 0; k < mine.size() && mine.size() > 1; ++k) {
+        const int h = mine[k], next = mine[(k + 1) % mine.size()];
+        const int e = hems[h].b, s = hems[next].a;
+        if (e == s) continue;
+        const double area = ear_area(bd, e, s);
+        const double run = polyline_length(span_points(bd, e, s)), chord = dist(bd[e].p, bd[s].p);
+        if (area <= 0 || run < kEarGap) continue;
+        const double d = apart({pi, e}, {pi, s});
+        if (!(d <= 0.5 * chord)) continue;
+        for (int v = (e + 1) % n; v != s; v = (v + 1) % n) cut[v] = true;
+        any = true;
+        diag.info(file, gp.pattern_id,
+                  gp.name + ": the " + format_fixed(100 * run, 1) + " cm of outline between seams '" + seam_of(h) +
+                      "' and '" + seam_of(next) + "', whose ends are sewn " +
+                      (d > 0 ? "within " + format_fixed(100 * d, 1) + " cm of each other" : std::string("to one point")) +
+                      ", cut off along its " + format_fixed(100 * chord, 1) + " cm chord (" +
+                      format_fixed(1e4 * area, 1) + " cm² of an allowance's corner, which would stand off the garment)");
+      }
+      if (!any) continue;
+      std::vector<int> index(n, -1);
+      std::vector<ContourPoint> kept;
+      for (int v = 0; v < n; ++v)
+        if (!cut[v]) index[v] = static_cast<int>(kept.size()), kept.push_back(bd[v]);
+      for (auto& o : hems)
+        if (o.piece == pi) o.a = index[o.a], o.b = index[o.b];
+      for (auto& nt : gp.piece.notches)
+        nt.boundary_index = nt.boundary_index >= 0 && nt.boundary_index < n ? index[nt.boundary_index] : -1;
+      bd = std::move(kept);
+    }
   }
 
   // Segments per hem: a seam's first hem gets n, the others share n by length.

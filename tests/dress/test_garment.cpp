@@ -423,4 +423,81 @@ TEST(Garment, ABindingLongerThanItsEdgeIsTrimmedSquareToIt) {
   }
 }
 
+// An allowance's corner left on a piece (MEN_CLASSIC_TEE's back sleeve
+// half): EAR, 20 × 20 cm, has its right side sewn to PANEL's right side and
+// its top to PANEL's top; both end at PANEL's corner C. Between those two
+// seams EAR's outline runs out to a point 5 cm beyond its corner, from
+// (0.20, 0.17) to (0.25, 0.25) and back to (0.17, 0.20): 18.9 cm of cloth
+// edge whose ends are sewn to C, the cloth between standing off as a horn.
+// It is cut off along its 4.2 cm chord, and said. So it is when PANEL's top
+// starts 1.5 cm short of C, the 1.5 cm of it beside C unsewn (the tee's back
+// has 2 cm so at its shoulder point): the ends are sewn within 1.5 cm of each
+// other, under half the chord. With the top sewn to PANEL's bottom instead,
+// the ends go to two points 17 cm apart: the corner stays.
+TEST(Garment, AnEarBetweenTwoSeamsSewnToOnePointIsCutOffAlongItsChord) {
+  enum Top { at_c, short_of_c, at_bottom };
+  const auto document = [](Top top) {
+    pattern::Style s;
+    s.name = "ear";
+    s.sample_size = "38";
+    s.sizes = {"38"};
+    pattern::Piece e;
+    e.block = "EAR_38";
+    e.name = "EAR";
+    e.size = "38";
+    e.boundary = {{Vec2(0, 0), PointKind::turn},     {Vec2(0.20, 0), PointKind::turn},
+                  {Vec2(0.20, 0.17), PointKind::turn}, {Vec2(0.25, 0.25), PointKind::turn},
+                  {Vec2(0.17, 0.20), PointKind::turn}, {Vec2(0, 0.20), PointKind::turn}};
+    e.grain_line = pattern::Segment{Vec2(0.1, 0.02), Vec2(0.1, 0.18)};
+    pattern::Piece panel = rectangle("PANEL", 1.0, 0.17, 0.17);
+    if (top == short_of_c) panel.boundary.insert(panel.boundary.begin() + 3, {Vec2(1.155, 0.17), PointKind::turn});
+    s.pieces = {panel, e};
+    xvc::Document d(xvc::from_style(s).root(), "ear.xvc");
+    const auto p = stretch_ids(d, 0), k = stretch_ids(d, 1);
+    // PANEL: 0 bottom, 1 right (up to C), 2 top (from C; short_of_c: 2 the
+    // 1.5 cm beside C, 3 the rest), left. EAR: 1 right side, 4 top.
+    const std::string& panel_top = top == at_c ? p[2] : top == short_of_c ? p[3] : p[0];
+    std::vector<xvc::Node> seams = {
+        {"SEAM", {{"id", "seam1"}, {"name", "side"}, {"type", "plain"}},
+         {hem("hem1", k[1], k[1], "forward"), hem("hem2", p[1], p[1], "forward")}},
+        {"SEAM", {{"id", "seam2"}, {"name", "top"}, {"type", "plain"}},
+         {hem("hem3", k[4], k[4], "forward"), hem("hem4", panel_top, panel_top, top == at_bottom ? "reverse" : "forward")}}};
+    xvc::Node root = d.root();
+    for (auto& c : root.children)
+      if (c.tag == "SEAMS") c.children = seams;
+    return xvc::Document(std::move(root), "ear.xvc");
+  };
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  const auto reach = [](const Garment& g) {  // how far EAR's cloth reaches beyond its corner, along (1, 1)
+    double most = -1e9;
+    for (const auto& n : g.pieces[1].mesh.nodes) most = std::max(most, n.x() + n.y());
+    return most;
+  };
+  for (const Top top : {at_c, short_of_c}) {
+    Diagnostics diag;
+    const Garment g = assemble_garment(document(top), opt, diag);
+    ASSERT_EQ(g.pieces.size(), 2u);
+    EXPECT_NEAR(reach(g), 0.37, 1e-12) << "cut along the chord x + y = 0.37";
+    const std::string sewn = top == at_c ? "to one point" : "within 1.5 cm of each other";
+    bool said = false;
+    for (const auto& d : diag.items())
+      said = said || (d.entity == g.pieces[1].pattern_id &&
+                      d.message == "EAR: the 18.9 cm of outline between seams 'side' and 'top', whose ends are sewn " +
+                                       sewn +
+                                       ", cut off along its 4.2 cm chord (19.5 cm² of an allowance's corner, which "
+                                       "would stand off the garment)");
+    EXPECT_TRUE(said) << sewn;
+    ASSERT_EQ(g.seams.size(), 2u);
+    EXPECT_NEAR(g.seams[0].length_a, 0.17, 1e-12) << "the seams keep their stretches";
+    EXPECT_NEAR(g.seams[1].length_a, 0.17, 1e-12);
+  }
+  {
+    Diagnostics diag;
+    const Garment g = assemble_garment(document(at_bottom), opt, diag);
+    EXPECT_NEAR(reach(g), 0.50, 1e-12) << "two points: the corner stays";
+    for (const auto& d : diag.items()) EXPECT_EQ(d.message.find("cut off along"), std::string::npos) << d.message;
+  }
+}
+
 }  // namespace vgd::dress
