@@ -17,8 +17,10 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Unique_hash_map.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <list>
+#include <set>
 
 #include "vgd/core/diagnostics.hpp"
 
@@ -93,7 +95,9 @@ class Criteria {
 
 // Marks faces by nesting depth: outside 0, inside the outline 1, inside a hole 2...
 // Odd depths are the piece (CGAL's polygon-with-holes recipe; needs no seed point).
-void mark_domain(CDT& cdt) {
+// Only the contours' edges (`border(edge)`) change the depth; a line's do not.
+template <class Border>
+void mark_domain(CDT& cdt, Border&& is_border) {
   CGAL::Unique_hash_map<FH, int> depth(-1);
   std::list<CDT::Edge> border;
   auto flood = [&](FH start, int level) {
@@ -107,7 +111,7 @@ void mark_domain(CDT& cdt) {
       for (int i = 0; i < 3; ++i) {
         FH n = f->neighbor(i);
         if (depth[n] != -1) continue;
-        if (cdt.is_constrained(CDT::Edge(f, i)))
+        if (cdt.is_constrained(CDT::Edge(f, i)) && is_border(CDT::Edge(f, i)))
           border.push_back(CDT::Edge(f, i));
         else
           queue.push_back(n);
@@ -146,7 +150,8 @@ std::string where(const Point& p) {
 
 }  // namespace
 
-RawMesh refine(const std::vector<Contour>& contours, const Bounds& b, const std::string& piece) {
+RawMesh refine(const std::vector<Contour>& contours, const std::vector<std::vector<Vec2>>& lines, const Bounds& b,
+               const std::string& piece) {
   CDT cdt;
   RawMesh out;
 
@@ -168,24 +173,50 @@ RawMesh refine(const std::vector<Contour>& contours, const Bounds& b, const std:
     }
   }
 
-  // Every contour edge is a constraint.
+  // Every contour edge is a constraint, and a border of the domain.
+  std::set<std::pair<int, int>> contour_edges;  // node pairs, smaller first
   for (const auto& h : handles)
     for (std::size_t i = 0; i < h.size(); ++i) {
       const VH a = h[i], b2 = h[(i + 1) % h.size()];
       if (a == b2) throw Error("", piece, "a contour repeats the vertex at " + where(a->point()));
       cdt.insert_constraint(a, b2);
+      contour_edges.insert(std::minmax(a->info().node, b2->info().node));
     }
+
+  // The lines' points, then their edges as constraints.
+  out.line_nodes.resize(lines.size());
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    std::vector<VH> line;
+    for (const Vec2& p : lines[k]) {
+      VH v = cdt.insert(Point(p.x(), p.y()), hint->face());
+      if (v->info().node < 0) {
+        v->info().node = next++;
+        out.nodes.push_back(p);
+      }
+      line.push_back(v);
+      out.line_nodes[k].push_back(v->info().node);
+      hint = v;
+    }
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      if (line[i] == line[i + 1]) throw Error("", piece, "a line repeats the point at " + where(line[i]->point()));
+      cdt.insert_constraint(line[i], line[i + 1]);
+    }
+  }
 
   // Crossing constraints add their crossing points as vertices: refuse and say where.
   if (cdt.number_of_vertices() != static_cast<std::size_t>(next))
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
       if (v->info().node < 0)
-        throw Error("", piece, "the outline or a cutout crosses itself or another contour near " +
-                                   where(v->point()) + "; repair the piece or use a smaller mesh.spacing");
+        throw Error("", piece, std::string(lines.empty() ? "the outline or a cutout" : "the outline, a cutout or a line") +
+                                   " crosses itself or another contour near " + where(v->point()) +
+                                   "; repair the piece or use a smaller mesh.spacing");
 
   // Domain, then refinement. The no-edge-refinement mesher never splits a contour
   // edge; it drops bad triangles whose fix would need that.
-  mark_domain(cdt);
+  mark_domain(cdt, [&](const CDT::Edge& e) {
+    const int a = e.first->vertex(CDT::ccw(e.second))->info().node, c = e.first->vertex(CDT::cw(e.second))->info().node;
+    return contour_edges.count(std::minmax(a, c)) > 0;
+  });
   const Criteria criteria(b);
   if (b.split_boundary) {
     CGAL::Delaunay_mesher_2<CDT, Criteria> mesher(cdt, criteria);
@@ -201,11 +232,23 @@ RawMesh refine(const std::vector<Contour>& contours, const Bounds& b, const std:
       for (int i = 0; i < 3; ++i)
         if (f->vertex(i)->info().node == -1) f->vertex(i)->info().node = -2;
 
-  // Number them: Steiner points on contour edges first, then interior points.
+  // Number them: Steiner points on contour edges first, then interior points
+  // (those on a line among them: the domain lies on both sides of it).
+  const auto on_border = [&](VH v) {
+    auto e = cdt.incident_edges(v), end = e;
+    do {
+      if (cdt.is_constrained(*e)) {
+        const FH f = e->first, n = f->neighbor(e->second);
+        const bool in_f = !cdt.is_infinite(f) && f->is_in_domain(), in_n = !cdt.is_infinite(n) && n->is_in_domain();
+        if (in_f != in_n) return true;
+      }
+    } while (++e != end);
+    return false;
+  };
   std::vector<VH> inner;
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
     if (v->info().node != -2) continue;
-    if (cdt.are_there_incident_constraints(v)) {
+    if (cdt.are_there_incident_constraints(v) && (lines.empty() || on_border(v))) {
       v->info().node = next++;
       out.nodes.push_back(Vec2(v->point().x(), v->point().y()));
       ++out.boundary_steiner_nodes;

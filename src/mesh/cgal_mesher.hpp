@@ -16,6 +16,7 @@ struct RawMesh {
   std::vector<std::array<int, 3>> triangles;    // counter-clockwise
   std::vector<std::array<int, 2>> boundary;     // directed, piece on the left, in no particular order
   std::vector<std::vector<int>> contour_nodes;  // [c][i]: node of contours[c].points[i]
+  std::vector<std::vector<int>> line_nodes;     // [k][i]: node of lines[k][i]
   int boundary_steiner_nodes = 0;
 };
 
@@ -29,9 +30,13 @@ struct Bounds {
 };
 
 // Constrained Delaunay triangulation of the contours (contours[0] the outline,
-// the rest holes), domain marked by nesting depth, then Delaunay refinement.
+// the rest holes), domain marked by nesting depth across the contours' edges,
+// then Delaunay refinement.
 // Throws vgd::Error naming `piece` when constraints cross (with the place) or the
 // node guard trips.
-RawMesh refine(const std::vector<Contour>& contours, const Bounds& bounds, const std::string& piece);
+// Open polylines `lines` inside the domain are constraints too (not borders
+// of it): every point a node, no triangle across them.
+RawMesh refine(const std::vector<Contour>& contours, const std::vector<std::vector<Vec2>>& lines,
+               const Bounds& bounds, const std::string& piece);
 
 }  // namespace vgd::mesh::detail

@@ -226,7 +226,19 @@ PieceMesh triangulate(const std::vector<Contour>& contours, const MeshOptions& o
   b.max_edge = o.max_edge_m;
   b.split_boundary = o.split_boundary;
   b.max_nodes = o.max_nodes;
-  detail::RawMesh raw = detail::refine(contours, b, piece);
+  for (std::size_t k = 0; k < o.lines.size(); ++k) {
+    if (o.lines[k].size() < 2) throw Error("", piece, "line " + std::to_string(k + 1) + " has fewer than 2 points");
+    for (const Vec2& p : o.lines[k]) {
+      bool in = inside(contours[0].points, p);
+      for (std::size_t c = 1; in && c < contours.size(); ++c) in = !inside(contours[c].points, p);
+      if (!in) {
+        char at[96];
+        std::snprintf(at, sizeof at, "(%.4f, %.4f) m", p.x(), p.y());
+        throw Error("", piece, "line " + std::to_string(k + 1) + " leaves the piece at " + at);
+      }
+    }
+  }
+  detail::RawMesh raw = detail::refine(contours, o.lines, b, piece);
 
   // The domain must be the outline minus the holes: holes outside it or
   // overlapping each other show up as an area mismatch.
@@ -243,6 +255,7 @@ PieceMesh triangulate(const std::vector<Contour>& contours, const MeshOptions& o
   m.nodes = std::move(raw.nodes);
   m.triangles = std::move(raw.triangles);
   m.contour_nodes = std::move(raw.contour_nodes);
+  m.line_nodes = std::move(raw.line_nodes);
   m.boundary_steiner_nodes = raw.boundary_steiner_nodes;
   m.node_markers.assign(m.nodes.size(), kInteriorMarker);
   for (std::size_t c = 0; c < contours.size(); ++c)

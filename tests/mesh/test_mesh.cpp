@@ -187,6 +187,64 @@ TEST(MeshPiece, ForbiddingBoundarySplitsKeepsTheContourAsIs) {
   expect_boundary_attributed(m);
 }
 
+// A line inside the piece (where a pocket is sewn onto it): its points are
+// nodes bit for bit, in order, and each of its edges is an edge of the mesh
+// with triangles on both sides; the piece is whole (area exact, the
+// boundary the outline's). Two lines on the 0.5 m square, a U and a
+// straight one; with the boundary kept as drawn no node is added on them.
+// A line leaving the piece, or crossing another, is refused naming it.
+TEST(MeshPiece, LinesInsideThePieceAreEdgesOfTheMesh) {
+  const std::vector<std::vector<Vec2>> lines = {
+      {{0.1, 0.4}, {0.1, 0.25}, {0.13, 0.2}, {0.22, 0.2}, {0.25, 0.25}, {0.25, 0.4}},
+      {{0.3, 0.1}, {0.35, 0.12}, {0.4, 0.14}}};
+  for (const bool split : {true, false}) {
+    auto o = opts(0.02);
+    o.split_boundary = split;
+    o.lines = lines;
+    Diagnostics d;
+    const PieceMesh m = mesh_piece(piece("FRONT", test::square()), o, d);
+    const QualityReport q = check_mesh(m, o.min_angle_deg);
+    EXPECT_TRUE(q.valid()) << (q.problems.empty() ? "" : q.problems.front());
+    EXPECT_LE(q.area_rel_error, 1e-9);
+    ASSERT_EQ(m.line_nodes.size(), 2u);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      ASSERT_EQ(m.line_nodes[k].size(), lines[k].size());
+      for (std::size_t i = 0; i < lines[k].size(); ++i) EXPECT_EQ(m.nodes[m.line_nodes[k][i]], lines[k][i]);
+      for (std::size_t i = 0; !split && i + 1 < lines[k].size(); ++i) {
+        const int a = m.line_nodes[k][i], b = m.line_nodes[k][i + 1];
+        int left = 0, right = 0;  // triangles with a -> b, and with b -> a
+        for (const auto& t : m.triangles)
+          for (int j = 0; j < 3; ++j) {
+            left += t[j] == a && t[(j + 1) % 3] == b;
+            right += t[j] == b && t[(j + 1) % 3] == a;
+          }
+        EXPECT_EQ(left, 1) << "line " << k << " edge " << i;
+        EXPECT_EQ(right, 1) << "line " << k << " edge " << i;
+      }
+    }
+    EXPECT_EQ(m.boundary.size(), m.contours[0].points.size() + m.boundary_steiner_nodes) << "the outline's";
+    expect_boundary_attributed(m);
+  }
+  auto o = opts(0.02);
+  o.lines = {{{0.1, 0.1}, {0.6, 0.1}}};
+  Diagnostics d;
+  try {
+    mesh_piece(piece("FRONT", test::square()), o, d);
+    FAIL() << "a line leaving the piece was meshed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("FRONT: line 1 leaves the piece at (0.6000, 0.1000) m"), std::string::npos)
+        << e.what();
+  }
+  o.lines = {{{0.1, 0.1}, {0.4, 0.4}}, {{0.1, 0.4}, {0.4, 0.1}}};
+  try {
+    mesh_piece(piece("FRONT", test::square()), o, d);
+    FAIL() << "crossing lines were meshed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("crosses itself or another contour near (0.2500, 0.2500) m"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MeshPiece, AngleBoundsFrom20_7To30) {
   for (double angle : {20.7, 25.0, 30.0}) {
     Diagnostics d;

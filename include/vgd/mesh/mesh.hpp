@@ -70,8 +70,10 @@ struct PieceMesh {
   std::vector<std::vector<int>> contour_nodes;  // [c][i]: node of contours[c].points[i]
   MaterialFrame frame;
   // Node order: contour vertices first (outline, then cutouts; a vertex shared by
-  // two contours once), then Steiner nodes on the boundary, then interior nodes.
+  // two contours once), then the lines' points, then Steiner nodes on the
+  // boundary, then interior nodes.
   int boundary_steiner_nodes = 0;  // nodes the refinement added on contour edges
+  std::vector<std::vector<int>> line_nodes;  // [k][i]: node of MeshOptions::lines[k][i]
 };
 
 struct MeshOptions {
@@ -94,6 +96,12 @@ struct MeshOptions {
   bool split_boundary = true;
   // Refinement stops with an error beyond this many nodes (runaway guard).
   std::size_t max_nodes = 2'000'000;
+  // Open polylines inside the piece (m, pattern frame) meshed as constraints:
+  // every point a node, bit for bit (PieceMesh::line_nodes), and no triangle
+  // across them; a seam sewn onto the piece's face runs along one. Not
+  // resampled. With split_boundary the refinement may add nodes on them
+  // (interior nodes); without, it does not.
+  std::vector<std::vector<Vec2>> lines;
 };
 
 // The area bound meshing will use, m² (0 = none): max_area_m2 or its default.
