@@ -24,6 +24,50 @@ namespace vgd::dress {
 using body::Avatar;
 using body::BodySegment;
 
+namespace {
+
+// m: a piece sewn onto another's face starts this far outside it (the seam
+// pulls its edge in; the self-collision keeps its middle off the host).
+constexpr double kOnFace = 0.005;
+
+// Where a piece sewn onto `host`'s face starts: each node where the host's
+// placed mesh puts the same point of the host's pattern (barycentric in the
+// host triangle holding it, or the nearest), kOnFace out along that
+// triangle's outward normal.
+std::vector<body::Vec3> on_face(const GarmentPiece& piece, const GarmentPiece& host, const PlacedPiece& placed) {
+  const auto& hn = host.mesh.nodes;
+  std::vector<body::Vec3> out;
+  out.reserve(piece.mesh.nodes.size());
+  for (const auto& q : piece.mesh.nodes) {
+    const pattern::Vec2 p = piece.on_host(q);
+    int best = -1;
+    double best_out = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d w_best = Eigen::Vector3d::Zero();
+    for (std::size_t t = 0; t < host.mesh.triangles.size(); ++t) {
+      const auto& tr = host.mesh.triangles[t];
+      const pattern::Vec2 a = hn[tr[0]], b = hn[tr[1]], c = hn[tr[2]];
+      const double d = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (d == 0.0) continue;
+      const double w1 = ((p - a).x() * (c - a).y() - (p - a).y() * (c - a).x()) / d;
+      const double w2 = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / d;
+      const Eigen::Vector3d w(1.0 - w1 - w2, w1, w2);
+      const double outside = -std::min(0.0, w.minCoeff());  // 0 inside
+      if (outside < best_out) best_out = outside, best = static_cast<int>(t), w_best = w;
+      if (outside == 0.0) break;
+    }
+    if (best < 0) throw Error("", piece.pattern_id, "its host " + host.name + " has no triangle to place it on");
+    const auto& tr = host.mesh.triangles[best];
+    const body::Vec3 &x0 = placed.positions[tr[0]], &x1 = placed.positions[tr[1]], &x2 = placed.positions[tr[2]];
+    const Eigen::Vector3d w = w_best.cwiseMax(0.0) / w_best.cwiseMax(0.0).sum();
+    body::Vec3 n = (x1 - x0).cross(x2 - x0);
+    n = (placed.flipped ? -1.0 : 1.0) * n / std::max(n.norm(), 1e-30);
+    out.push_back(w[0] * x0 + w[1] * x1 + w[2] * x2 + kOnFace * n);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::map<std::string, std::vector<xvc::Arrangement>> garment_arrangements(const xvc::Document& doc,
                                                                          const Avatar& avatar) {
   const xvc::ArrangementOptions ao = arrangement_options(avatar);
@@ -58,6 +102,10 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
   const auto place_all = [&](double lift) {
     std::vector<PlacedPiece> out;
     for (const auto& gp : garment.pieces) {
+      if (gp.host >= 0) {  // on its host's face, below
+        out.emplace_back();
+        continue;
+      }
       const auto it = arrangements.find(gp.pattern_id);
       if (it == arrangements.end() || gp.copy >= static_cast<int>(it->second.size()))
         throw Error(doc.name(), gp.pattern_id,
@@ -79,6 +127,22 @@ std::vector<PlacedPiece> place_garment(const xvc::Document& doc, const Garment& 
                        format_fixed(p.clearance * 1000, 0) + " mm clear" + (a.flip ? ", flipped" : "");
       pp.lifted = lift;
       out.push_back(std::move(pp));
+    }
+    for (std::size_t i = 0; i < garment.pieces.size(); ++i) {
+      const GarmentPiece& gp = garment.pieces[i];
+      if (gp.host < 0) continue;
+      const PlacedPiece& host = out[gp.host];
+      PlacedPiece pp;
+      try {
+        pp.positions = on_face(gp, garment.pieces[gp.host], host);
+      } catch (const Error& e) {
+        throw Error(doc.name(), gp.pattern_id, "cannot place " + gp.name + ": " + e.diagnostic().message);
+      }
+      pp.flipped = host.flipped;
+      pp.segment = host.segment;
+      pp.arrangement = "on the face of " + garment.pieces[gp.host].name;
+      pp.lifted = lift;
+      out[i] = std::move(pp);
     }
     return out;
   };

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "vgd/core/strings.hpp"
+#include "vgd/pattern/contour.hpp"
 #include "vgd/pattern/halves.hpp"
 #include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
@@ -266,6 +267,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
   std::vector<std::vector<int>> copies;              // per pattern kept: its pieces
   std::set<std::string> left_out;                    // stretches of this size's patterns left out
   std::vector<bool> folded;                          // per pattern kept: cut double, folded lengthwise
+  std::vector<const xvc::Node*> kept_nodes;          // per pattern kept
   for (const auto* p : patterns) {
     if (std::string(p->attribute("size")) != g.size) continue;
     GarmentPiece gp;
@@ -283,6 +285,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     }
     stretches.push_back(xvc::boundary_stretches(*p));
     folded.push_back(xvc::folded_attribute(*p).value_or(false));
+    kept_nodes.push_back(p);
     copies.emplace_back();
     const auto listed = options.copies.find(gp.pattern_id);
     const int n = std::max<int>(1, listed != options.copies.end() ? listed->second
@@ -664,6 +667,61 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     }
   }
 
+  // Pieces sewn onto another's face (xvc::FacePlacement): each gets a hem
+  // along its outline but its mouth (in no SEAM), sewn to a line of its
+  // host where that outline lies.
+  struct FaceSeam {
+    int hem = -1;   // in `hems`
+    int host = -1;  // the host piece
+    int line = -1;  // its line on the host (index in lines[host])
+    std::string id, name;
+  };
+  std::vector<FaceSeam> face_seams;
+  for (std::size_t k = 0; k < kept_nodes.size(); ++k) {
+    const auto placements = xvc::face_placements_of(*kept_nodes[k]);
+    for (std::size_t c = 0; c < copies[k].size() && c < placements.size(); ++c) {
+      const xvc::FacePlacement& f = placements[c];
+      const int pi = copies[k][c];
+      GarmentPiece& gp = g.pieces[pi];
+      int host = -1;
+      for (std::size_t h = 0; h < kept_nodes.size(); ++h)
+        if (kept_nodes[h]->id() == f.host) host = copies[h][0];
+      if (host < 0 || host == pi)
+        throw Error(file, f.id,
+                    gp.name + " is sewn onto the face of " + f.host + ", which is " +
+                        (host == pi ? "itself" : "not a pattern of size " + g.size + " that is draped"));
+      for (const auto& h : hems)
+        if (h.piece == pi)
+          throw Error(file, f.id, gp.name + " is sewn onto the face of " + g.pieces[host].name +
+                                      " and by seams as well (hem " + h.id + "); a piece sewn onto a face has no other seam");
+      // Its mouth: the stretch whose ends' middle lies highest in its own frame.
+      const auto& st = stretches[k];
+      const auto& bd = gp.piece.boundary;
+      const int ns = static_cast<int>(st.size());
+      if (ns < 2) throw Error(file, f.id, gp.name + " needs a mouth and an outline to sew: its outline is one stretch");
+      int mouth = 0;
+      double top = -std::numeric_limits<double>::infinity();
+      for (int q = 0; q < ns; ++q) {
+        const double y = 0.5 * (bd[st[q].first].p.y() + bd[st[(q + 1) % ns].first].p.y());
+        if (y > top) top = y, mouth = q;
+      }
+      Vec2 lo = bd[0].p, hi = bd[0].p;
+      for (const auto& cp : bd) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
+      const double t = f.angle_deg * std::numbers::pi / 180.0;
+      gp.host = host;
+      gp.to_host_rotation << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
+      gp.to_host_from = 0.5 * (lo + hi);
+      gp.to_host_at = Vec2(f.x, f.y);
+      Hem hem;
+      hem.id = f.id;
+      hem.piece = pi;
+      hem.a = static_cast<int>(st[(mouth + 1) % ns].first);
+      hem.b = static_cast<int>(st[mouth].first);
+      face_seams.push_back({static_cast<int>(hems.size()), host, -1, f.id, gp.name + " on " + g.pieces[host].name});
+      hems.push_back(std::move(hem));
+    }
+  }
+
   // Segments per hem: a seam's first hem gets n, the others share n by length.
   for (const auto& s : seams) {
     std::vector<double> len;
@@ -687,6 +745,26 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       left -= nk;
       left_len -= len[k];
     }
+  }
+
+  // A face seam's hem gets ceil(length / spacing) segments, and its line
+  // the same points where they lie on the host, inside its outline.
+  std::vector<std::vector<std::vector<Vec2>>> lines(g.pieces.size());
+  for (auto& fs : face_seams) {
+    Hem& h = hems[fs.hem];
+    const GarmentPiece& gp = g.pieces[h.piece];
+    const auto run = span_points(gp.piece.boundary, h.a, h.b);
+    h.segments = std::max(1, static_cast<int>(std::ceil(polyline_length(run) / spacing - 1e-9)));
+    std::vector<Vec2> line;
+    for (const Vec2& p : by_arc_length(run, h.segments)) line.push_back(gp.on_host(p));
+    for (const Vec2& p : line)
+      if (!pattern::point_in_outline(g.pieces[fs.host].piece.boundary, p))
+        throw Error(file, fs.id,
+                    gp.name + " placed on " + g.pieces[fs.host].name + " reaches past its outline at (" +
+                        format_fixed(p.x(), 3) + ", " + format_fixed(p.y(), 3) + ") m; move it (POSITION " + fs.id +
+                        ": x, y, angle)");
+    fs.line = static_cast<int>(lines[fs.host].size());
+    lines[fs.host].push_back(std::move(line));
   }
 
   // Resample and mesh every piece.
@@ -778,6 +856,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     mo.min_angle_deg = min_angle;
     mo.max_area_m2 = (1.0 + std::sqrt(2.0)) / 4.0 * spacing * spacing;
     mo.resample.spacing_m = spacing;
+    mo.lines = lines[pi];
     try {
       const std::size_t said = diag.items().size();
       gp.mesh = mesh::mesh_piece(resampled, mo, diag);
@@ -814,6 +893,17 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
         if (!(first.at(at + q) == other[q])) out.pairs.push_back({first.at(at + q), other[q]});
       at += static_cast<int>(other.size()) - 1;
     }
+    g.seams.push_back(std::move(out));
+  }
+  for (const auto& fs : face_seams) {
+    const Hem& h = hems[fs.hem];
+    const auto& pocket = g.pieces[h.piece];
+    const auto& on = g.pieces[fs.host].mesh.line_nodes.at(fs.line);
+    GarmentSeam out{fs.id, fs.name, {}, 0.0, 0.0};
+    for (std::size_t i = 0; i < h.vertices.size() && i < on.size(); ++i)
+      out.pairs.push_back({PieceNode{h.piece, pocket.mesh.contour_nodes[0][h.vertices[i]]}, PieceNode{fs.host, on[i]}});
+    out.length_a = out.length_b =
+        polyline_length(span_points(pocket.piece.boundary, h.vertices.front(), h.vertices.back()));
     g.seams.push_back(std::move(out));
   }
   return g;

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 
@@ -116,6 +118,63 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
       why = "none of the seams vgd suggests fits it";
   }
   return why + "; sew it with 'vgd seams add' and arrange it with 'vgd place', then dress the document again";
+}
+
+// m: a chest pocket's top lies this far above the bottom of the armhole
+// (the top of the side seam), its middle this share of the way from centre
+// front to the side seam there, on the wearer's left.
+constexpr double kPocketAboveUnderarm = 0.04;
+constexpr double kPocketAcross = 0.4;
+
+// Where a patch pocket goes on a whole front (cut once, symmetric about
+// centre front) when the document does not say: the front turned upright as
+// its arrangement turns it, the armhole's bottom is the highest point of
+// the upper half within 5 mm of its widest reach; the pocket turned the
+// same way (its own +y up). Nothing for a flipped arrangement.
+std::optional<xvc::FacePlacement> chest_pocket(const xvc::Document& doc, const xvc::Node& pocket, const xvc::Node& front,
+                                               const xvc::Arrangement& at, std::string& said) {
+  if (at.flip) return std::nullopt;
+  const double t = at.angle_deg * std::numbers::pi / 180.0;
+  const auto turn = [](const pattern::Vec2& p, double a) {
+    return pattern::Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(), std::sin(a) * p.x() + std::cos(a) * p.y());
+  };
+  std::vector<pattern::Vec2> q;
+  for (const auto& cp : xvc::to_piece(doc, std::string(front.id())).boundary) q.push_back(turn(cp.p, t));
+  if (q.size() < 3) return std::nullopt;
+  pattern::Vec2 lo = q[0], hi = q[0];
+  for (const auto& p : q) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double cf = 0.5 * (lo.x() + hi.x()), mid = 0.5 * (lo.y() + hi.y());
+  double reach = -std::numeric_limits<double>::infinity();
+  for (const auto& p : q)
+    if (p.y() > mid) reach = std::max(reach, p.x());
+  double underarm = -std::numeric_limits<double>::infinity();
+  for (const auto& p : q)
+    if (p.y() > mid && p.x() >= reach - 0.005) underarm = std::max(underarm, p.y());
+  if (!(reach > cf) || !std::isfinite(underarm)) return std::nullopt;
+  pattern::Vec2 plo, phi;
+  const auto own = xvc::to_piece(doc, std::string(pocket.id())).boundary;
+  if (own.size() < 3) return std::nullopt;
+  plo = phi = own[0].p;
+  for (const auto& cp : own) plo = plo.cwiseMin(cp.p), phi = phi.cwiseMax(cp.p);
+  const double across = kPocketAcross * (reach - cf);
+  const pattern::Vec2 centre(cf + across, underarm + kPocketAboveUnderarm - 0.5 * (phi.y() - plo.y()));
+  const pattern::Vec2 c = turn(centre, -t);
+  said = "its top " + format_fixed(100 * kPocketAboveUnderarm, 1) + " cm above the bottom of the armhole, its middle " +
+         format_fixed(100 * across, 1) + " cm from centre front on the wearer's left";
+  // All of it on the front (in the front's upright frame).
+  const auto front_up = [&] {
+    std::vector<pattern::ContourPoint> out;
+    for (const auto& p : q) out.push_back({p, pattern::PointKind::plain});
+    return out;
+  }();
+  const pattern::Vec2 mid_own = 0.5 * (plo + phi);
+  for (const auto& cp : own)
+    if (!pattern::point_in_outline(front_up, cp.p - mid_own + centre)) {
+      said = "it does not fit on " + std::string(front.attribute("piece")) + " where vgd puts a chest pocket (" + said +
+             ")";
+      return std::nullopt;
+    }
+  return xvc::FacePlacement{"", std::string(front.id()), c.x(), c.y(), -at.angle_deg};
 }
 
 }  // namespace
@@ -427,6 +486,32 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     const auto& g = roles[std::string(p->attribute("piece"))];
     return g.role == pattern::Role::leg && g.half != pattern::Half::none;
   });
+  // A patch pocket goes on the face of a whole front (one cut once, no
+  // side or half): the first pocket pattern; the others are its
+  // alternatives. Where the document places it, else chest_pocket.
+  const xvc::Node* pocket_host = nullptr;
+  std::string first_pocket;
+  std::map<std::string, xvc::FacePlacement> pocket_at;  // pattern id -> where to write it
+  for (const auto* p : mine) {
+    const auto& g = roles[std::string(p->attribute("piece"))];
+    if (!pocket_host && g.role == pattern::Role::front && g.side == pattern::Side::none &&
+        g.half == pattern::Half::none && p->attribute("quantity") != "0" && xvc::drape_attribute(*p) != false &&
+        xvc::arrangements_of(*p).size() <= 1)
+      pocket_host = p;
+    if (first_pocket.empty() && g.role == pattern::Role::pocket && p->attribute("quantity") != "0" &&
+        xvc::drape_attribute(*p) != false && !sewn.count(std::string(p->attribute("piece"))))
+      first_pocket = std::string(p->attribute("piece"));
+  }
+  const bool has_legs = std::any_of(mine.begin(), mine.end(), [&](const xvc::Node* p) {
+    return roles[std::string(p->attribute("piece"))].role == pattern::Role::leg;
+  });
+  const auto host_arrangement = [&]() -> std::optional<xvc::Arrangement> {
+    if (!pocket_host) return std::nullopt;
+    if (const auto stored = xvc::arrangements_of(*pocket_host); !stored.empty()) return stored.front();
+    for (const auto& [id, list] : xvc::suggest_arrangements(doc))
+      if (id == pocket_host->id() && !list.empty()) return list.front();
+    return std::nullopt;
+  };
   for (const auto* p : mine) {
     const std::string name(p->attribute("piece"));
     const pattern::Role role = roles[name].role;
@@ -437,6 +522,37 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       if (p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
         out.missing.push_back(name + (what.empty() ? " (role unknown)" : what));
     };
+    if (role == pattern::Role::pocket && !first_pocket.empty() && xvc::drape_attribute(*p) != false &&
+        !sewn.count(name)) {
+      if (const auto stored = xvc::face_placements_of(*p); !stored.empty()) {
+        const auto* host = doc.find(stored.front().host);
+        out.pieces.push_back(name);
+        out.decisions.push_back("piece " + name + what + " sewn onto the face of " +
+                                (host ? std::string(host->attribute("piece")) : stored.front().host) +
+                                " where the document places it");
+        continue;
+      }
+      if (name != first_pocket && pocket_host) {
+        out.left_out.push_back(name);  // not missing: the garment has its pocket
+        out.decisions.push_back("piece " + name + what + " left out: an alternative to the pocket " + first_pocket);
+        continue;
+      }
+      std::string said;
+      const auto at = host_arrangement();
+      const auto f = at ? chest_pocket(doc, *p, *pocket_host, *at, said) : std::nullopt;
+      if (f) {
+        pocket_at[std::string(p->id())] = *f;
+        out.pieces.push_back(name);
+        out.decisions.push_back("piece " + name + what + " sewn onto the face of " +
+                                std::string(pocket_host->attribute("piece")) + ", " + said +
+                                " (POSITION type=\"placement\" written in the document: move it there)");
+        continue;
+      }
+      if (!said.empty()) {
+        leave(said + "; place it with a POSITION type=\"placement\" (docs/xvc.md)");
+        continue;
+      }
+    }
     if (xvc::drape_attribute(*p) == false) {
       out.left_out.push_back(name);
       out.decisions.push_back("piece " + name + what + " left out: the document says drape=\"false\"");
@@ -446,6 +562,12 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       else if (!pattern::drapes_as_cloth(role))
         leave(role == pattern::Role::lining ? "a lining hangs inside the garment as a garment of its own; drape it as one"
                                             : "it is bonded to its host and does not hang as cloth of its own");
+      else if (role == pattern::Role::pocket && has_legs)
+        leave("a trouser pocket's pieces (bag, facing) hang inside the leg behind its pocket opening, which vgd does "
+              "not drape");
+      else if (role == pattern::Role::pocket)
+        leave("a pocket is sewn onto the face of a whole front (one cut once), and this garment has none: place it "
+              "with a POSITION type=\"placement\" (docs/xvc.md)");
       else if (pattern::sewn_on_host(role))
         leave("it is sewn onto the face of its host piece, which vgd does not drape yet");
       else if (role == pattern::Role::unknown)
@@ -540,6 +662,10 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                     "); add seams with 'vgd seams add' or a seam file with 'vgd seams apply', and arrangements "
                     "with 'vgd place'");
   }
+
+  // Where a pocket is sewn onto its front, written on the pocket's PATTERN.
+  for (const auto& [id, f] : pocket_at)
+    xvc::execute(doc, *std::make_unique<xvc::AddNode>(id, xvc::face_placement_node(f)));
 
   // Written in the document where it says nothing yet: each pattern's role
   // and whether it is draped, so that the designer corrects one and runs

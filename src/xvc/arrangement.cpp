@@ -156,6 +156,22 @@ std::vector<Pin> pins_of(const Node& pattern) {
   return out;
 }
 
+std::vector<FacePlacement> face_placements_of(const Node& pattern) {
+  std::vector<FacePlacement> out;
+  for (const auto& c : pattern.children)
+    if (c.tag == "POSITION" && c.attribute("type") == "placement" && c.has_attribute("pattern"))
+      out.push_back({std::string(c.id()), std::string(c.attribute("pattern")), parse_double(c.attribute("x")).value_or(0),
+                     parse_double(c.attribute("y")).value_or(0), parse_double(c.attribute("angle")).value_or(0)});
+  return out;
+}
+
+Node face_placement_node(const FacePlacement& f) {
+  Node n{"POSITION", {{"type", "placement"}, {"x", format_double(f.x)}, {"y", format_double(f.y)}}, {}};
+  if (f.angle_deg != 0) n.set_attribute("angle", format_double(f.angle_deg));
+  n.set_attribute("pattern", f.host);
+  return n;
+}
+
 Node arrangement_node(const Arrangement& a) {
   Node n{"POSITION", {{"type", "arrangement"}, {"x", format_double(a.x)}, {"y", format_double(a.y)}}, {}};
   if (a.angle_deg != 0) n.set_attribute("angle", format_double(a.angle_deg));

@@ -181,10 +181,12 @@ INSTANTIATE_TEST_SUITE_P(
         // halves, every piece cut once: unfolded, the short sleeve cut twice,
         // the back pleated into the yoke, each armhole the back's, the
         // yoke's and the front's, the stand round the neckline and the collar
-        // turned down over it.
+        // turned down over it; the first of its two pockets sewn onto the
+        // front's left chest.
         RealGarment{"valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 0,
-                    "left-arm neck neck right-arm torso torso torso",
-                    "seam 'collar seam' suggested at size base: COLLARTOP to COLLARBASE"},
+                    "left-arm neck neck right-arm torso torso torso torso",
+                    "piece POCKETROUND (pocket) sewn onto the face of FRONTPANEL, its top 4.0 cm above the bottom of "
+                    "the armhole, its middle 15.7 cm from centre front on the wearer's left"},
         // Valentina's trousers: cut as half legs, in place on the men's body
         // its hip fits; cut to the floor, longer than the body's legs, they
         // start 5 cm above the soles instead of held open round the feet, and

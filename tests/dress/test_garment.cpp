@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "vgd/dress/garment.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/style.hpp"
 #include "vgd/xvc/xvc.hpp"
 
@@ -497,6 +498,62 @@ TEST(Garment, AnEarBetweenTwoSeamsSewnToOnePointIsCutOffAlongItsChord) {
     const Garment g = assemble_garment(document(at_bottom), opt, diag);
     EXPECT_NEAR(reach(g), 0.50, 1e-12) << "two points: the corner stays";
     for (const auto& d : diag.items()) EXPECT_EQ(d.message.find("cut off along"), std::string::npos) << d.message;
+  }
+}
+
+// A patch pocket sewn onto a panel's face (POSITION type="placement"): a
+// 10 × 12 cm POCKET whose mouth is its top edge, placed with its middle at
+// (0.15, 0.30) on the 30 × 50 cm FRONT, turned by 90°. Its outline but the
+// mouth (34 cm) is sewn vertex to vertex to a line of FRONT's mesh where it
+// lies there: each pair's two nodes at one pattern point. Placed past
+// FRONT's edge, it is refused naming the POSITION.
+TEST(Garment, APocketIsSewnOntoItsHostsFaceAlongItsOutlineButItsMouth) {
+  const auto document = [](double x) {
+    pattern::Style s;
+    s.name = "pocketed";
+    s.sample_size = "38";
+    s.sizes = {"38"};
+    s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("POCKET", 1.0, 0.10, 0.12)};
+    xvc::Node root = xvc::from_style(s).root();
+    for (auto& c : root.children)
+      if (c.tag == "PATTERNS")
+        for (auto& p : c.children)
+          if (p.attribute("piece") == "POCKET") {
+            xvc::Node pos = xvc::face_placement_node({"", std::string(c.children[0].id()), x, 0.30, 90.0});
+            pos.set_attribute("id", "pos_pocket");
+            p.children.push_back(pos);
+          }
+    return xvc::Document(std::move(root), "pocketed.xvc");
+  };
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  Diagnostics diag;
+  const Garment g = assemble_garment(document(0.15), opt, diag);
+  ASSERT_EQ(g.pieces.size(), 2u);
+  EXPECT_EQ(g.pieces[1].host, 0);
+  ASSERT_EQ(g.seams.size(), 1u);
+  const GarmentSeam& seam = g.seams[0];
+  EXPECT_EQ(seam.name, "POCKET on FRONT");
+  EXPECT_NEAR(seam.length_a, 0.34, 1e-12) << "the sides and the bottom, not the mouth";
+  ASSERT_EQ(seam.pairs.size(), 18u) << "34 cm at 2 cm: 17 segments";
+  const pattern::Vec2 mouth_left(1.0, 0.12), mouth_right(1.10, 0.12);
+  for (const auto& [a, b] : seam.pairs) {
+    ASSERT_EQ(a.piece, 1);
+    ASSERT_EQ(b.piece, 0);
+    const pattern::Vec2 p = g.pieces[1].mesh.nodes[a.node], q = g.pieces[0].mesh.nodes[b.node];
+    EXPECT_LT((g.pieces[1].on_host(p) - q).norm(), 1e-12) << "the pocket's point where it lies on FRONT";
+    EXPECT_FALSE(p.y() > 0.12 - 1e-12 && p.x() > 1.0 + 1e-9 && p.x() < 1.10 - 1e-9) << "no pair inside the mouth";
+  }
+  // Turned by 90°: the mouth (the pocket's top) lies on FRONT's left, x = 0.15 - 0.06.
+  EXPECT_LT((g.pieces[1].on_host(mouth_left) - pattern::Vec2(0.09, 0.25)).norm(), 1e-12);
+  EXPECT_LT((g.pieces[1].on_host(mouth_right) - pattern::Vec2(0.09, 0.35)).norm(), 1e-12);
+  try {
+    assemble_garment(document(0.27), opt, diag);
+    FAIL() << "a pocket past its host's edge was assembled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pos_pocket: POCKET placed on FRONT reaches past its outline at"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -328,8 +328,10 @@ TEST(PrepareGarment, ASizeTheTableLacksKeepsTheStylesEase) {
   })) << ::testing::PrintToString(p.decisions);
 }
 
-// Pieces left out say why, from their role: bonded interfacings, pockets sewn
-// on a face, linings, pieces nobody cuts.
+// Pieces left out say why, from their role: bonded interfacings, a pocket
+// with no room on its front where a chest pocket goes (the 50 × 60 cm
+// rectangle has no armhole: its top corner is the armhole's bottom, and the
+// pocket would sit 4 cm above it), linings, pieces nobody cuts.
 TEST(PrepareGarment, PiecesLeftOutSayWhy) {
   pattern::Style s =
       one_size("WM TOP", "38",
@@ -343,8 +345,9 @@ TEST(PrepareGarment, PiecesLeftOutSayWhy) {
   const std::vector<std::string> want = {
       "piece COLLAR INTERFACING (interfacing) left out: it is bonded to its host and does not hang as cloth "
       "of its own",
-      "piece POCKET (pocket) left out: it is sewn onto the face of its host piece, which vgd does not drape "
-      "yet",
+      "piece POCKET (pocket) left out: it does not fit on FRONT where vgd puts a chest pocket (its top 4.0 cm "
+      "above the bottom of the armhole, its middle 10.0 cm from centre front on the wearer's left); place it "
+      "with a POSITION type=\"placement\" (docs/xvc.md)",
       "piece FRONT LINING (lining) left out: a lining hangs inside the garment as a garment of its own; "
       "drape it as one",
       "piece GUIDE left out: the file cuts it 0 times (a reference or an alternative)"};

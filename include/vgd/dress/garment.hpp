@@ -21,7 +21,10 @@
 //
 // A SEAM with more than two HEMs sews its first HEM to the others taken in
 // document order one after the other (a sleeve cap to the front and back
-// armholes). Units: metres.
+// armholes). A piece sewn onto another's face (POSITION type="placement",
+// xvc::FacePlacement: a patch pocket) is sewn along its outline but its
+// mouth to a line of the host's mesh where that outline lies on it, vertex
+// to vertex (a seam named "POCKET on FRONT"). Units: metres.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
@@ -68,6 +71,13 @@ struct GarmentPiece {
   // seam sews, pattern::fold_lengthwise), else 1.
   int layers = 1;
   mesh::PieceMesh mesh;    // nodes in pattern coordinates
+  // A piece sewn onto another's face (a patch pocket, xvc::FacePlacement):
+  // that piece's index, and where this piece's pattern points lie in that
+  // piece's pattern frame (on_host). -1: a piece of its own.
+  int host = -1;
+  Eigen::Matrix2d to_host_rotation = Eigen::Matrix2d::Identity();
+  pattern::Vec2 to_host_from = pattern::Vec2::Zero(), to_host_at = pattern::Vec2::Zero();
+  pattern::Vec2 on_host(const pattern::Vec2& p) const { return to_host_rotation * (p - to_host_from) + to_host_at; }
 };
 
 // A vertex of one piece's mesh.

@@ -60,6 +60,25 @@ struct Pin {
 };
 // The pins stored in a PATTERN, in document order.
 std::vector<Pin> pins_of(const Node& pattern);
+// A piece sewn onto another piece's face (a patch pocket): POSITION
+// type="placement" pattern="HOST" in its PATTERN. The middle of its
+// outline's box lies at (x, y) (m, the host PATTERN's frame), the piece
+// turned by `angle` (deg, counter-clockwise) from its own frame into the
+// host's; both face up. Its top edge in its own frame (+y; the boundary
+// C2DSEQ whose middle is highest) is its mouth, left open; the rest of its
+// outline is sewn to the host along that outline as it lies there
+// (dress::assemble_garment). A pattern cut more than once gives its k-th
+// copy the k-th such POSITION; each sits on the host's first copy.
+struct FacePlacement {
+  std::string id;    // the POSITION's id
+  std::string host;  // the PATTERN it is sewn onto
+  double x = 0, y = 0, angle_deg = 0;
+};
+// The face placements stored in a PATTERN, in document order.
+std::vector<FacePlacement> face_placements_of(const Node& pattern);
+// A POSITION element for one (no id: AddNode gives one).
+Node face_placement_node(const FacePlacement& f);
+
 // A POSITION element (no id: AddNode gives one).
 Node arrangement_node(const Arrangement& a);
 
