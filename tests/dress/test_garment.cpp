@@ -29,6 +29,26 @@ pattern::Piece rectangle(const std::string& name, double x0, double w, double h)
   return p;
 }
 
+// A piece of size 38 drawn with this outline.
+pattern::Piece drawn(const std::string& name, std::vector<ContourPoint> outline) {
+  pattern::Piece p;
+  p.block = name + "_38";
+  p.name = name;
+  p.size = "38";
+  p.boundary = std::move(outline);
+  return p;
+}
+
+// A style of one size, 38, of these pieces.
+pattern::Style one_size(const std::string& name, std::vector<pattern::Piece> pieces) {
+  pattern::Style s;
+  s.name = name;
+  s.sample_size = "38";
+  s.sizes = {"38"};
+  s.pieces = std::move(pieces);
+  return s;
+}
+
 xvc::Node hem(const std::string& id, const std::string& from, const std::string& to, const std::string& dir) {
   return {"HEM", {{"id", id}, {"from", from}, {"to", to}, {"direction", dir}, {"type", "plain"}}, {}};
 }
@@ -37,12 +57,9 @@ xvc::Node hem(const std::string& id, const std::string& from, const std::string&
 // from (0.3,0) up) sewn to the back's left side (stretch 4, from (x0,h) down,
 // so reverse runs it upwards too).
 xvc::Document two_panels(std::vector<xvc::Node> seams) {
-  pattern::Style s;
-  s.name = "panels";
-  s.sample_size = "38";
-  s.sizes = {"38"};
-  s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("BACK", 1.0, 0.34, 0.53)};
-  xvc::Node root = xvc::from_style(s).root();
+  xvc::Node root =
+      xvc::from_style(one_size("panels", {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("BACK", 1.0, 0.34, 0.53)}))
+          .root();
   for (auto& c : root.children)
     if (c.tag == "SEAMS") c.children = std::move(seams);
   return xvc::Document(std::move(root), "panels.xvc");
@@ -229,11 +246,7 @@ namespace vgd::dress {
 // copy placed beside that side is copy 1. Copies in document order give it
 // copy 0; placed, each seam takes the copy beside its own side.
 TEST(Garment, EachSeamSewsTheCopyPlacedNearItsOtherPieces) {
-  pattern::Style s;
-  s.name = "cut twice";
-  s.sample_size = "38";
-  s.sizes = {"38"};
-  s.pieces = {rectangle("BODY", 0.0, 0.40, 0.50), rectangle("SLEEVE", 1.0, 0.20, 0.50)};
+  pattern::Style s = one_size("cut twice", {rectangle("BODY", 0.0, 0.40, 0.50), rectangle("SLEEVE", 1.0, 0.20, 0.50)});
   s.pieces[1].quantity = 2;
   xvc::Document probe = xvc::from_style(s);
   const auto body = stretch_ids(probe, 0), sleeve = stretch_ids(probe, 1);
@@ -357,17 +370,8 @@ TEST(Garment, AFoldedPieceHangsAsTheHalfBesideItsSeamInTwoLayers) {
 TEST(Garment, ABindingLongerThanItsEdgeIsTrimmedSquareToIt) {
   // The binding's stretch `edge` (its long edge) sewn to FRONT's top.
   const auto document = [](std::vector<ContourPoint> binding, int edge) {
-    pattern::Style s;
-    s.name = "bound";
-    s.sample_size = "38";
-    s.sizes = {"38"};
-    pattern::Piece b;
-    b.block = "BINDING_38";
-    b.name = "BINDING";
-    b.size = "38";
-    b.boundary = std::move(binding);
-    s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), b};
-    xvc::Node root = xvc::from_style(s).root();
+    xvc::Node root =
+        xvc::from_style(one_size("bound", {rectangle("FRONT", 0.0, 0.30, 0.50), drawn("BINDING", std::move(binding))})).root();
     xvc::Document d(std::move(root), "bound.xvc");
     const auto f = stretch_ids(d, 0), k = stretch_ids(d, 1);
     xvc::Node seam{"SEAM", {{"id", "seam1"}, {"name", "neck seam"}, {"type", "plain"}},
@@ -438,22 +442,16 @@ TEST(Garment, ABindingLongerThanItsEdgeIsTrimmedSquareToIt) {
 TEST(Garment, AnEarBetweenTwoSeamsSewnToOnePointIsCutOffAlongItsChord) {
   enum Top { at_c, short_of_c, at_bottom };
   const auto document = [](Top top) {
-    pattern::Style s;
-    s.name = "ear";
-    s.sample_size = "38";
-    s.sizes = {"38"};
-    pattern::Piece e;
-    e.block = "EAR_38";
-    e.name = "EAR";
-    e.size = "38";
-    e.boundary = {{Vec2(0, 0), PointKind::turn},     {Vec2(0.20, 0), PointKind::turn},
-                  {Vec2(0.20, 0.17), PointKind::turn}, {Vec2(0.25, 0.25), PointKind::turn},
-                  {Vec2(0.17, 0.20), PointKind::turn}, {Vec2(0, 0.20), PointKind::turn}};
+    pattern::Piece e = drawn("EAR", {{Vec2(0, 0), PointKind::turn},
+                                     {Vec2(0.20, 0), PointKind::turn},
+                                     {Vec2(0.20, 0.17), PointKind::turn},
+                                     {Vec2(0.25, 0.25), PointKind::turn},
+                                     {Vec2(0.17, 0.20), PointKind::turn},
+                                     {Vec2(0, 0.20), PointKind::turn}});
     e.grain_line = pattern::Segment{Vec2(0.1, 0.02), Vec2(0.1, 0.18)};
     pattern::Piece panel = rectangle("PANEL", 1.0, 0.17, 0.17);
     if (top == short_of_c) panel.boundary.insert(panel.boundary.begin() + 3, {Vec2(1.155, 0.17), PointKind::turn});
-    s.pieces = {panel, e};
-    xvc::Document d(xvc::from_style(s).root(), "ear.xvc");
+    xvc::Document d(xvc::from_style(one_size("ear", {panel, e})).root(), "ear.xvc");
     const auto p = stretch_ids(d, 0), k = stretch_ids(d, 1);
     // PANEL: 0 bottom, 1 right (up to C), 2 top (from C; short_of_c: 2 the
     // 1.5 cm beside C, 3 the rest), left. EAR: 1 right side, 4 top.
@@ -509,12 +507,9 @@ TEST(Garment, AnEarBetweenTwoSeamsSewnToOnePointIsCutOffAlongItsChord) {
 // FRONT's edge, it is refused naming the POSITION.
 TEST(Garment, APocketIsSewnOntoItsHostsFaceAlongItsOutlineButItsMouth) {
   const auto document = [](double x) {
-    pattern::Style s;
-    s.name = "pocketed";
-    s.sample_size = "38";
-    s.sizes = {"38"};
-    s.pieces = {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("POCKET", 1.0, 0.10, 0.12)};
-    xvc::Node root = xvc::from_style(s).root();
+    xvc::Node root =
+        xvc::from_style(one_size("pocketed", {rectangle("FRONT", 0.0, 0.30, 0.50), rectangle("POCKET", 1.0, 0.10, 0.12)}))
+            .root();
     for (auto& c : root.children)
       if (c.tag == "PATTERNS")
         for (auto& p : c.children)
