@@ -10,6 +10,7 @@
 #include "vgd/scene/build.hpp"
 #include "vgd/sim/integrator.hpp"
 #include "vgd/sim/run.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
@@ -200,6 +201,43 @@ TEST(DressBuild, ADocumentPinHoldsItsClothWhereTheArrangementPutIt) {
   std::filesystem::remove_all(dir);
 }
 
+
+// A patch pocket on the T-shirt's front (POSITION type="placement"): placed
+// where the front is, 5 mm out along its outward normal, each pair of its
+// seam to the front starting 5 mm apart, and the pocket on the front's
+// body segment.
+TEST(DressBuild, APocketStartsFiveMillimetresOutsideItsHostsFace) {
+  const auto dir = std::filesystem::temp_directory_path() / ("vgd-dress-pocket-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  xvc::Document doc = xvc::load_file(vgd::test::source_dir() / "data/garments/t-shirt.xvc");
+  std::string front;
+  for (const auto* p : doc.patterns())
+    if (p->attribute("piece") == "FRONT" && p->attribute("size") == "38") front = std::string(p->id());
+  ASSERT_FALSE(front.empty());
+  pattern::Vec2 lo = xvc::to_piece(doc, front).boundary.front().p, hi = lo;
+  for (const auto& cp : xvc::to_piece(doc, front).boundary) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
+  xvc::AddDrawnPattern add("POCKET", "38", {{{0, 0}, {0.10, 0}, {0.10, 0.12}, {0, 0.12}}});
+  const std::string pocket = xvc::execute(doc, add);
+  const pattern::Vec2 mid = 0.5 * (lo + hi);
+  xvc::AddNode place(pocket, xvc::face_placement_node({"", front, mid.x(), mid.y(), 0.0}));
+  xvc::execute(doc, place);
+  const auto file = dir / "pocketed.xvc";
+  xvc::save_file(doc, file);
+
+  DrapeOptions d;
+  d.garment = file;
+  d.spacing = 0.03;
+  scene::SceneDef def = drape_scene(d);
+  scene::Scene s = dress::build(def);
+  const sim::VecX x = s.system->expand(sim::initial_state(s.system->model()).x);
+  const sim::SeamPairs* seam = nullptr;
+  for (const auto& sp : s.seams)
+    if (sp.name == "POCKET on FRONT") seam = &sp;
+  ASSERT_NE(seam, nullptr);
+  ASSERT_GT(seam->pairs.size(), 10u);
+  for (const auto& [a, b] : seam->pairs) EXPECT_NEAR((sim::at(x, a) - sim::at(x, b)).norm(), 0.005, 1e-9);
+  std::filesystem::remove_all(dir);
+}
 
 // Trousers cut longer than the body's legs reach its soles, where their hems
 // would start round the feet and be held open there. The test trousers with
