@@ -26,14 +26,10 @@ using body::BodySegment;
 
 namespace {
 
-// m: a piece sewn onto another's face starts this far outside it (the seam
-// pulls its edge in; the self-collision keeps its middle off the host).
-constexpr double kOnFace = 0.005;
-
 // Where a piece sewn onto `host`'s face starts: each node where the host's
 // placed mesh puts the same point of the host's pattern (barycentric in the
-// host triangle holding it, or the nearest), kOnFace out along that
-// triangle's outward normal.
+// host triangle holding it, or the nearest), GarmentPiece::face_gap out
+// along that triangle's outward normal.
 std::vector<body::Vec3> on_face(const GarmentPiece& piece, const GarmentPiece& host, const PlacedPiece& placed) {
   const auto& hn = host.mesh.nodes;
   std::vector<body::Vec3> out;
@@ -61,7 +57,7 @@ std::vector<body::Vec3> on_face(const GarmentPiece& piece, const GarmentPiece& h
     const Eigen::Vector3d w = w_best.cwiseMax(0.0) / w_best.cwiseMax(0.0).sum();
     body::Vec3 n = (x1 - x0).cross(x2 - x0);
     n = (placed.flipped ? -1.0 : 1.0) * n / std::max(n.norm(), 1e-30);
-    out.push_back(w[0] * x0 + w[1] * x1 + w[2] * x2 + kOnFace * n);
+    out.push_back(w[0] * x0 + w[1] * x1 + w[2] * x2 + piece.face_gap * n);
   }
   return out;
 }
@@ -336,7 +332,7 @@ scene::MadeCloths dress_garments(const scene::SceneDef& def, const Avatar& avata
       const std::string name = gp.piece.block.empty() ? gp.name : gp.piece.block;
       out.pieces.push_back({garments > 1 && !c.name.empty() ? c.name + "/" + name : name, std::move(mp), placed[k].segment,
                             xvc::piece_material(doc, *doc.find(gp.pattern_id)), gp.layers, gp.pattern_id, gp.copy,
-                            pinned_nodes(file.string(), doc, gp, out.diagnostics), placed[k].lifted});
+                            pinned_nodes(file.string(), doc, gp, out.diagnostics), placed[k].lifted, gp.face_layer});
       first[k] = count;
       count += n;
     }

@@ -42,6 +42,12 @@ struct Seam {
 
 double dist(const Vec2& a, const Vec2& b) { return (a - b).norm(); }
 
+// m: how far outside its host's face a piece sewn onto it starts (the seam
+// pulls its edge in; the self-collision, 3 mm thick, keeps the rest off): a
+// pocket, and a flap over a pocket's mouth, clear of the pocket too.
+constexpr double kPocketGap = 0.005;
+constexpr double kFlapGap = 0.010;
+
 // Boundary vertices i, i+1, ..., j (cyclic, j reached), as points.
 std::vector<Vec2> span_points(const std::vector<ContourPoint>& bd, int i, int j) {
   const int n = static_cast<int>(bd.size());
@@ -712,11 +718,15 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       gp.to_host_rotation << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
       gp.to_host_from = 0.5 * (lo + hi);
       gp.to_host_at = Vec2(f.x, f.y);
+      // A pocket is sewn all round but its mouth; a flap by its top edge only, hanging over its pocket.
+      const bool flap = xvc::piece_role(doc, *kept_nodes[k]).role == pattern::Role::pocket_flap;
+      gp.face_gap = flap ? kFlapGap : kPocketGap;
+      gp.face_layer = flap ? 2 : 1;
       Hem hem;
       hem.id = f.id;
       hem.piece = pi;
-      hem.a = static_cast<int>(st[(mouth + 1) % ns].first);
-      hem.b = static_cast<int>(st[mouth].first);
+      hem.a = static_cast<int>(st[flap ? mouth : (mouth + 1) % ns].first);
+      hem.b = static_cast<int>(st[flap ? (mouth + 1) % ns : mouth].first);
       face_seams.push_back({static_cast<int>(hems.size()), host, -1, f.id, gp.name + " on " + g.pieces[host].name});
       hems.push_back(std::move(hem));
     }

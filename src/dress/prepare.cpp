@@ -125,6 +125,8 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
 // front to the side seam there, on the wearer's left.
 constexpr double kPocketAboveUnderarm = 0.04;
 constexpr double kPocketAcross = 0.4;
+// m: a pocket flap's top edge lies this far above its pocket's.
+constexpr double kFlapAbovePocket = 0.015;
 
 // Where a patch pocket goes on a whole front (cut once, symmetric about
 // centre front) when the document does not say: the front turned upright as
@@ -502,6 +504,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         xvc::drape_attribute(*p) != false && !sewn.count(std::string(p->attribute("piece"))))
       first_pocket = std::string(p->attribute("piece"));
   }
+  std::vector<const xvc::Node*> flaps;  // pocket flaps no seam sews, decided after the pockets
+  std::optional<std::pair<const xvc::Node*, xvc::FacePlacement>> placed_pocket;  // the pocket draped
   const bool has_legs = std::any_of(mine.begin(), mine.end(), [&](const xvc::Node* p) {
     return roles[std::string(p->attribute("piece"))].role == pattern::Role::leg;
   });
@@ -522,10 +526,16 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       if (p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
         out.missing.push_back(name + (what.empty() ? " (role unknown)" : what));
     };
+    if (role == pattern::Role::pocket_flap && xvc::drape_attribute(*p) != false && !sewn.count(name) &&
+        p->attribute("quantity") != "0") {
+      flaps.push_back(p);  // decided once the pocket is (below)
+      continue;
+    }
     if (role == pattern::Role::pocket && !first_pocket.empty() && xvc::drape_attribute(*p) != false &&
         !sewn.count(name)) {
       if (const auto stored = xvc::face_placements_of(*p); !stored.empty()) {
         const auto* host = doc.find(stored.front().host);
+        placed_pocket = {p, stored.front()};
         out.pieces.push_back(name);
         out.decisions.push_back("piece " + name + what + " sewn onto the face of " +
                                 (host ? std::string(host->attribute("piece")) : stored.front().host) +
@@ -542,6 +552,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       const auto f = at ? chest_pocket(doc, *p, *pocket_host, *at, said) : std::nullopt;
       if (f) {
         pocket_at[std::string(p->id())] = *f;
+        placed_pocket = {p, *f};
         out.pieces.push_back(name);
         out.decisions.push_back("piece " + name + what + " sewn onto the face of " +
                                 std::string(pocket_host->attribute("piece")) + ", " + said +
@@ -590,6 +601,69 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.pieces.push_back(name);
     }
   }
+  // Pocket flaps: over the pocket draped, the one whose name says what the
+  // pocket's says beyond POCKET (POCKETFLAPROUND for POCKETROUND), else the
+  // first; the others are its alternatives.
+  {
+    const auto beyond = [](std::string n) {
+      n = to_upper(n);
+      for (const char* w : {"POCKET", "FLAP", "POCHE", "RABAT", "TASCHE", "KLAPPE", "BOLSILLO", "BOLSO"})
+        for (std::size_t at; (at = n.find(w)) != std::string::npos;) n.erase(at, std::string(w).size());
+      std::string out;
+      for (const char c : n)
+        if (std::isalnum(static_cast<unsigned char>(c))) out += c;
+      return out;
+    };
+    const xvc::Node* chosen = nullptr;
+    if (placed_pocket) {
+      const std::string want = beyond(std::string(placed_pocket->first->attribute("piece")));
+      for (const auto* f : flaps)
+        if (!xvc::face_placements_of(*f).empty() || beyond(std::string(f->attribute("piece"))) == want) {
+          chosen = f;
+          break;
+        }
+      if (!chosen && !flaps.empty()) chosen = flaps.front();
+    }
+    const std::string pocket = placed_pocket ? std::string(placed_pocket->first->attribute("piece")) : "";
+    for (const auto* f : flaps) {
+      const std::string name(f->attribute("piece"));
+      if (f != chosen) {
+        out.left_out.push_back(name);
+        out.decisions.push_back("piece " + name + " (pocket flap) left out: " +
+                                (chosen ? "an alternative to the pocket flap " + std::string(chosen->attribute("piece"))
+                                        : std::string("a pocket flap goes over a pocket, and no pocket is draped")));
+        if (!chosen) out.missing.push_back(name + " (pocket flap)");
+        continue;
+      }
+      out.pieces.push_back(name);
+      if (!xvc::face_placements_of(*f).empty()) {
+        out.decisions.push_back("piece " + name + " (pocket flap) sewn onto the face of its host where the document "
+                                "places it");
+        continue;
+      }
+      // Its top edge kFlapAbovePocket above the pocket's, centred over it,
+      // turned as the pocket is; it hangs over the pocket's mouth.
+      const xvc::FacePlacement& pk = placed_pocket->second;
+      const auto box = [&](const xvc::Node& n) {
+        const auto b = xvc::to_piece(doc, std::string(n.id())).boundary;
+        pattern::Vec2 lo = b.front().p, hi = b.front().p;
+        for (const auto& cp : b) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
+        return std::pair{lo, hi};
+      };
+      const auto [plo, phi] = box(*placed_pocket->first);
+      const auto [flo, fhi] = box(*f);
+      const double a = pk.angle_deg * std::numbers::pi / 180.0;
+      const pattern::Vec2 up(-std::sin(a), std::cos(a));
+      const pattern::Vec2 at = pattern::Vec2(pk.x, pk.y) +
+                               (0.5 * (phi.y() - plo.y()) + kFlapAbovePocket - 0.5 * (fhi.y() - flo.y())) * up;
+      pocket_at[std::string(f->id())] = xvc::FacePlacement{"", pk.host, at.x(), at.y(), pk.angle_deg};
+      out.decisions.push_back("piece " + name + " (pocket flap) sewn by its top edge onto the face of " +
+                              std::string(doc.find(pk.host) ? doc.find(pk.host)->attribute("piece") : pk.host) + ", " +
+                              format_fixed(100 * kFlapAbovePocket, 1) + " cm above the top of " + pocket +
+                              ", over its mouth (POSITION type=\"placement\" written in the document)");
+    }
+  }
+
   // Alternatives: several sleeve patterns (a short and a full sleeve, a
   // one-piece and a two-piece set), several leg patterns (short and long
   // tights) are one sleeve or leg drawn several ways. Those sewn to pieces of

@@ -299,6 +299,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
     std::vector<std::pair<std::string, sim::Model>> parts;
     std::vector<std::string> segments;  // per part, made cloth only
     std::vector<double> raised;         // per part, made cloth only (MadePiece::raised)
+    std::vector<int> face_layers;       // per part, made cloth only (MadePiece::face_layer)
     std::vector<const MaterialDef*> own;  // per part, made cloth only: a piece's own fabric, else nullptr
     std::deque<MaterialDef> layers_of;    // the fabrics of pieces in several layers (MadePiece::layers)
     const MadeCloth* mine = nullptr;
@@ -323,6 +324,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
         parts.emplace_back(piece.name, std::move(mp));
         segments.push_back(piece.segment);
         raised.push_back(piece.raised);
+        face_layers.push_back(piece.face_layer);
         own.push_back(pm);
       }
     }
@@ -333,6 +335,7 @@ sim::Model build_model(const SceneDef& def, std::vector<PieceInfo>& pieces, Diag
       info.name = name;
       if (k < segments.size()) info.segment = segments[k];
       if (k < raised.size()) info.raised = raised[k];
+      if (k < face_layers.size()) info.face_layer = face_layers[k];
       info.cloth = ci;
       info.first = model.num_particles();
       info.count = part.num_particles();
@@ -635,9 +638,12 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
       // (self_collision.cpp, out_of_body). The grid is in the body's frame,
       // so a moving body keeps only its own push.
       if (grid && e.collision->velocity == Vec3::Zero()) sc.body = grid;
+      // A piece sewn onto another's face (a pocket) is a layer over its
+      // garment's: each garment's layer holds kFaceLayers of them.
+      constexpr int kFaceLayers = 3;
       if (grid && std::any_of(s.pieces.begin(), s.pieces.end(), [&](const PieceInfo& p) {
             const auto& g = def.cloth[p.cloth].garment;
-            return g && g->layer != 0;
+            return (g && g->layer != 0) || p.face_layer != 0;
           })) {
         // The layers' order is read from the grid where the body is at rest.
         if (e.collision->velocity != Vec3::Zero())
@@ -648,7 +654,7 @@ Scene build(const SceneDef& def, std::optional<body::Avatar> avatar, const MadeC
         sc.layer.assign(model.num_particles(), 0);
         for (const auto& p : s.pieces)
           if (const auto& g = def.cloth[p.cloth].garment)
-            std::fill_n(sc.layer.begin() + p.first, p.count, g->layer);
+            std::fill_n(sc.layer.begin() + p.first, p.count, kFaceLayers * g->layer + std::min(p.face_layer, kFaceLayers - 1));
       }
       // The body's push comes first: it moves cloth after the step as well,
       // and after self-collision it pushed cloth through cloth in creases

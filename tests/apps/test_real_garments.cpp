@@ -182,9 +182,9 @@ INSTANTIATE_TEST_SUITE_P(
         // the back pleated into the yoke, each armhole the back's, the
         // yoke's and the front's, the stand round the neckline and the collar
         // turned down over it; the first of its two pockets sewn onto the
-        // front's left chest.
+        // front's left chest, its flap over it.
         RealGarment{"valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 0,
-                    "left-arm neck neck right-arm torso torso torso torso",
+                    "left-arm neck neck right-arm torso torso torso torso torso",
                     "piece POCKETROUND (pocket) sewn onto the face of FRONTPANEL, its top 4.0 cm above the bottom of "
                     "the armhole, its middle 15.7 cm from centre front on the wearer's left"},
         // Valentina's trousers: cut as half legs, in place on the men's body

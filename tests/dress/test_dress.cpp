@@ -204,8 +204,8 @@ TEST(DressBuild, ADocumentPinHoldsItsClothWhereTheArrangementPutIt) {
 
 // A patch pocket on the T-shirt's front (POSITION type="placement"): placed
 // where the front is, 5 mm out along its outward normal, each pair of its
-// seam to the front starting 5 mm apart, and the pocket on the front's
-// body segment.
+// seam to the front starting 5 mm apart, and a layer of its own over the
+// front.
 TEST(DressBuild, APocketStartsFiveMillimetresOutsideItsHostsFace) {
   const auto dir = std::filesystem::temp_directory_path() / ("vgd-dress-pocket-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -236,6 +236,10 @@ TEST(DressBuild, APocketStartsFiveMillimetresOutsideItsHostsFace) {
   ASSERT_NE(seam, nullptr);
   ASSERT_GT(seam->pairs.size(), 10u);
   for (const auto& [a, b] : seam->pairs) EXPECT_NEAR((sim::at(x, a) - sim::at(x, b)).norm(), 0.005, 1e-9);
+  // A layer over the T-shirt's: the self-collision keeps it outside the front.
+  int over = 0;
+  for (const auto& p : s.pieces) over += p.face_layer == 1 ? 1 : 0;
+  EXPECT_EQ(over, 1);
   std::filesystem::remove_all(dir);
 }
 

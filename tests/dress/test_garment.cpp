@@ -526,6 +526,8 @@ TEST(Garment, APocketIsSewnOntoItsHostsFaceAlongItsOutlineButItsMouth) {
   const Garment g = assemble_garment(document(0.15), opt, diag);
   ASSERT_EQ(g.pieces.size(), 2u);
   EXPECT_EQ(g.pieces[1].host, 0);
+  EXPECT_EQ(g.pieces[1].face_layer, 1);
+  EXPECT_NEAR(g.pieces[1].face_gap, 0.005, 1e-15);
   ASSERT_EQ(g.seams.size(), 1u);
   const GarmentSeam& seam = g.seams[0];
   EXPECT_EQ(seam.name, "POCKET on FRONT");
@@ -550,6 +552,34 @@ TEST(Garment, APocketIsSewnOntoItsHostsFaceAlongItsOutlineButItsMouth) {
               std::string::npos)
         << e.what();
   }
+}
+
+// A pocket flap (its name says FLAP) is sewn by its top edge only: a
+// 10 × 5 cm POCKET FLAP on FRONT, turned by 90° like the pocket above, is
+// sewn along its 10 cm top edge, starts 10 mm off the front (a pocket 5 mm)
+// and is two faces out from it, over a pocket (GarmentPiece::face_layer).
+TEST(Garment, APocketFlapIsSewnOntoItsHostsFaceByItsTopEdge) {
+  xvc::Node root = xvc::from_style(one_size("flapped", {rectangle("FRONT", 0.0, 0.30, 0.50),
+                                                         rectangle("POCKET FLAP", 1.0, 0.10, 0.05)}))
+                       .root();
+  for (auto& c : root.children)
+    if (c.tag == "PATTERNS") {
+      xvc::Node pos = xvc::face_placement_node({"", std::string(c.children[0].id()), 0.15, 0.30, 90.0});
+      pos.set_attribute("id", "pos_flap");
+      c.children[1].children.push_back(pos);
+    }
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  Diagnostics diag;
+  const Garment g = assemble_garment(xvc::Document(std::move(root), "flapped.xvc"), opt, diag);
+  ASSERT_EQ(g.seams.size(), 1u);
+  EXPECT_EQ(g.seams[0].name, "POCKET FLAP on FRONT");
+  EXPECT_NEAR(g.seams[0].length_a, 0.10, 1e-12) << "its top edge";
+  ASSERT_EQ(g.seams[0].pairs.size(), 6u);
+  for (const auto& [a, b] : g.seams[0].pairs) EXPECT_NEAR(g.pieces[1].mesh.nodes[a.node].y(), 0.05, 1e-12);
+  EXPECT_EQ(g.pieces[1].face_layer, 2);
+  EXPECT_NEAR(g.pieces[1].face_gap, 0.010, 1e-15);
+  EXPECT_EQ(g.pieces[0].face_layer, 0);
 }
 
 }  // namespace vgd::dress

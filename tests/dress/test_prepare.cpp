@@ -328,6 +328,58 @@ TEST(PrepareGarment, ASizeTheTableLacksKeepsTheStylesEase) {
   })) << ::testing::PrintToString(p.decisions);
 }
 
+// A shirt's pocket and its flap on a whole front with armholes (FRONT, 50 cm
+// wide, its side seams 40 cm up to the armholes' bottom at x = ±0.25): the
+// pocket, 10 × 12 cm, on the wearer's left (+x), its top 4 cm above the
+// armhole's bottom (y = 0.44), its middle 10 cm from centre front (40 % of
+// 25 cm); the flap whose name says what the pocket's does beyond POCKET
+// (POCKET FLAP ROUND for POCKET ROUND) over it, its top 1.5 cm above the
+// pocket's; the other flap its alternative. Both POSITIONs written, and the
+// document valid.
+TEST(PrepareGarment, APocketAndItsFlapGoOnAWholeFrontsLeftChest) {
+  const auto bodice = [](const std::string& name, double x0) {
+    pattern::Piece p;
+    p.block = name + "_50";
+    p.name = name;
+    p.size = "50";
+    for (const auto& q : std::vector<Vec2>{{-0.25, 0},    {0.25, 0},    {0.25, 0.40},  {0.18, 0.52}, {0.07, 0.58},
+                                           {0.0, 0.53},   {-0.07, 0.58}, {-0.18, 0.52}, {-0.25, 0.40}})
+      p.boundary.push_back({Vec2(q.x() + x0, q.y()), PointKind::turn});
+    p.grain_line = pattern::Segment{Vec2(x0, 0.1), Vec2(x0, 0.4)};
+    return p;
+  };
+  pattern::Piece pocket = panel("POCKET ROUND", 2.0, 0.10, 0.12, "50");
+  pattern::Piece flap = panel("POCKET FLAP", 3.0, 0.10, 0.05, "50");
+  pattern::Piece round_flap = panel("POCKET FLAP ROUND", 4.0, 0.10, 0.05, "50");
+  xvc::Document doc = xvc::from_style(
+      one_size("MEN shirt", "50", {bodice("FRONT", 0.0), bodice("BACK", 1.0), pocket, flap, round_flap}));
+  const Preparation p = prepare_garment(doc);
+  EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "POCKET ROUND"), p.pieces.end());
+  EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "POCKET FLAP ROUND"), p.pieces.end());
+  EXPECT_EQ(std::find(p.pieces.begin(), p.pieces.end(), "POCKET FLAP"), p.pieces.end());
+  const std::vector<std::string> want = {
+      "piece POCKET ROUND (pocket) sewn onto the face of FRONT, its top 4.0 cm above the bottom of the armhole, "
+      "its middle 10.0 cm from centre front on the wearer's left (POSITION type=\"placement\" written in the "
+      "document: move it there)",
+      "piece POCKET FLAP (pocket flap) left out: an alternative to the pocket flap POCKET FLAP ROUND",
+      "piece POCKET FLAP ROUND (pocket flap) sewn by its top edge onto the face of FRONT, 1.5 cm above the top of "
+      "POCKET ROUND, over its mouth (POSITION type=\"placement\" written in the document)"};
+  for (const auto& w : want)
+    EXPECT_NE(std::find(p.decisions.begin(), p.decisions.end(), w), p.decisions.end())
+        << w << "\n" << ::testing::PrintToString(p.decisions);
+  std::map<std::string, xvc::FacePlacement> at;
+  for (const auto* q : doc.patterns())
+    for (const auto& f : xvc::face_placements_of(*q)) at[std::string(q->attribute("piece"))] = f;
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_NEAR(at["POCKET ROUND"].x, 0.10, 1e-12);
+  EXPECT_NEAR(at["POCKET ROUND"].y, 0.38, 1e-12) << "its top at 0.44";
+  EXPECT_NEAR(at["POCKET FLAP ROUND"].x, 0.10, 1e-12);
+  EXPECT_NEAR(at["POCKET FLAP ROUND"].y, 0.43, 1e-12) << "its top at 0.455";
+  EXPECT_EQ(at["POCKET ROUND"].host, at["POCKET FLAP ROUND"].host);
+  const Diagnostics v = xvc::validate_string(xvc::save_string(doc), "shirt.xvc", xvc::default_schema_path());
+  for (const auto& d : v.items()) ADD_FAILURE() << d.format();
+}
+
 // Pieces left out say why, from their role: bonded interfacings, a pocket
 // with no room on its front where a chest pocket goes (the 50 × 60 cm
 // rectangle has no armhole: its top corner is the armhole's bottom, and the

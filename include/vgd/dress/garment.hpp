@@ -23,8 +23,9 @@
 // document order one after the other (a sleeve cap to the front and back
 // armholes). A piece sewn onto another's face (POSITION type="placement",
 // xvc::FacePlacement: a patch pocket) is sewn along its outline but its
-// mouth to a line of the host's mesh where that outline lies on it, vertex
-// to vertex (a seam named "POCKET on FRONT"). Units: metres.
+// mouth (a pocket flap: along its top edge only) to a line of the host's
+// mesh where that outline lies on it, vertex to vertex (a seam named
+// "POCKET on FRONT"). Units: metres.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
@@ -78,6 +79,10 @@ struct GarmentPiece {
   Eigen::Matrix2d to_host_rotation = Eigen::Matrix2d::Identity();
   pattern::Vec2 to_host_from = pattern::Vec2::Zero(), to_host_at = pattern::Vec2::Zero();
   pattern::Vec2 on_host(const pattern::Vec2& p) const { return to_host_rotation * (p - to_host_from) + to_host_at; }
+  double face_gap = 0.0;  // m: how far outside the host's face it starts
+  // Faces out from its host's (1 a pocket, 2 a flap over a pocket): the
+  // self-collision keeps it on the outside of the pieces below (layers).
+  int face_layer = 0;
 };
 
 // A vertex of one piece's mesh.

@@ -35,6 +35,7 @@ struct PieceInfo {
   MaterialDef material;
   std::string segment;         // made cloth: the body segment it was placed on ("" otherwise)
   double raised = 0.0;         // made cloth: m its garment was placed higher than arranged (MadePiece::raised)
+  int face_layer = 0;          // made cloth: MadePiece::face_layer
 };
 
 // A scene ready to run.
@@ -80,6 +81,10 @@ struct MadePiece {
   // m: how much higher than arranged its garment was placed (a garment that
   // reaches the body's soles, dress::place_garment); 0 mostly.
   double raised = 0.0;
+  // Sewn onto another piece's face, this many faces out (a pocket 1, a flap
+  // over it 2; dress::GarmentPiece::face_layer): a layer of its own over
+  // its garment's, in the order the self-collision keeps. 0 mostly.
+  int face_layer = 0;
 };
 struct MadeCloth {
   std::vector<MadePiece> pieces;
