@@ -496,8 +496,9 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   std::map<std::string, xvc::FacePlacement> pocket_at;  // pattern id -> where to write it
   for (const auto* p : mine) {
     const auto& g = roles[std::string(p->attribute("piece"))];
+    const std::string_view cut = p->attribute("quantity");
     if (!pocket_host && g.role == pattern::Role::front && g.side == pattern::Side::none &&
-        g.half == pattern::Half::none && p->attribute("quantity") != "0" && xvc::drape_attribute(*p) != false &&
+        g.half == pattern::Half::none && (cut.empty() || cut == "1") && xvc::drape_attribute(*p) != false &&
         xvc::arrangements_of(*p).size() <= 1)
       pocket_host = p;
     if (first_pocket.empty() && g.role == pattern::Role::pocket && p->attribute("quantity") != "0" &&
