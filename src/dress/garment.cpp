@@ -168,6 +168,17 @@ double ear_area(const std::vector<ContourPoint>& bd, int e, int s) {
   return std::abs(ear);
 }
 
+// A piece's outline renumbered (index: per old vertex its new one, -1
+// dropped): its hems' ends and its notches follow.
+void renumber(std::vector<Hem>& hems, int piece, GarmentPiece& gp, const std::vector<int>& index) {
+  for (auto& o : hems)
+    if (o.piece == piece) o.a = index[o.a], o.b = index[o.b];
+  for (auto& nt : gp.piece.notches)
+    nt.boundary_index = nt.boundary_index >= 0 && nt.boundary_index < static_cast<int>(index.size())
+                            ? index[nt.boundary_index]
+                            : -1;
+}
+
 // Corners of an outline: turn points and vertices turning by more than `deg`.
 std::vector<bool> corners(const std::vector<ContourPoint>& bd, double deg) {
   const int n = static_cast<int>(bd.size());
@@ -559,12 +570,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
                     " cm longer than the opening it binds and is not a straight strip vgd can trim: it is eased in");
       continue;
     }
-    for (auto& o : hems)
-      if (o.piece == h.piece) o.a = (*index)[o.a], o.b = (*index)[o.b];
-    for (auto& nt : gp.piece.notches)
-      nt.boundary_index = nt.boundary_index >= 0 && nt.boundary_index < static_cast<int>(index->size())
-                              ? (*index)[nt.boundary_index]
-                              : -1;
+    renumber(hems, h.piece, gp, *index);
     bd = std::move(trimmed);
     diag.info(file, gp.pattern_id,
               "binding " + gp.name + " trimmed by " + format_fixed(100 * (mine - rest), 1) + " cm to the " +
@@ -665,10 +671,7 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       std::vector<ContourPoint> kept;
       for (int v = 0; v < n; ++v)
         if (!cut[v]) index[v] = static_cast<int>(kept.size()), kept.push_back(bd[v]);
-      for (auto& o : hems)
-        if (o.piece == pi) o.a = index[o.a], o.b = index[o.b];
-      for (auto& nt : gp.piece.notches)
-        nt.boundary_index = nt.boundary_index >= 0 && nt.boundary_index < n ? index[nt.boundary_index] : -1;
+      renumber(hems, pi, gp, index);
       bd = std::move(kept);
     }
   }

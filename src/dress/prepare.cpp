@@ -128,6 +128,16 @@ constexpr double kPocketAcross = 0.4;
 // m: a pocket flap's top edge lies this far above its pocket's.
 constexpr double kFlapAbovePocket = 0.015;
 
+// The box of a PATTERN's outline (m, its own frame); nothing for an outline
+// of fewer than 3 points.
+std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const xvc::Document& doc, const xvc::Node& p) {
+  const auto b = xvc::to_piece(doc, std::string(p.id())).boundary;
+  if (b.size() < 3) return std::nullopt;
+  pattern::Vec2 lo = b.front().p, hi = b.front().p;
+  for (const auto& cp : b) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
+  return std::pair{lo, hi};
+}
+
 // Where a patch pocket goes on a whole front (cut once, symmetric about
 // centre front) when the document does not say: the front turned upright as
 // its arrangement turns it, the armhole's bottom is the highest point of
@@ -153,11 +163,10 @@ std::optional<xvc::FacePlacement> chest_pocket(const xvc::Document& doc, const x
   for (const auto& p : q)
     if (p.y() > mid && p.x() >= reach - 0.005) underarm = std::max(underarm, p.y());
   if (!(reach > cf) || !std::isfinite(underarm)) return std::nullopt;
-  pattern::Vec2 plo, phi;
+  const auto box = outline_box(doc, pocket);
+  if (!box) return std::nullopt;
+  const auto [plo, phi] = *box;
   const auto own = xvc::to_piece(doc, std::string(pocket.id())).boundary;
-  if (own.size() < 3) return std::nullopt;
-  plo = phi = own[0].p;
-  for (const auto& cp : own) plo = plo.cwiseMin(cp.p), phi = phi.cwiseMax(cp.p);
   const double across = kPocketAcross * (reach - cf);
   const pattern::Vec2 centre(cf + across, underarm + kPocketAboveUnderarm - 0.5 * (phi.y() - plo.y()));
   const pattern::Vec2 c = turn(centre, -t);
@@ -610,10 +619,10 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       n = to_upper(n);
       for (const char* w : {"POCKET", "FLAP", "POCHE", "RABAT", "TASCHE", "KLAPPE", "BOLSILLO", "BOLSO"})
         for (std::size_t at; (at = n.find(w)) != std::string::npos;) n.erase(at, std::string(w).size());
-      std::string out;
+      std::string rest;
       for (const char c : n)
-        if (std::isalnum(static_cast<unsigned char>(c))) out += c;
-      return out;
+        if (std::isalnum(static_cast<unsigned char>(c))) rest += c;
+      return rest;
     };
     const xvc::Node* chosen = nullptr;
     if (placed_pocket) {
@@ -636,30 +645,36 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         if (!chosen) out.missing.push_back(name + " (pocket flap)");
         continue;
       }
-      out.pieces.push_back(name);
-      if (!xvc::face_placements_of(*f).empty()) {
-        out.decisions.push_back("piece " + name + " (pocket flap) sewn onto the face of its host where the document "
-                                "places it");
+      const auto host_name = [&](const std::string& id) {
+        const auto* h = doc.find(id);
+        return h ? std::string(h->attribute("piece")) : id;
+      };
+      if (const auto stored = xvc::face_placements_of(*f); !stored.empty()) {
+        out.pieces.push_back(name);
+        out.decisions.push_back("piece " + name + " (pocket flap) sewn onto the face of " +
+                                host_name(stored.front().host) + " where the document places it");
         continue;
       }
       // Its top edge kFlapAbovePocket above the pocket's, centred over it,
       // turned as the pocket is; it hangs over the pocket's mouth.
       const xvc::FacePlacement& pk = placed_pocket->second;
-      const auto box = [&](const xvc::Node& n) {
-        const auto b = xvc::to_piece(doc, std::string(n.id())).boundary;
-        pattern::Vec2 lo = b.front().p, hi = b.front().p;
-        for (const auto& cp : b) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
-        return std::pair{lo, hi};
-      };
-      const auto [plo, phi] = box(*placed_pocket->first);
-      const auto [flo, fhi] = box(*f);
+      const auto pocket_box = outline_box(doc, *placed_pocket->first), flap_box = outline_box(doc, *f);
+      if (!pocket_box || !flap_box) {
+        out.left_out.push_back(name);
+        out.decisions.push_back("piece " + name + " (pocket flap) left out: its outline or its pocket's has fewer "
+                                "than 3 points");
+        continue;
+      }
+      const auto [plo, phi] = *pocket_box;
+      const auto [flo, fhi] = *flap_box;
       const double a = pk.angle_deg * std::numbers::pi / 180.0;
       const pattern::Vec2 up(-std::sin(a), std::cos(a));
       const pattern::Vec2 at = pattern::Vec2(pk.x, pk.y) +
                                (0.5 * (phi.y() - plo.y()) + kFlapAbovePocket - 0.5 * (fhi.y() - flo.y())) * up;
       pocket_at[std::string(f->id())] = xvc::FacePlacement{"", pk.host, at.x(), at.y(), pk.angle_deg};
+      out.pieces.push_back(name);
       out.decisions.push_back("piece " + name + " (pocket flap) sewn by its top edge onto the face of " +
-                              std::string(doc.find(pk.host) ? doc.find(pk.host)->attribute("piece") : pk.host) + ", " +
+                              host_name(pk.host) + ", " +
                               format_fixed(100 * kFlapAbovePocket, 1) + " cm above the top of " + pocket +
                               ", over its mouth (POSITION type=\"placement\" written in the document)");
     }
