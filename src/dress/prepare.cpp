@@ -464,6 +464,71 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       out.decisions.push_back("no SEAM in the document and none suggested at size " + so.size);
   }
 
+  // A front or back drawn another way, named as a part: a piece whose name
+  // reads as a collar, collar stand, neckband, cuff, binding or placket but
+  // whose outline is as large as a front's or a back's of its size (its box
+  // within kSameBox of theirs both ways, its area at least kSameArea of
+  // theirs) is that front or back, cut for another version of the style
+  // (Gerber's GMG1016S19-FR CO 1, category FRONT HALF CO: the front cut for
+  // the half collar, its box the front's). Read after the seams are
+  // suggested (they stay with the piece named front); role written, said.
+  {
+    constexpr double kSameBox = 0.05, kSameArea = 0.8;
+    const auto here = patterns_of(!sample.empty() && !patterns_of(sample).empty() ? sample : out.size);
+    struct Shape {
+      const xvc::Node* p;
+      double w, h, area;
+    };
+    const auto shape_of = [&](const xvc::Node* p) -> std::optional<Shape> {
+      const auto box = outline_box(doc, *p);
+      if (!box) return std::nullopt;
+      const pattern::Vec2 d = box->second - box->first;
+      return Shape{p, std::max(d.x(), d.y()), std::min(d.x(), d.y()),
+                   std::abs(pattern::signed_area(xvc::to_piece(doc, std::string(p->id())).boundary))};
+    };
+    std::vector<Shape> bodies;
+    for (const auto* p : here) {
+      const pattern::Role r = xvc::piece_role(doc, *p).role;
+      if ((r == pattern::Role::front || r == pattern::Role::back) && p->attribute("quantity") != "0")
+        if (const auto sh = shape_of(p)) bodies.push_back(*sh);
+    }
+    const auto near = [](double a, double b) { return std::abs(a - b) <= kSameBox * std::max(a, b); };
+    std::map<std::string, pattern::Role> by_name;
+    for (const auto* p : here) {
+      const pattern::Role r = xvc::piece_role(doc, *p).role;
+      if (p->has_attribute("role") ||
+          (r != pattern::Role::collar && r != pattern::Role::collar_stand && r != pattern::Role::neckband &&
+           r != pattern::Role::cuff && r != pattern::Role::binding && r != pattern::Role::placket))
+        continue;
+      const auto sh = shape_of(p);
+      if (!sh) continue;
+      for (const Shape& b : bodies) {
+        if (!near(sh->w, b.w) || !near(sh->h, b.h) || sh->area < kSameArea * b.area) continue;
+        const pattern::Role body = xvc::piece_role(doc, *b.p).role;
+        const std::string name(p->attribute("piece"));
+        by_name[name] = body;
+        out.decisions.push_back(
+            "piece " + name + " read as a " + std::string(pattern::role_name(body)) + ", not a " +
+            std::string(pattern::role_name(r)) + ": its outline is as large as the " +
+            std::string(pattern::role_name(body)) + " " + std::string(b.p->attribute("piece")) + "'s (" +
+            format_fixed(100 * sh->w, 1) + " x " + format_fixed(100 * sh->h, 1) + " cm, " +
+            format_fixed(1e4 * sh->area, 0) + " cm²; the " + std::string(pattern::role_name(body)) + "'s " +
+            format_fixed(100 * b.w, 1) + " x " + format_fixed(100 * b.h, 1) + " cm, " +
+            format_fixed(1e4 * b.area, 0) + " cm²): the " + std::string(pattern::role_name(body)) +
+            " cut for another version of the style (role written)");
+        break;
+      }
+    }
+    if (!by_name.empty()) {
+      std::vector<std::unique_ptr<xvc::Command>> set;
+      for (const auto* p : doc.patterns())
+        if (const auto it = by_name.find(std::string(p->attribute("piece"))); it != by_name.end())
+          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role",
+                                                            std::string(pattern::role_name(it->second))));
+      xvc::execute(doc, *std::make_unique<xvc::Batch>("fronts and backs named as parts", std::move(set)));
+    }
+  }
+
   // Roles, as the names say.
   std::map<std::string, pattern::RoleGuess> roles;  // by piece name
   {
@@ -486,6 +551,28 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   for (const auto& s : xvc::list_seams(doc))
     for (const auto& h : s.hems)
       if (const auto* p = doc.find(h.pattern)) sewn.insert(std::string(p->attribute("piece")));
+  // What finishes the neckline: the first neckband, collar, collar stand or
+  // binding a seam sews to a front, back or yoke (piece, and the seam in words).
+  const auto neck_finish = [](pattern::Role r) {
+    return r == pattern::Role::neckband || r == pattern::Role::collar || r == pattern::Role::collar_stand;
+  };
+  std::optional<std::pair<std::string, std::string>> neck_sewn;
+  for (const auto& s : xvc::list_seams(doc)) {
+    std::string finish;
+    bool body = false;
+    for (const auto& h : s.hems)
+      if (const auto* p = doc.find(h.pattern)) {
+        const pattern::Role r = xvc::piece_role(doc, *p).role;
+        if (finish.empty() && (neck_finish(r) || r == pattern::Role::binding)) finish = std::string(p->attribute("piece"));
+        body = body || r == pattern::Role::front || r == pattern::Role::back || r == pattern::Role::yoke;
+      }
+    if (!finish.empty() && body && std::find_if(mine.begin(), mine.end(), [&](const xvc::Node* p) {
+                                     return p->attribute("piece") == finish;
+                                   }) != mine.end()) {
+      neck_sewn = {finish, "sewn by the seam '" + s.name + "'"};
+      break;
+    }
+  }
   std::set<std::string> arranged;
   for (const auto& [id, list] : xvc::suggest_arrangements(doc))
     if (!list.empty())
@@ -507,6 +594,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     const auto& g = roles[std::string(p->attribute("piece"))];
     const std::string_view cut = p->attribute("quantity");
     if (!pocket_host && g.role == pattern::Role::front && g.side == pattern::Side::none &&
+        sewn.count(std::string(p->attribute("piece"))) &&
         g.half == pattern::Half::none && (cut.empty() || cut == "1") && xvc::drape_attribute(*p) != false &&
         xvc::arrangements_of(*p).size() <= 1)
       pocket_host = p;
@@ -530,10 +618,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     const std::string name(p->attribute("piece"));
     const pattern::Role role = roles[name].role;
     const std::string what = role == pattern::Role::unknown ? "" : " (" + std::string(pattern::role_name(role)) + ")";
-    auto leave = [&](const std::string& why) {
+    // missing: the garment is worn with it (not an alternative to a piece draped).
+    auto leave = [&](const std::string& why, bool missing = true) {
       out.left_out.push_back(name);
       out.decisions.push_back("piece " + name + what + " left out: " + why);
-      if (p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
+      if (missing && p->attribute("quantity") != "0" && pattern::drapes_as_cloth(role))
         out.missing.push_back(name + (what.empty() ? " (role unknown)" : what));
     };
     if (role == pattern::Role::pocket_flap && xvc::drape_attribute(*p) != false && !sewn.count(name) &&
@@ -598,10 +687,19 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                  return other != name && sewn.count(other) && roles[other].role == role &&
                         roles[other].half == roles[name].half && roles[other].side == roles[name].side;
                });
-               (role == pattern::Role::sleeve || role == pattern::Role::leg || role == pattern::Role::collar) &&
+               (role == pattern::Role::sleeve || role == pattern::Role::leg || role == pattern::Role::collar ||
+                role == pattern::Role::front || role == pattern::Role::back) &&
                alt != mine.end())
         leave("an alternative to the " + std::string(pattern::role_name(role)) + " " +
-              std::string((*alt)->attribute("piece")) + ", whose seams fit the garment's other pieces better");
+              std::string((*alt)->attribute("piece")) + ", whose seams fit the garment's other pieces better",
+              false);
+      else if (neck_finish(role) && neck_sewn)
+        // One neckline, one finish: a style drawn with a rib collar and
+        // three collar sets (mirrored.DXF) wears the one sewn.
+        leave("an alternative finish of the neckline, which the " +
+                  std::string(pattern::role_name(roles[neck_sewn->first].role)) + " " + neck_sewn->first +
+                  " finishes (" + neck_sewn->second + ")",
+              false);
       else
         leave("no seam sews it: " + not_sewn_why(role, half_legs));
     } else if (!arranged.count(name)) {

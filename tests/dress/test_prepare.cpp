@@ -68,6 +68,20 @@ void expect_knit_or_warned(const pattern::Style& s, const std::string& knit_says
   EXPECT_NE(w.warnings[0].find(warning_says), std::string::npos) << w.warnings[0];
 }
 
+// A whole bodice of size 50, 50 cm wide, centred on x0: armholes from 0.40
+// to 0.52 m, shoulders to 0.58 m, its neckline 0.53 m high at the centre.
+pattern::Piece bodice(const std::string& name, double x0) {
+  pattern::Piece p;
+  p.block = name + "_50";
+  p.name = name;
+  p.size = "50";
+  for (const auto& q : std::vector<Vec2>{{-0.25, 0},  {0.25, 0},     {0.25, 0.40},  {0.18, 0.52}, {0.07, 0.58},
+                                         {0.0, 0.53}, {-0.07, 0.58}, {-0.18, 0.52}, {-0.25, 0.40}})
+    p.boundary.push_back({Vec2(q.x() + x0, q.y()), PointKind::turn});
+  p.grain_line = pattern::Segment{Vec2(x0, 0.1), Vec2(x0, 0.4)};
+  return p;
+}
+
 }  // namespace
 
 TEST(SizeTableFromName, MenOrWomenFromTheStyleName) {
@@ -337,17 +351,6 @@ TEST(PrepareGarment, ASizeTheTableLacksKeepsTheStylesEase) {
 // pocket's; the other flap its alternative. Both POSITIONs written, and the
 // document valid.
 TEST(PrepareGarment, APocketAndItsFlapGoOnAWholeFrontsLeftChest) {
-  const auto bodice = [](const std::string& name, double x0) {
-    pattern::Piece p;
-    p.block = name + "_50";
-    p.name = name;
-    p.size = "50";
-    for (const auto& q : std::vector<Vec2>{{-0.25, 0},    {0.25, 0},    {0.25, 0.40},  {0.18, 0.52}, {0.07, 0.58},
-                                           {0.0, 0.53},   {-0.07, 0.58}, {-0.18, 0.52}, {-0.25, 0.40}})
-      p.boundary.push_back({Vec2(q.x() + x0, q.y()), PointKind::turn});
-    p.grain_line = pattern::Segment{Vec2(x0, 0.1), Vec2(x0, 0.4)};
-    return p;
-  };
   pattern::Piece pocket = panel("POCKET ROUND", 2.0, 0.10, 0.12, "50");
   pattern::Piece flap = panel("POCKET FLAP", 3.0, 0.10, 0.05, "50");
   pattern::Piece round_flap = panel("POCKET FLAP ROUND", 4.0, 0.10, 0.05, "50");
@@ -672,3 +675,69 @@ TEST(PrepareGarment, ATanksNeckBindingIsSewnFoldedAndTrimmedToTheNeckline) {
 
 }  // namespace vgd::dress
 
+
+namespace vgd::dress {
+
+// A front drawn again for another version of the style, named as a part
+// (Gerber's "FR CO 1", category FRONT HALF CO: the front cut for the half
+// collar) is read by its size as a front, written in the document, and left
+// out as the front's alternative: not a piece the garment lacks. A piece no
+// larger than a collar keeps its name's role.
+TEST(PrepareGarment, AFrontNamedAsACollarIsReadByItsSizeAsAnAlternativeFront) {
+  pattern::Style s = one_size("WM TOP", "38",
+                              {panel("FRONT", 0.0, 0.5, 0.6, "38"), panel("BACK", 1.0, 0.5, 0.6, "38"),
+                               panel("FR COLLAR 1", 2.0, 0.5, 0.6, "38"), panel("COLLAR", 3.0, 0.45, 0.08, "38")});
+  xvc::Document doc = xvc::from_style(s);
+  const Preparation p = prepare_garment(doc);
+  EXPECT_EQ(p.pieces, (std::vector<std::string>{"FRONT", "BACK"}));
+  const auto said = [&](const std::string& what) {
+    return std::any_of(p.decisions.begin(), p.decisions.end(),
+                       [&](const std::string& d) { return d.find(what) != std::string::npos; });
+  };
+  EXPECT_TRUE(said("piece FR COLLAR 1 read as a front, not a collar: its outline is as large as the front FRONT's "
+                   "(60.0 x 50.0 cm, 3000 cm²; the front's 60.0 x 50.0 cm, 3000 cm²)"))
+      << ::testing::PrintToString(p.decisions);
+  EXPECT_TRUE(said("piece FR COLLAR 1 (front) left out: an alternative to the front FRONT"))
+      << ::testing::PrintToString(p.decisions);
+  EXPECT_FALSE(said("piece COLLAR read as")) << ::testing::PrintToString(p.decisions);
+  for (const auto& m : p.missing) EXPECT_EQ(m.find("FR COLLAR 1"), std::string::npos) << m;
+  for (const auto* pat : doc.patterns())
+    if (pat->attribute("piece") == "FR COLLAR 1") {
+      EXPECT_EQ(pat->attribute("role"), "front");
+    }
+}
+
+// Gerber's GMG1016S19 (mirrored.DXF) is drawn with four finishes of one
+// neckline: a rib collar and three collar sets (half, full and self collar:
+// lower and upper collars, stands), and with a front for the half collar.
+// The rib collar is sewn round the neckline; every other collar and stand is
+// its alternative, and the front for the half collar the front's: none is a
+// piece the garment is draped without, which leaves the two plackets.
+TEST(PrepareGarment, CollarSetsBesideASewnNeckbandAreAlternativeFinishesOfTheNeckline) {
+  VGD_REQUIRE_SHARED();
+  dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  xvc::Document doc = xvc::from_style(dxf::import_file(vgd::test::shared_dxf("mirrored.DXF"), unfold).style);
+  const Preparation p = prepare_garment(doc);
+  const auto said = [&](const std::string& what) {
+    return std::count_if(p.decisions.begin(), p.decisions.end(),
+                         [&](const std::string& d) { return d.find(what) != std::string::npos; });
+  };
+  EXPECT_EQ(said("left out: an alternative finish of the neckline, which the neckband GMG1016S19-CO 3 finishes "
+                 "(sewn by the seam 'neck seam')"),
+            8)
+      << ::testing::PrintToString(p.decisions);
+  for (const std::string piece : {"CO L 1", "CO L 2", "CO L 4", "CO U 1", "CO U 2", "CO U 4"})
+    EXPECT_EQ(said("piece GMG1016S19-" + piece + " (collar) left out: an alternative finish of the neckline"), 1)
+        << piece;
+  for (const std::string piece : {"CO ST 1", "CO ST 2"})
+    EXPECT_EQ(said("piece GMG1016S19-" + piece + " (collar stand) left out: an alternative finish of the neckline"), 1)
+        << piece;
+  EXPECT_EQ(said("piece GMG1016S19-FR CO 1 read as a front, not a collar"), 1) << ::testing::PrintToString(p.decisions);
+  EXPECT_EQ(said("piece GMG1016S19-FR CO 1 (front) left out: an alternative to the front GMG1016S19-FR"), 1);
+  EXPECT_EQ(p.missing, (std::vector<std::string>{"GMG1016S19-YL (placket)", "GMG1016S19-YP (placket)"}));
+  EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "GMG1016S19-CO 3"), p.pieces.end());
+  EXPECT_NE(std::find(p.pieces.begin(), p.pieces.end(), "GMG1016S19-FR"), p.pieces.end());
+}
+
+}  // namespace vgd::dress
