@@ -128,6 +128,17 @@ constexpr double kPocketAcross = 0.4;
 // m: a pocket flap's top edge lies this far above its pocket's.
 constexpr double kFlapAbovePocket = 0.015;
 
+// Writes each piece's role (by piece name) on every size's PATTERN, as one
+// undoable command named `what`.
+void write_roles(xvc::Document& doc, const std::map<std::string, pattern::Role>& by_name, const std::string& what) {
+  std::vector<std::unique_ptr<xvc::Command>> set;
+  for (const auto* p : doc.patterns())
+    if (const auto it = by_name.find(std::string(p->attribute("piece"))); it != by_name.end())
+      set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role",
+                                                        std::string(pattern::role_name(it->second))));
+  xvc::execute(doc, *std::make_unique<xvc::Batch>(what, std::move(set)));
+}
+
 // The box of a PATTERN's outline (m, its own frame); nothing for an outline
 // of fewer than 3 points.
 std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const xvc::Document& doc, const xvc::Node& p) {
@@ -327,12 +338,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
               found[i].why + ")";
     }
     if (!by_name.empty()) {
-      std::vector<std::unique_ptr<xvc::Command>> set;
-      for (const auto* p : doc.patterns())
-        if (const auto it = by_name.find(std::string(p->attribute("piece"))); it != by_name.end())
-          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role",
-                                                            std::string(pattern::role_name(it->second))));
-      xvc::execute(doc, *std::make_unique<xvc::Batch>("roles from shapes", std::move(set)));
+      write_roles(doc, by_name, "roles from shapes");
       out.decisions.push_back("roles from the pieces' shapes (their names say nothing): " + said +
                               (left.empty() ? "" : "; no role from its shape: " + left) +
                               " (role written; correct it in the document)");
@@ -519,14 +525,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         break;
       }
     }
-    if (!by_name.empty()) {
-      std::vector<std::unique_ptr<xvc::Command>> set;
-      for (const auto* p : doc.patterns())
-        if (const auto it = by_name.find(std::string(p->attribute("piece"))); it != by_name.end())
-          set.push_back(std::make_unique<xvc::SetAttribute>(std::string(p->id()), "role",
-                                                            std::string(pattern::role_name(it->second))));
-      xvc::execute(doc, *std::make_unique<xvc::Batch>("fronts and backs named as parts", std::move(set)));
-    }
+    if (!by_name.empty()) write_roles(doc, by_name, "fronts and backs named as parts");
   }
 
   // Roles, as the names say.

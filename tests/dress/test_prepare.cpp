@@ -68,6 +68,13 @@ void expect_knit_or_warned(const pattern::Style& s, const std::string& knit_says
   EXPECT_NE(w.warnings[0].find(warning_says), std::string::npos) << w.warnings[0];
 }
 
+// A shared DXF file, imported with its mirrored pieces unfolded (as vgd dress does).
+xvc::Document shared_document(const std::string& file) {
+  dxf::ImportOptions unfold;
+  unfold.unfold_mirrored = true;
+  return xvc::from_style(dxf::import_file(vgd::test::shared_dxf(file), unfold).style);
+}
+
 // A whole bodice of size 50, 50 cm wide, centred on x0: armholes from 0.40
 // to 0.52 m, shoulders to 0.58 m, its neckline 0.53 m high at the centre.
 pattern::Piece bodice(const std::string& name, double x0) {
@@ -611,9 +618,7 @@ TEST(PrepareGarment, FrontsAndBacksAsLongAsLegsAreTheHalvesOfTrouserLegs) {
 // armhole binding is left out saying what vgd does not sew yet.
 TEST(PrepareGarment, ATanksNeckBindingIsSewnFoldedAndTrimmedToTheNeckline) {
   VGD_REQUIRE_SHARED();
-  dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  xvc::Document doc = xvc::from_style(dxf::import_file(vgd::test::shared_dxf("simple.DXF"), unfold).style);
+  xvc::Document doc = shared_document("simple.DXF");
   const Preparation p = prepare_garment(doc);
   EXPECT_EQ(p.pieces, (std::vector<std::string>{"C-S1615WWO206-NB", "C-S1615WWO206-B", "C-S1615WWO206-F"}));
   EXPECT_EQ(p.left_out, (std::vector<std::string>{"C-S1615WWO206-AB"}));
@@ -715,9 +720,7 @@ TEST(PrepareGarment, AFrontNamedAsACollarIsReadByItsSizeAsAnAlternativeFront) {
 // piece the garment is draped without, which leaves the two plackets.
 TEST(PrepareGarment, CollarSetsBesideASewnNeckbandAreAlternativeFinishesOfTheNeckline) {
   VGD_REQUIRE_SHARED();
-  dxf::ImportOptions unfold;
-  unfold.unfold_mirrored = true;
-  xvc::Document doc = xvc::from_style(dxf::import_file(vgd::test::shared_dxf("mirrored.DXF"), unfold).style);
+  xvc::Document doc = shared_document("mirrored.DXF");
   const Preparation p = prepare_garment(doc);
   const auto said = [&](const std::string& what) {
     return std::count_if(p.decisions.begin(), p.decisions.end(),
