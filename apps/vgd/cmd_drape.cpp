@@ -24,7 +24,8 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   std::vector<std::string> pieces;
   double time_limit = 8.0, spacing = 0.0, repulsion_damping = 0.0;
-  bool self_collision = true, frames = false, json = false, between = true, offset_contact = false, sleeves_first = false;
+  bool self_collision = true, frames = false, json = false, between = true, offset_contact = false, sleeves_first = false,
+       hold = false;
 };
 
 vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common) {
@@ -72,6 +73,10 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
                   "Damp the self-collision's repulsion, as a fraction of critical (default 0: none; 1 took a flap "
                   "standing against other cloth to rest: docs/collisions.md, \"Damped repulsion\")")
       ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--hold-contacts,!--no-hold-contacts", o->hold,
+                "Hold cloth touching the body on its surface inside each step once every seam is sewn (default off: "
+                "the corrections after each step keep it out; on, an armpit pressed into the crease between arm and "
+                "torso comes to rest, docs/collisions.md)");
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on: sharp parts such as toes, "
                 "heels, a crotch under a seam junction; docs/collisions.md)");
@@ -113,6 +118,7 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
     d.self_collision = o->self_collision;
     d.repulsion_damping = o->repulsion_damping;
     d.between_particles = o->between;
+    d.hold_contacts_once_sewn = o->hold;
     d.offset_contact = o->offset_contact;
     d.sleeves_first = o->sleeves_first;
     d.model = scene::parse_cloth_model(o->model);

@@ -28,7 +28,7 @@ struct Options {
   std::string input, size, body_table, body_size, avatar, output = "out", views = "front,back,three-quarter", trj;
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
-  bool previews = true, json = false, between = true, sleeves_first = false;
+  bool previews = true, json = false, between = true, sleeves_first = false, hold = false;
   std::string model = "mass-spring";
   std::string material, material_id, quality = "standard", preview_size = "768", seams;
   double spacing = 0.0, repulsion_damping = 0.0;
@@ -60,6 +60,9 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_option("--views", o->views, "Preview views (vgd render --views)")->capture_default_str();
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
   sub->add_option("--preview-size", o->preview_size, "Preview size in pixels: N or WxH")->capture_default_str();
+  sub->add_flag("--hold-contacts,!--no-hold-contacts", o->hold,
+                "Hold cloth touching the body on its surface inside each step once every seam is sewn (default off; "
+                "vgd drape --hold-contacts)");
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
   sub->add_flag("--sleeves-first", o->sleeves_first,
@@ -153,6 +156,7 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.options.mannequin_table = prep.body_table;
     run.options.time_limit = o->time_limit;
     run.options.between_particles = o->between;
+    run.options.hold_contacts_once_sewn = o->hold;
     run.options.sleeves_first = o->sleeves_first;
     run.options.repulsion_damping = o->repulsion_damping;
     run.options.model = vgd::scene::parse_cloth_model(o->model);

@@ -217,6 +217,9 @@ scene::SceneDef drape_scene(const DrapeOptions& o) {
 
   // Implicit Euler at 2, 4 or 8 steps per frame (quality.hpp).
   def.integrator = scene::quality_integrator(o.quality, true);
+  // Touching cloth held on the body's surface once every seam is sewn, when
+  // asked (sim::IntegratorSettings::hold_contacts_once_sewn).
+  def.integrator.settings.hold_contacts_once_sewn = o.hold_contacts_once_sewn;
   def.run.fps = o.fps;
   def.run.duration = o.time_limit;
   // Preview: coarser by stopping sooner (docs/accuracy-vs-time.md), never
@@ -293,6 +296,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
   if (!def.cloth.empty()) c.settings.emplace_back("model", scene::to_string(def.cloth.front().model));
   c.settings.emplace_back("integrator", sim::to_string(r.scene.integrator.method));
   c.settings.emplace_back("step", format_double(r.scene.integrator.step) + " s");
+  c.settings.emplace_back("hold_contacts", r.scene.integrator.hold_contacts_once_sewn ? "once sewn" : "off");
   c.settings.emplace_back("fps", format_double(def.run.fps));
   c.settings.emplace_back("time_limit", format_double(def.run.duration) + " s");
   c.settings.emplace_back("rest_energy", format_double(def.run.rest_energy) + " J per particle");

@@ -574,6 +574,7 @@ IntegratorDef read_integrator(Object o, const EffectsDef& effects) {
   o.number("cg_tolerance", s.cg_tolerance, dim::none);
   o.integer("cg_max_iterations", s.cg_max_iterations);
   o.flag("hold_contacts", s.hold_contacts);
+  o.flag("hold_contacts_once_sewn", s.hold_contacts_once_sewn);
   std::string solver;
   o.string("linear_solver", solver);
   if (solver == "cholesky") s.linear_solver = sim::IntegratorSettings::LinearSolver::cholesky;

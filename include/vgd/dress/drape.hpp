@@ -46,6 +46,9 @@ struct DrapeOptions {
   // docs/collisions.md, "Between particles"). Off, a crotch or a heel shows
   // through the cloth between particles that all stay outside the body.
   bool between_particles = true;
+  // sim::IntegratorSettings::hold_contacts_once_sewn (false: the corrections
+  // after each step alone keep touching cloth out of the body).
+  bool hold_contacts_once_sewn = false;
   // Offset contact instead of the body collision and self-collision: no
   // cloth through the body or through cloth at the end of any step
   // (docs/collisions.md, "Offset contact").

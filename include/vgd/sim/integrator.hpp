@@ -65,6 +65,15 @@ struct IntegratorSettings {
   // (bench dress: rest at 3.1 s instead of 2.0 s simulated, twice the wall
   // time), so drapes keep it off. Off: bit-identical to the code without it.
   bool hold_contacts = false;
+  // Hold them (as hold_contacts) from the first step at which no effect has
+  // work left (System::may_rest: every seam sewn): sewing keeps its pace,
+  // and settling keeps touching cloth on the body's surface instead of
+  // letting each step sink it there. Left to the corrections, a polo's
+  // armpit seam junction, pulled up by its armhole's tension, sank 22-28 mm
+  // into the crease between arm and torso at every 10 ms step and was pushed
+  // back out along the crease's normal (docs/collisions.md). vgd drape and
+  // vgd dress set it with --hold-contacts.
+  bool hold_contacts_once_sewn = false;
   // BDF (CVODE)
   double rtol = 1e-4;          // relative tolerance
   double atol = 1e-6;          // absolute tolerance (m for positions, m/s for velocities)

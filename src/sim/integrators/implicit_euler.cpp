@@ -272,7 +272,8 @@ class ImplicitEuler final : public FixedStepIntegrator {
     }
     // Largest |M⁻¹ r| over all dofs (m/s).
     auto velocity_max = [&](const VecX& r) { return r.cwiseProduct(inv_mass_dof_).lpNorm<Eigen::Infinity>(); };
-    if (settings_.hold_contacts) gather_contacts(sys);  // off: nothing is held, the step is the plain one
+    if (settings_.hold_contacts || (settings_.hold_contacts_once_sewn && sys.may_rest()))
+      gather_contacts(sys);  // off: nothing is held, the step is the plain one
     else contacts_.clear();
     held_.clear();
     dv_.setZero(n);
