@@ -141,12 +141,14 @@ void write_roles(xvc::Document& doc, const std::map<std::string, pattern::Role>&
 
 // The box of a PATTERN's outline (m, its own frame); nothing for an outline
 // of fewer than 3 points.
-std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const xvc::Document& doc, const xvc::Node& p) {
-  const auto b = xvc::to_piece(doc, std::string(p.id())).boundary;
+std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const std::vector<pattern::ContourPoint>& b) {
   if (b.size() < 3) return std::nullopt;
   pattern::Vec2 lo = b.front().p, hi = b.front().p;
   for (const auto& cp : b) lo = lo.cwiseMin(cp.p), hi = hi.cwiseMax(cp.p);
   return std::pair{lo, hi};
+}
+std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const xvc::Document& doc, const xvc::Node& p) {
+  return outline_box(xvc::to_piece(doc, std::string(p.id())).boundary);
 }
 
 // Where a patch pocket goes on a whole front (cut once, symmetric about
@@ -486,11 +488,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       double w, h, area;
     };
     const auto shape_of = [&](const xvc::Node* p) -> std::optional<Shape> {
-      const auto box = outline_box(doc, *p);
+      const auto b = xvc::to_piece(doc, std::string(p->id())).boundary;
+      const auto box = outline_box(b);
       if (!box) return std::nullopt;
       const pattern::Vec2 d = box->second - box->first;
-      return Shape{p, std::max(d.x(), d.y()), std::min(d.x(), d.y()),
-                   std::abs(pattern::signed_area(xvc::to_piece(doc, std::string(p->id())).boundary))};
+      return Shape{p, std::max(d.x(), d.y()), std::min(d.x(), d.y()), std::abs(pattern::signed_area(b))};
     };
     std::vector<Shape> bodies;
     for (const auto* p : here) {
@@ -547,7 +549,8 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
 
   // Pieces: sewn by some seam, and arranged round the body by a rule or the document.
   std::set<std::string> sewn;
-  for (const auto& s : xvc::list_seams(doc))
+  const auto seams = xvc::list_seams(doc);
+  for (const auto& s : seams)
     for (const auto& h : s.hems)
       if (const auto* p = doc.find(h.pattern)) sewn.insert(std::string(p->attribute("piece")));
   // What finishes the neckline: the first neckband, collar, collar stand or
@@ -556,7 +559,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     return r == pattern::Role::neckband || r == pattern::Role::collar || r == pattern::Role::collar_stand;
   };
   std::optional<std::pair<std::string, std::string>> neck_sewn;
-  for (const auto& s : xvc::list_seams(doc)) {
+  for (const auto& s : seams) {
     std::string finish;
     bool body = false;
     for (const auto& h : s.hems)
