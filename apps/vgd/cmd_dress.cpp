@@ -15,7 +15,9 @@
 #include "cli.hpp"
 #include "drape_report.hpp"
 #include "previews.hpp"
+#include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
+#include "vgd/dress/certificate.hpp"
 #include "vgd/dress/prepare.hpp"
 #include "vgd/io/dxf/import.hpp"
 #include "vgd/scene/quality.hpp"
@@ -29,6 +31,7 @@ struct Options {
   std::string avatar_unit = "auto", avatar_up = "auto", avatar_facing = "auto";
   double time_limit = 8.0;
   bool previews = true, json = false, between = true, sleeves_first = false, hold = false;
+  bool hold_given = false;  // --hold-contacts or --no-hold-contacts on the command line
   std::string model = "mass-spring";
   std::string material, material_id, quality = "standard", preview_size = "768", seams;
   double spacing = 0.0, repulsion_damping = 0.0;
@@ -61,8 +64,11 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
   sub->add_flag("!--no-previews", o->previews, "Write no previews");
   sub->add_option("--preview-size", o->preview_size, "Preview size in pixels: N or WxH")->capture_default_str();
   sub->add_flag("--hold-contacts,!--no-hold-contacts", o->hold,
-                "Hold cloth touching the body on its surface inside each step once every seam is sewn (default off; "
-                "vgd drape --hold-contacts)");
+                  "Hold cloth touching the body on its surface inside each step once every seam is sewn (vgd drape "
+                  "--hold-contacts). Default: off, and on for a second drape when the first failed only caught "
+                  "in the crease between an arm and the torso (said; its certificate kept as "
+                  "certificate.first.json, its --trj as FILE.first.trj); --no-hold-contacts: never")
+      ->each([o](const std::string&) { o->hold_given = true; });
   sub->add_flag("--between-particles,!--no-between-particles", o->between,
                 "Keep the body out of the cloth between particles too (default on; vgd drape --between-particles)");
   sub->add_flag("--sleeves-first", o->sleeves_first,
@@ -178,7 +184,39 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
     run.output = out;
     run.json = o->json;
     run.trj = o->trj;
-    const int code = vgd::cli::drape_and_report(run, common);
+    fs::remove(out / "certificate.first.json", ec);  // an earlier run's
+    run.json_later = o->json;  // with --json, the certificate kept is printed once
+    int code = vgd::cli::drape_and_report(run, common);
+    bool again = false;
+    // Failed only caught at an armpit, touching cloth not held and the user
+    // not having said: draped again holding it once sewn, said, the first
+    // certificate kept beside the second.
+    if (code == vgd::cli::kCheckFailed && !o->hold && !o->hold_given) {
+      const fs::path cert = out / "certificate.json";
+      const auto first = vgd::dress::certificate_from_json(vgd::read_file(cert), cert.string());
+      if (const auto at = vgd::dress::caught_at_armpit(first)) {
+        const fs::path kept = out / "certificate.first.json";
+        std::error_code rec;
+        fs::rename(cert, kept, rec);
+        if (rec)
+          throw vgd::Error(cert.string(), "", "cannot keep it as " + kept.string() + ": " + rec.message());
+        vgd::cli::say(common, "vgd: the drape failed only where the cloth is caught in the crease between " + *at +
+                                  " (its certificate kept as " + kept.string() +
+                                  "); draped again, the cloth touching the body held on it once every seam is "
+                                  "sewn (--hold-contacts)");
+        if (!run.trj.empty() && fs::exists(run.trj, rec)) {  // its trajectory kept too
+          fs::path first_trj = run.trj;
+          first_trj.replace_extension(".first" + first_trj.extension().string());
+          fs::rename(run.trj, first_trj, rec);
+          if (!rec) vgd::cli::say(common, "vgd: its trajectory kept as " + first_trj.string());
+        }
+        run.options.hold_contacts_once_sewn = true;
+        run.json_later = false;
+        again = true;
+        code = vgd::cli::drape_and_report(run, common);
+      }
+    }
+    if (o->json && !again) std::fputs(vgd::read_file(out / "certificate.json").c_str(), stdout);
     if (code == vgd::cli::kFailed || !o->previews) return code;
     vgd::cli::RenderOptions ro;
     ro.input = out.string();

@@ -125,7 +125,7 @@ int drape_and_report(const DrapeRun& run, const Common& common) {
 
   const auto& c = r.certificate;
   if (run.json) {
-    std::fputs(cert.c_str(), stdout);
+    if (!run.json_later) std::fputs(cert.c_str(), stdout);
   } else if (!common.quiet) {
     const auto [closed, pairs] = c.seam_totals();
     std::printf("%s: stopped at %s after %s s simulated (%s s wall)\n", run.names.c_str(),

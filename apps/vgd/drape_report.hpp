@@ -21,6 +21,7 @@ struct DrapeRun {
   bool frames = false;        // also every frame as OBJ in output/frames/
   std::string trj;            // also a trajectory file
   bool json = false;          // the certificate on stdout instead of the summary
+  bool json_later = false;    // with json: nothing on stdout (the caller prints the certificate it keeps)
 };
 
 int drape_and_report(const DrapeRun& run, const Common& common);

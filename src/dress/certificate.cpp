@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 
+#include "vgd/body/avatar.hpp"
 #include "vgd/body/mannequin.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
@@ -275,8 +276,16 @@ std::vector<Failure> Certificate::failures() const {
 std::string Certificate::body_through_text() const {
   std::string where;
   for (const auto& [piece, n] : body_through_by_piece) where += (where.empty() ? "" : ", ") + piece + " " + std::to_string(n);
-  return "the body passes through " + std::to_string(body_through_cloth) + " cloth triangles, up to " +
-         format_fixed(1000 * max_body_through, 2) + " mm inside it between their particles (" + where + ")";
+  std::string text = "the body passes through " + std::to_string(body_through_cloth) + " cloth triangles, up to " +
+                     format_fixed(1000 * max_body_through, 2) + " mm inside it between their particles (" + where + ")";
+  if (body_through_at) {
+    const Vec3& a = *body_through_at;
+    text += ", the deepest at (" + format_fixed(a.x(), 3) + ", " + format_fixed(a.y(), 3) + ", " + format_fixed(a.z(), 3) +
+            ") m";
+    if (body_through_near.size() == 1) text += " by the " + body_through_near[0];
+    if (body_through_near.size() >= 2) text += " between the " + body_through_near[0] + " and the " + body_through_near[1];
+  }
+  return text;
 }
 
 std::vector<Failure> Certificate::warnings() const {
@@ -287,6 +296,36 @@ std::vector<Failure> Certificate::warnings() const {
 }
 
 bool Certificate::passed() const { return failures().empty(); }
+
+std::optional<std::string> caught_at_armpit(const Certificate& c) {
+  // An arm and the torso among the segments beside a point.
+  auto armpit = [](const std::vector<std::string>& near) {
+    const bool arm = std::any_of(near.begin(), near.end(), [](const std::string& s) {
+      return s == "left-arm" || s == "right-arm";
+    });
+    return arm && std::find(near.begin(), near.end(), "torso") != near.end();
+  };
+  auto where = [](const std::vector<std::string>& near, const Vec3& a) {
+    return "the " + near[0] + " and the " + near[1] + ", at (" + format_fixed(a.x(), 3) + ", " +
+           format_fixed(a.y(), 3) + ", " + format_fixed(a.z(), 3) + ") m";
+  };
+  const std::vector<Failure> failed = c.failures();
+  if (failed.empty()) return std::nullopt;
+  std::optional<std::string> at;
+  for (const Failure& f : failed) {
+    if (f.kind == "no rest" && c.stop_reason == "time limit" && c.still_moving && armpit(c.still_moving->near)) {
+      at = where(c.still_moving->near, c.still_moving->at);
+      continue;
+    }
+    if (f.kind == "penetration" && c.max_penetration <= c.penetration_limit && c.body_through_opening == 0 &&
+        c.body_through_at && armpit(c.body_through_near)) {
+      if (!at) at = where(c.body_through_near, *c.body_through_at);
+      continue;
+    }
+    return std::nullopt;  // something else failed too
+  }
+  return at;
+}
 
 Certificate::SeamTotals Certificate::seam_totals() const {
   SeamTotals t;
@@ -351,6 +390,8 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
     out.body_through_cloth = 0;
     out.body_through_opening = 0;
     out.max_body_through = 0;
+    out.body_through_at.reset();
+    out.body_through_near.clear();
     if (scene.avatar) {
       std::vector<Vec3> probes;
       probes.reserve(4 * sewn.size());
@@ -364,6 +405,11 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
       std::vector<bool> opening(sewn.size(), false);
       for (std::size_t t = 0; t < sewn.size(); ++t) {
         const double d = std::max({depth[4 * t], depth[4 * t + 1], depth[4 * t + 2], depth[4 * t + 3]});
+        if (d > out.max_body_through && d > out.penetration_limit) {
+          const std::size_t deepest = 4 * t + (std::max_element(depth.begin() + 4 * t, depth.begin() + 4 * t + 4) -
+                                               (depth.begin() + 4 * t));
+          out.body_through_at = probes[deepest];
+        }
         out.max_body_through = std::max(out.max_body_through, d);
         if (d > out.penetration_limit) ++out.body_through_cloth, ++out.body_through_by_piece[piece_of(original[t])];
         if (m.uv.size() == static_cast<std::size_t>(m.num_particles())) {
@@ -393,6 +439,8 @@ void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_d
         if (patch[root(sewn[t][0])] > kPointPatch) opening[t] = true;
       for (std::size_t t = 0; t < sewn.size(); ++t)
         if (opening[t]) ++out.body_through_opening, ++out.body_through_opening_by_piece[piece_of(original[t])];
+      if (out.body_through_at)
+        out.body_through_near = body::segments_beside(*scene.avatar, *out.body_through_at, kNearCrease);
     }
   } else {
     out.triangle_intersections = -1;
@@ -535,6 +583,11 @@ std::string to_json(const Certificate& c) {
     j["body_through_cloth"] = c.body_through_cloth;
     j["body_through_cloth_max_m"] = c.max_body_through;
     if (!c.body_through_by_piece.empty()) j["body_through_cloth_by_piece"] = c.body_through_by_piece;
+    if (c.body_through_at) {
+      const Vec3& a = *c.body_through_at;
+      j["body_through_cloth_at_m"] = {a.x(), a.y(), a.z()};
+      j["body_through_cloth_near"] = c.body_through_near;
+    }
     j["body_through_opening"] = c.body_through_opening;
     if (!c.body_through_opening_by_piece.empty()) j["body_through_opening_by_piece"] = c.body_through_opening_by_piece;
   }
@@ -730,6 +783,12 @@ Certificate certificate_from_json(std::string_view text, const std::string& sour
     c.max_body_through = r.number(r.at(j, "body_through_cloth_max_m", ""), "body_through_cloth_max_m");
     if (j.contains("body_through_cloth_by_piece"))
       c.body_through_by_piece = r.counts(j["body_through_cloth_by_piece"], "body_through_cloth_by_piece");
+    if (j.contains("body_through_cloth_at_m")) {
+      c.body_through_at = r.vec3(j["body_through_cloth_at_m"], "body_through_cloth_at_m");
+      const json& near = r.array(r.at(j, "body_through_cloth_near", ""), "body_through_cloth_near");
+      for (std::size_t i = 0; i < near.size(); ++i)
+        c.body_through_near.push_back(r.text(near[i], "body_through_cloth_near[" + std::to_string(i) + "]"));
+    }
     c.body_through_opening = r.int32(r.at(j, "body_through_opening", ""), "body_through_opening");
     if (j.contains("body_through_opening_by_piece"))
       c.body_through_opening_by_piece = r.counts(j["body_through_opening_by_piece"], "body_through_opening_by_piece");

@@ -222,6 +222,67 @@ TEST(Certificate, ANoRestSaysWhereTheClothStillMoves) {
   EXPECT_NE(c.failures().front().detail.find("m by the left-arm ("), std::string::npos) << c.failures().front().detail;
 }
 
+// The body through the cloth says where its deepest point is and beside
+// which body segments, read back the same.
+TEST(Certificate, TheBodyThroughTheClothSaysWhereItIsDeepest) {
+  Certificate c = good();
+  c.body_through_cloth = 17, c.max_body_through = 0.0053, c.body_through_opening = 0;
+  c.body_through_by_piece = {{"SL1_54", 12}, {"FR_54", 5}};
+  c.body_through_at = Vec3(0.2, 1.324, -0.004);
+  c.body_through_near = {"left-arm", "torso"};
+  const auto f = c.failures();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].detail,
+            "the body passes through 17 cloth triangles, up to 5.30 mm inside it between their particles (FR_54 5, "
+            "SL1_54 12), the deepest at (0.200, 1.324, -0.004) m between the left-arm and the torso (limit 5.0 mm)");
+  const std::string text = to_json(c);
+  const Certificate back = certificate_from_json(text, "certificate.json");
+  ASSERT_TRUE(back.body_through_at.has_value());
+  EXPECT_EQ(back.body_through_near, c.body_through_near);
+  EXPECT_EQ(back.failures().front().detail, f[0].detail);
+  EXPECT_EQ(to_json(back), text);
+}
+
+// What holding the touching cloth may mend: a drape that failed only in the
+// crease between an arm and the torso (still moving there, or the body
+// through the cloth there between particles that are all outside it), not
+// one that failed anywhere else or for anything else as well.
+TEST(Certificate, AFailureCaughtOnlyAtAnArmpitIsToldFromOthers) {
+  EXPECT_FALSE(caught_at_armpit(good()).has_value()) << "passed";
+  Certificate moving = good();
+  moving.stop_reason = "time limit", moving.simulated_s = 8.0;
+  moving.still_moving = StillMoving{1.0, 0.17, Vec3(0.21, 1.332, 0.008), {{"FR_58", 17}}, {"torso", "left-arm"}};
+  ASSERT_TRUE(caught_at_armpit(moving).has_value());
+  EXPECT_EQ(*caught_at_armpit(moving), "the torso and the left-arm, at (0.210, 1.332, 0.008) m");
+  Certificate by_the_hips = moving;
+  by_the_hips.still_moving->near = {"torso"};
+  EXPECT_FALSE(caught_at_armpit(by_the_hips).has_value()) << "the torso alone: a hem swaying";
+  by_the_hips.still_moving->near = {"left-leg", "right-leg"};
+  EXPECT_FALSE(caught_at_armpit(by_the_hips).has_value()) << "a crotch";
+  Certificate and_open = moving;
+  and_open.seams.push_back({"left armhole", 37, 30, 0.02, 0.005, Vec3::Zero()});
+  EXPECT_FALSE(caught_at_armpit(and_open).has_value()) << "a seam open as well";
+
+  Certificate through = good();
+  through.body_through_cloth = 17, through.max_body_through = 0.0053, through.body_through_opening = 0;
+  through.body_through_at = Vec3(-0.214, 1.34, 0.002);
+  through.body_through_near = {"right-arm", "torso"};
+  ASSERT_EQ(classes(through), "penetration|");
+  EXPECT_EQ(*caught_at_armpit(through), "the right-arm and the torso, at (-0.214, 1.340, 0.002) m");
+  Certificate both = through;  // no rest at one armpit, the body through at the other
+  both.stop_reason = "time limit", both.still_moving = moving.still_moving;
+  EXPECT_EQ(*caught_at_armpit(both), "the torso and the left-arm, at (0.210, 1.332, 0.008) m");
+  Certificate opening = through;
+  opening.body_through_opening = 4;
+  EXPECT_FALSE(caught_at_armpit(opening).has_value()) << "a hole the body shows through";
+  Certificate inside = through;
+  inside.max_penetration = 0.003;
+  EXPECT_FALSE(caught_at_armpit(inside).has_value()) << "particles inside the body";
+  Certificate crossing = through;
+  crossing.triangle_intersections = 3;
+  EXPECT_FALSE(caught_at_armpit(crossing).has_value()) << "the cloth through itself as well";
+}
+
 TEST(Certificate, JsonThatIsNotACertificateIsRefusedNamingTheField) {
   const auto error_of = [](const std::string& text) {
     try {

@@ -148,6 +148,11 @@ struct Certificate {
   int body_through_cloth = -1;
   double max_body_through = 0;  // m, the deepest such point
   std::map<std::string, int> body_through_by_piece;
+  // Where the deepest of them is (m; deeper than the penetration limit) and
+  // the body segments beside it, as StillMoving::near (an armpit: an arm and
+  // the torso); empty when none is.
+  std::optional<Vec3> body_through_at;
+  std::vector<std::string> body_through_near;
   // Of those, triangles with the body deeper inside them than a quarter of
   // their longest rest edge: no ridge between particles reaches that far into
   // an intact cloth (the sag of the chord over the body's curvature); the
@@ -219,6 +224,17 @@ struct Certificate {
 // on 20 000 triangles; off when `intersections` is false.
 void measure_state(const scene::Scene& scene, const sim::VecX& x, double merge_distance, double contact_distance,
                    bool intersections, Certificate& out);
+
+// A drape that failed only where the cloth is caught in the crease between an
+// arm and the torso: no rest with the cloth still moving there, or the body
+// through the cloth between its particles there (every particle outside it,
+// no opening), and nothing else failing. The corrections after each step
+// leave a sleeve's junction there sinking into the crease at every step,
+// which holding the touching cloth on the body inside the step once sewn
+// (sim::IntegratorSettings::hold_contacts_once_sewn) stops
+// (docs/collisions.md, "Holding touching cloth once sewn"). Returns where, as
+// "the right-arm and the torso, at (x, y, z) m"; nullopt otherwise.
+std::optional<std::string> caught_at_armpit(const Certificate& c);
 
 // The certificate as pretty-printed JSON.
 std::string to_json(const Certificate& c);
