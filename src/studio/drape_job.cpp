@@ -196,8 +196,19 @@ void DrapeJob::run(scene::SceneDef def, int threads) {
       if (stop_) throw StopRequested{};
     };
     dress::DrapeResult r = dress::run_drape(def, {&sink}, progress);
+    // As vgd dress: a drape that failed only caught in the crease between an
+    // arm and the torso is draped again holding the touching cloth once sewn.
+    std::string again;
+    auto& held = def.integrator.settings;
+    if (!held.hold_contacts && !held.hold_contacts_once_sewn)
+      if (const auto at = dress::caught_at_armpit(r.certificate)) {
+        again = "draped again, the touching cloth held once sewn: the first drape failed only where the cloth is "
+                "caught in the crease between " + *at + "; ";
+        held.hold_contacts_once_sewn = true;
+        r = dress::run_drape(def, {&sink}, progress);
+      }
     const auto& c = r.certificate;
-    const std::string msg = outcome(c);
+    const std::string msg = again + outcome(c);
     {
       std::lock_guard lock(m_);
       cert_ = c;
