@@ -6,6 +6,7 @@
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/core/strings.hpp"
 
+namespace cmd_avatar {
 namespace {
 
 struct Options {
@@ -103,3 +104,4 @@ vgd::cli::Registrar reg{"avatar", 61, [](CLI::App& app, vgd::cli::Common& common
 }};
 
 }  // namespace
+}  // namespace cmd_avatar

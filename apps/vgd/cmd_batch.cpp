@@ -21,6 +21,7 @@
 #include "vgd/core/file.hpp"
 #include "vgd/core/strings.hpp"
 
+namespace cmd_batch {
 namespace {
 
 namespace fs = std::filesystem;
@@ -291,3 +292,4 @@ vgd::cli::Registrar reg{"batch", 90, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_batch

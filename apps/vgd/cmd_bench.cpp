@@ -26,6 +26,7 @@ int bench_server(int clients, int workers, const std::string& job, bool json);
 int bench_robustness(const RobustnessArgs& args);
 }  // namespace vgd::cli
 
+namespace cmd_bench {
 namespace {
 
 namespace scene = vgd::scene;
@@ -315,3 +316,4 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_bench

@@ -13,6 +13,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/qa/compare.hpp"
 
+namespace cmd_compare {
 namespace {
 
 struct Options {
@@ -96,3 +97,4 @@ vgd::cli::Registrar reg{"compare", 76, [](CLI::App& app, vgd::cli::Common& commo
 }};
 
 }  // namespace
+}  // namespace cmd_compare

@@ -15,6 +15,7 @@
 #include "vgd/io/trj/trj.hpp"
 #include "vgd/io/wvt/wvt.hpp"
 
+namespace cmd_compress {
 namespace {
 
 namespace trj = vgd::io::trj;
@@ -216,3 +217,4 @@ vgd::cli::Registrar trj_reg{"trj", 72, [](CLI::App& app, vgd::cli::Common& commo
 }};
 
 }  // namespace
+}  // namespace cmd_compress

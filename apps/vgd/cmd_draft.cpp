@@ -12,6 +12,7 @@
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_draft {
 namespace {
 
 // The style as XVC, with the drafter's seams (every size) and one arrangement per
@@ -104,3 +105,4 @@ vgd::cli::Registrar reg{"draft", 5, [](CLI::App& app, vgd::cli::Common& common) 
 }};
 
 }  // namespace
+}  // namespace cmd_draft

@@ -15,6 +15,7 @@
 #include "vgd/dress/drape.hpp"
 #include "vgd/scene/quality.hpp"
 
+namespace cmd_drape {
 namespace {
 
 struct Options {
@@ -138,3 +139,4 @@ vgd::cli::Registrar reg{"drape", 65, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_drape

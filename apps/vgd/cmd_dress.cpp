@@ -24,6 +24,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_dress {
 namespace {
 
 struct Options {
@@ -231,3 +232,4 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_dress

@@ -10,6 +10,7 @@
 #include "vgd/xvc/commands.hpp"
 #include "vgd/xvc/io.hpp"
 
+namespace cmd_edit {
 namespace {
 namespace xvc = vgd::xvc;
 
@@ -153,3 +154,4 @@ vgd::cli::Registrar reg{"edit", 30, [](CLI::App& app, vgd::cli::Common& common) 
   }};
 }};
 }  // namespace
+}  // namespace cmd_edit

@@ -30,6 +30,7 @@
 #include "vgd/body/avatar_io.hpp"
 #include "vgd/xvc/io.hpp"
 
+namespace cmd_export {
 namespace {
 
 namespace fs = std::filesystem;
@@ -326,3 +327,4 @@ vgd::cli::Registrar reg{"export", 72, [](CLI::App& app, vgd::cli::Common& common
 }};
 
 }  // namespace
+}  // namespace cmd_export

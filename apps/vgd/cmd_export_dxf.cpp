@@ -7,6 +7,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_export_dxf {
 namespace {
 
 struct Options {
@@ -37,3 +38,4 @@ vgd::cli::Registrar reg{"export-dxf", 20, [](CLI::App& app, vgd::cli::Common& co
 }};
 
 }  // namespace
+}  // namespace cmd_export_dxf

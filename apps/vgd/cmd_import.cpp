@@ -8,6 +8,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_import {
 namespace {
 
 struct Options {
@@ -90,3 +91,4 @@ vgd::cli::Registrar reg{"import", 10, [](CLI::App& app, vgd::cli::Common& common
 }};
 
 }  // namespace
+}  // namespace cmd_import

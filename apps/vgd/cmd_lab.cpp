@@ -18,6 +18,7 @@
 #include "vgd/lab/lab.hpp"
 #include "vgd/lab/fit.hpp"
 
+namespace cmd_lab {
 namespace {
 
 struct Options {
@@ -292,3 +293,4 @@ vgd::cli::Registrar reg{"lab", 70, [](CLI::App& app, vgd::cli::Common& common) {
 }};
 
 }  // namespace
+}  // namespace cmd_lab

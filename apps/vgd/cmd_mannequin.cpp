@@ -12,6 +12,7 @@
 #include "vgd/body/mannequin.hpp"
 #include "vgd/scene/units.hpp"
 
+namespace cmd_mannequin {
 namespace {
 
 struct Options {
@@ -149,3 +150,4 @@ vgd::cli::Registrar reg{"mannequin", 60, [](CLI::App& app, vgd::cli::Common& com
 }};
 
 }  // namespace
+}  // namespace cmd_mannequin

@@ -16,6 +16,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_mesh {
 namespace {
 
 struct Options {
@@ -160,3 +161,4 @@ vgd::cli::Registrar reg{"mesh", 50, [](CLI::App& app, vgd::cli::Common& common) 
 }};
 
 }  // namespace
+}  // namespace cmd_mesh

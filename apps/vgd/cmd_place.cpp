@@ -11,6 +11,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_place {
 namespace {
 
 struct Options {
@@ -83,3 +84,4 @@ vgd::cli::Registrar reg{"place", 36, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_place

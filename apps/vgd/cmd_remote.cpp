@@ -16,6 +16,7 @@
 #include "vgd/core/strings.hpp"
 #include "vgd/net/client.hpp"
 
+namespace cmd_remote {
 namespace {
 
 namespace fs = std::filesystem;
@@ -247,3 +248,4 @@ vgd::cli::Registrar reg{"remote", 95, [](CLI::App& app, vgd::cli::Common& common
 }};
 
 }  // namespace
+}  // namespace cmd_remote

@@ -14,6 +14,7 @@
 #include "vgd/xvc/seams.hpp"
 #include "vgd/xvc/style.hpp"
 
+namespace cmd_seams {
 namespace {
 
 struct Options {
@@ -208,3 +209,4 @@ vgd::cli::Registrar reg{"seams", 35, [](CLI::App& app, vgd::cli::Common& common)
 }};
 
 }  // namespace
+}  // namespace cmd_seams

@@ -21,6 +21,7 @@
 #include "vgd/scene/quality.hpp"
 #include "vgd/scene/units.hpp"
 
+namespace cmd_simulate {
 namespace {
 
 struct Options {
@@ -224,3 +225,4 @@ vgd::cli::Registrar reg{"simulate", 60, [](CLI::App& app, vgd::cli::Common& comm
 }};
 
 }  // namespace
+}  // namespace cmd_simulate

@@ -7,6 +7,7 @@
 #include "vgd/xvc/io.hpp"
 #include "vgd/xvc/svg.hpp"
 
+namespace cmd_svg {
 namespace {
 struct Options {
   std::string input;
@@ -40,3 +41,4 @@ vgd::cli::Registrar reg{"svg", 40, [](CLI::App& app, vgd::cli::Common& common) {
   }};
 }};
 }  // namespace
+}  // namespace cmd_svg

@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "vgd/xvc/validate.hpp"
 
+namespace cmd_validate {
 namespace {
 struct Options {
   std::string input;
@@ -46,3 +47,4 @@ vgd::cli::Registrar reg{"validate", 20, [](CLI::App& app, vgd::cli::Common& comm
   }};
 }};
 }  // namespace
+}  // namespace cmd_validate

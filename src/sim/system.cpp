@@ -346,8 +346,8 @@ bool System::assemble_blocks(const Eval& e, BlockJacobian& J) {
       auto scatter = [&](const Triplets& ts, double* values) {
         int bi = -1, bj = -1, q = -1;
         for (const Triplet& tr : ts) {
-          const int i = tr.row() / 3, j = tr.col() / 3;
-          if (i != bi || j != bj) bi = i, bj = j, q = out.slot(i, j);
+          const int pi = tr.row() / 3, pj = tr.col() / 3;
+          if (pi != bi || pj != bj) bi = pi, bj = pj, q = out.slot(pi, pj);
           if (q >= 0) values[9 * q + 3 * (tr.row() % 3) + tr.col() % 3] += tr.value();
         }
       };

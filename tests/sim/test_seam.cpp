@@ -333,8 +333,8 @@ TEST_P(SeamRun, AllPairsMergeAndFramesKeepTheOriginalParticles) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, SeamRun,
                          ::testing::Values(Method::symplectic_euler, Method::rk4, Method::implicit_euler, Method::bdf),
-                         [](const auto& info) {
-                           std::string s = to_string(info.param);
+                         [](const auto& p) {
+                           std::string s = to_string(p.param);
                            for (char& c : s)
                              if (c == '-') c = '_';
                            return s;

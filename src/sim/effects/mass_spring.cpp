@@ -10,8 +10,6 @@
 //   [SECTION] The effect
 #include "vgd/sim/effects/mass_spring.hpp"
 
-#include "vgd/sim/system.hpp"  // BlockJacobianEffect
-
 #include <omp.h>
 
 #include <algorithm>
@@ -21,6 +19,9 @@
 #include <tuple>
 #include <type_traits>
 #include <utility>
+
+#include "vgd/core/strings.hpp"
+#include "vgd/sim/system.hpp"  // BlockJacobianEffect
 
 namespace vgd::sim {
 
@@ -40,12 +41,6 @@ int SpringTopology::count(SpringKind kd) const {
 }
 
 namespace {
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 // =============================================================================
 // [SECTION] Materials: validation
@@ -68,8 +63,8 @@ void check_materials(const Model& m, const std::vector<MassSpringMaterial>& per_
     const std::string who = per_piece.size() == 1 ? std::string("the material") : "the material of " + piece_label(m, static_cast<int>(p));
     auto check = [&](const char* field, double value, const char* unit) {
       if (!std::isfinite(value) || value < 0.0)
-        throw SimulationError("mass-spring: " + who + " has " + field + " = " + fmt(value) + unit +
-                              "; it must be a finite number ≥ 0");
+        throw SimulationError("mass-spring: " + who + " has " + field + " = " + format_significant(value, 6) +
+                              unit + "; it must be a finite number ≥ 0");
     };
     check("warp", mat.warp, " N/m");
     check("weft", mat.weft, " N/m");
@@ -378,7 +373,8 @@ class MassSpring final : public Effect, public BlockJacobianEffect {
     if (o.limit_passes < 1)
       throw SimulationError("mass-spring: options.limit_passes = " + std::to_string(o.limit_passes) + "; must be ≥ 1");
     if (!std::isfinite(o.limit_tolerance) || o.limit_tolerance < 0.0)
-      throw SimulationError("mass-spring: options.limit_tolerance = " + fmt(o.limit_tolerance) + "; must be ≥ 0");
+      throw SimulationError("mass-spring: options.limit_tolerance = " +
+                            format_significant(o.limit_tolerance, 6) + "; must be ≥ 0");
     for (int s = 0; s < n; ++s) {
       if (top.max_length[s] <= 0.0) continue;
       const double wa = fixed[top.a[s]] ? 0.0 : 1.0 / m.mass[top.a[s]];

@@ -7,15 +7,11 @@
 #include <cstdio>
 #include <functional>
 
+#include "vgd/core/strings.hpp"
+
 namespace vgd::sim {
 
 namespace {
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 // ln cosh(x) without overflow: |x| + ln(1 + e^{−2|x|}) − ln 2.
 double log_cosh(double x) {
@@ -58,7 +54,8 @@ class Seam final : public Effect {
     auto bad = [](const std::string& what) { throw SimulationError("seam: " + what); };
     auto check = [&](const char* field, double v, const char* unit) {
       if (!std::isfinite(v) || v < 0.0)
-        bad(std::string(field) + " = " + fmt(v) + unit + "; it must be a finite number ≥ 0");
+        bad(std::string(field) + " = " + format_significant(v, 6) + unit +
+            "; it must be a finite number ≥ 0");
     };
     check("stiffness", d.stiffness, " N/m");
     check("damping", d.damping, " N·s/m");
@@ -68,7 +65,8 @@ class Seam final : public Effect {
     check("wait_limit", d.wait_limit, " s");
     if (d.last_stitch_frames < 1) bad("last_stitch_frames = " + std::to_string(d.last_stitch_frames) + "; it must be ≥ 1");
     if (d.law == SeamLaw::saturating && !(d.max_force > 0.0 && std::isfinite(d.max_force)))
-      bad("max_force = " + fmt(d.max_force) + " N; the saturating law needs a finite force > 0");
+      bad("max_force = " + format_significant(d.max_force, 6) +
+          " N; the saturating law needs a finite force > 0");
     const int n = m.num_particles();
     report_.seams.resize(d.seams.size());
     for (std::size_t s = 0; s < d.seams.size(); ++s) {

@@ -89,6 +89,7 @@
 #include <limits>
 
 #include "implicit.hpp"
+#include "vgd/core/strings.hpp"
 
 namespace vgd::sim::detail {
 
@@ -97,12 +98,6 @@ namespace {
 constexpr long kMaxStepsPerCall = 100000;  // internal steps per advance() before CVODE gives up
 constexpr int kGmresMaxKrylov = 20;          // GMRES subspace size (CVODE's default is 5)
 constexpr int kMaxRhsFailuresPerCall = 20;   // non-finite forces CVODE may retry per advance()
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 std::string flag_name(int flag) {
   char* s = CVodeGetReturnFlagName(flag);
@@ -183,11 +178,13 @@ class Bdf final : public Integrator {
                               "unseen). What would work: implicit-euler (what drapes use), or an explicit method "
                               "with auto_substep");
     if (!(st.rtol > 0.0) || !std::isfinite(st.rtol) || !(st.atol > 0.0) || !std::isfinite(st.atol))
-      throw SimulationError("BDF needs tolerances > 0 (got rtol " + fmt(st.rtol) + ", atol " + fmt(st.atol) + ")");
+      throw SimulationError("BDF needs tolerances > 0 (got rtol " + format_significant(st.rtol, 3) +
+                            ", atol " + format_significant(st.atol, 3) + ")");
     if (st.max_order < 1 || st.max_order > 5)
       throw SimulationError("BDF order must be 1 to 5 (got " + std::to_string(st.max_order) + ")");
     if (!(st.max_step >= 0.0))
-      throw SimulationError("BDF max step must be >= 0 s, 0 meaning no limit (got " + fmt(st.max_step) + ")");
+      throw SimulationError("BDF max step must be >= 0 s, 0 meaning no limit (got " +
+                            format_significant(st.max_step, 3) + ")");
   }
 
   // A merge changed the system: bind() rebuilds the free-dof map and a new
@@ -263,8 +260,8 @@ class Bdf final : public Integrator {
     update_stats();
     if (pending_) std::rethrow_exception(pending_);
     if (flag < 0)
-      throw SimulationError("BDF (CVODE) stopped at t = " + fmt(tret) + " s with " + flag_name(flag) +
-                            (message_.empty() ? std::string() : " (\"" + message_ + "\")") +
+      throw SimulationError("BDF (CVODE) stopped at t = " + format_significant(tret, 3) + " s with " +
+                            flag_name(flag) + (message_.empty() ? std::string() : " (\"" + message_ + "\")") +
                             (nonfinite_.empty() ? std::string() : "; " + nonfinite_) + ": " + advice(flag));
     failed_ = false;
     const sunrealtype* y = N_VGetArrayPointer(cv_->y);
@@ -368,7 +365,8 @@ class Bdf final : public Integrator {
     for (int j = 0; j < nf_; ++j) {
       const double a = f_[free_[j]] * inv_mass_[j];
       if (!std::isfinite(a)) {
-        nonfinite_ = "non-finite force on particle " + std::to_string(free_[j] / 3) + " at t = " + fmt(t) + " s";
+        nonfinite_ = "non-finite force on particle " + std::to_string(free_[j] / 3) +
+                     " at t = " + format_significant(t, 3) + " s";
         // Recoverable (CVODE retries with a smaller step) a few times per call, then fatal:
         // otherwise CVODE creeps up to the failure in ever smaller steps.
         return ++rhs_failures_ <= kMaxRhsFailuresPerCall ? 1 : -1;

@@ -3,19 +3,14 @@
 #include <cmath>
 #include <cstdio>
 
-namespace vgd::sim::detail {
+#include "vgd/core/strings.hpp"
 
-namespace {
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
-}  // namespace
+namespace vgd::sim::detail {
 
 void FixedStepIntegrator::prepare(System& sys, const State&) {
   if (!(settings_.step > 0.0) || !std::isfinite(settings_.step))
-    throw SimulationError("the integration step must be a positive number of seconds (got " + fmt(settings_.step) + ")");
+    throw SimulationError("the integration step must be a positive number of seconds (got " +
+                          format_significant(settings_.step, 3) + ")");
   h_ = settings_.step;
   if (!is_explicit(settings_.method)) return;
   const auto& k = sys.stiffness();
@@ -27,15 +22,19 @@ void FixedStepIntegrator::prepare(System& sys, const State&) {
   }
   // Refuse, and say what would work.
   const double rk4 = settings_.safety * stability_limit(Method::rk4, k);
-  std::string msg = "step " + fmt(h_) + " s is above the stability limit of " + to_string(settings_.method) +
-                    " for this scene: " + fmt(limit) + " s";
+  std::string msg = "step " + format_significant(h_, 3) + " s is above the stability limit of " +
+                    to_string(settings_.method) + " for this scene: " + format_significant(limit, 3) + " s";
   if (k.particle >= 0)
     msg += " (stiffest at particle " + std::to_string(k.particle) + ", from " + k.effect + ": ω ≈ " +
-           fmt(std::sqrt(k.omega2)) + " rad/s" +
-           (k.damping_rate > 0 ? ", damping rate " + fmt(k.damping_rate) + " 1/s" : std::string()) + ")";
-  msg += ". What would work: a step of " + fmt(limit) + " s or less (or " +
-         std::to_string(static_cast<int>(std::ceil(h_ / limit))) + "x the iterations per frame), automatic sub-stepping";
-  if (settings_.method != Method::rk4 && rk4 > h_) msg += ", RK4 (limit " + fmt(rk4) + " s)";
+           format_significant(std::sqrt(k.omega2), 3) + " rad/s" +
+           (k.damping_rate > 0 ? ", damping rate " + format_significant(k.damping_rate, 3) + " 1/s"
+                               : std::string()) +
+           ")";
+  msg += ". What would work: a step of " + format_significant(limit, 3) + " s or less (or " +
+         std::to_string(static_cast<int>(std::ceil(h_ / limit))) +
+         "x the iterations per frame), automatic sub-stepping";
+  if (settings_.method != Method::rk4 && rk4 > h_)
+    msg += ", RK4 (limit " + format_significant(rk4, 3) + " s)";
   msg += ", implicit Euler or BDF.";
   throw SimulationError(msg);
 }

@@ -68,16 +68,17 @@
 //   statically among OpenMP threads when omp_get_max_threads() > 1 (each
 //   row summed by one thread in a fixed order: results do not depend on the
 //   thread count); the rest is serial and deterministic.
+#include <omp.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include <omp.h>
-
 #include "fixed_step.hpp"
 #include "implicit.hpp"
+#include "vgd/core/strings.hpp"
 #include "vgd/sim/effects/body_collision.hpp"
 
 namespace vgd::sim::detail {
@@ -94,12 +95,6 @@ constexpr double kVelocityFraction = 0.5;  // ... and so are those below this fr
 // never came to rest within 8 s). What a re-solve would still change waits
 // for the next step.
 constexpr int kMaxResolves = 1;
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
 
 // ---- preconditioned conjugate gradients -------------------------------------
 
@@ -212,8 +207,9 @@ class ImplicitEuler final : public FixedStepIntegrator {
                             std::to_string(settings_.newton_iterations) + ")");
     if (!(settings_.cg_tolerance > 0.0) || settings_.cg_max_iterations < 1)
       throw SimulationError("implicit Euler needs a conjugate-gradient tolerance > 0 (got " +
-                            fmt(settings_.cg_tolerance) + ") and at least 1 iteration (got " +
-                            std::to_string(settings_.cg_max_iterations) + ")");
+                            format_significant(settings_.cg_tolerance, 3) +
+                            ") and at least 1 iteration (got " + std::to_string(settings_.cg_max_iterations) +
+                            ")");
   }
 
  private:
@@ -237,8 +233,9 @@ class ImplicitEuler final : public FixedStepIntegrator {
   }
 
   [[noreturn]] void refuse(Outcome o, double t, double h) const {
-    const std::string when = " at t = " + fmt(t) + " s even with a step of " + fmt(h) + " s (" +
-                             std::to_string(1 << kMaxHalvings) + " times smaller than asked)";
+    const std::string when = " at t = " + format_significant(t, 3) + " s even with a step of " +
+                             format_significant(h, 3) + " s (" + std::to_string(1 << kMaxHalvings) +
+                             " times smaller than asked)";
     if (o == Outcome::non_finite)
       throw SimulationError("implicit Euler: non-finite " + nonfinite_ +
                             "; the step is not taken (check material values, or try a smaller step)");
@@ -292,7 +289,8 @@ class ImplicitEuler final : public FixedStepIntegrator {
       sys.force(it_.t, it_.x, it_.v, f_);
       ++stats_.rhs_evaluations;
       if (const int i = first_non_finite(f_); i >= 0) {
-        nonfinite_ = "force on particle " + std::to_string(i / 3) + " at t = " + fmt(it_.t) + " s";
+        nonfinite_ =
+            "force on particle " + std::to_string(i / 3) + " at t = " + format_significant(it_.t, 3) + " s";
         if (k == 0) refuse(Outcome::non_finite, s.t, h);  // at the start of the step: no smaller step helps
         return Outcome::non_finite;
       }
@@ -381,7 +379,7 @@ class ImplicitEuler final : public FixedStepIntegrator {
           const CgResult cg = pcg_solve(warm || again ? &guess_ : nullptr);
           stats_.linear_iterations += cg.iterations;
           if (cg.status == CgStatus::non_finite) {
-            nonfinite_ = "force Jacobian at t = " + fmt(it_.t) + " s";
+            nonfinite_ = "force Jacobian at t = " + format_significant(it_.t, 3) + " s";
             refuse(Outcome::non_finite, s.t, h);
           }
           if (cg.status == CgStatus::negative_curvature) return Outcome::indefinite;
