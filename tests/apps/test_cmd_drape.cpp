@@ -475,7 +475,9 @@ TEST(CliDrape, GarmentsOnMakeHumansBody) {
     EXPECT_TRUE(k == "no rest" || k == "seams open" || k == "penetration" || k == "self-intersection" ||
                 k == "over-stretched")
         << f.dump();
-    if (k == "self-intersection") EXPECT_NE(f["detail"].get<std::string>().find("SLEEVE"), std::string::npos) << f.dump();
+    if (k == "self-intersection") {
+      EXPECT_NE(f["detail"].get<std::string>().find("SLEEVE"), std::string::npos) << f.dump();
+    }
   }
 }
 

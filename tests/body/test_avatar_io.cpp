@@ -61,7 +61,7 @@ TEST_P(AvatarRoundTrip, ExportThenImportKeepsTheMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, AvatarRoundTrip, ::testing::Values(".obj", ".ply", ".stl", ".glb", ".gltf", ".dae", ".fbx"),
-                         [](const auto& info) { return info.param.substr(1); });
+                         [](const auto& p) { return p.param.substr(1); });
 
 TEST(AvatarImport, CentimetresZUpAreNormalisedAutomatically) {
   const auto dir = test::scratch_dir("avatar_io_cm_zup");

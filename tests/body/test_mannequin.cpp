@@ -233,7 +233,7 @@ TEST_P(Mannequin, SegmentsFollowTheBody) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, Mannequin, ::testing::Values(women38(), men50(), women46()),
-                         [](const auto& info) { return info.param.sex + "_" + info.param.label; });
+                         [](const auto& p) { return p.param.sex + "_" + p.param.label; });
 
 TEST(MannequinGeneration, IsDeterministic) {
   MannequinOptions o;

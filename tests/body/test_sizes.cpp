@@ -17,7 +17,9 @@ TEST(BodySizes, ShippedTablesLoadAndArePlausible) {
     EXPECT_GE(rows.size(), 8u) << name;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       EXPECT_NO_THROW(check_measurements(rows[i], name)) << name << " " << rows[i].label;
-      if (i > 0) EXPECT_GT(rows[i].bust, rows[i - 1].bust) << name << " " << rows[i].label;
+      if (i > 0) {
+        EXPECT_GT(rows[i].bust, rows[i - 1].bust) << name << " " << rows[i].label;
+      }
     }
   }
 }

@@ -69,8 +69,9 @@ TEST(Arrange, TheMannequinsPointsLieOutsideItsSegmentsOnTheirSides) {
   EXPECT_EQ(pts.size(), 13u);
   // On the trunk the height is the point's world height.
   for (const auto& [label, p] : pts)
-    if (p.arrangement.segment == "torso" || p.arrangement.segment == "hips")
+    if (p.arrangement.segment == "torso" || p.arrangement.segment == "hips") {
       EXPECT_NEAR(p.at.y(), p.arrangement.height, 1e-3) << label;
+    }
   EXPECT_NEAR(pts.at("torso front").arrangement.height, o.neck_point_height + o.bodice_lift, 1e-12);
   EXPECT_NEAR(pts.at("hips back").arrangement.height, o.waist_height, 1e-12);
   EXPECT_GT(pts.at("torso front").at.z(), 0.03);

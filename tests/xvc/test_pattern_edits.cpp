@@ -700,7 +700,9 @@ TEST(MoveNotch, PutsTheNotchOnAnotherVertexCuttingInwards) {
   std::string drill;
   for (const auto& c : doc.find("pattern1")->children)
     if (c.tag == "POSITION" && c.attribute("type") == "drill") drill = std::string(c.id());
-  if (!drill.empty()) EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", drill, 0)), vgd::Error);
+  if (!drill.empty()) {
+    EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", drill, 0)), vgd::Error);
+  }
   EXPECT_THROW(stack.execute(std::make_unique<MoveNotch>("pattern1", "no-such", 0)), vgd::Error);
   stack.undo();
   EXPECT_EQ(doc.root(), before.root());

@@ -189,8 +189,9 @@ TEST(SharedDxf, ValentinaTrousersAreSewnOnTheirSewLines) {
     EXPECT_FALSE(vgd::pattern::is_self_intersecting(sewn.style.pieces[i].boundary)) << cut.style.pieces[i].block;
   }
   for (const auto& file : vgd::test::shared_dxf_files())
-    if (file != "Valentina_Trousers_ASTM_R12.dxf")
+    if (file != "Valentina_Trousers_ASTM_R12.dxf") {
       EXPECT_EQ(vgd::dxf::import_file(vgd::test::shared_dxf(file), o).sewn_on_sew_lines, 0) << file;
+    }
 }
 
 // Roles from shapes on pieces whose names do give a role: over the sample
