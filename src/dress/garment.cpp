@@ -721,10 +721,38 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
       gp.to_host_rotation << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
       gp.to_host_from = 0.5 * (lo + hi);
       gp.to_host_at = Vec2(f.x, f.y);
-      // A pocket is sewn all round but its mouth; a flap by its top edge only, hanging over its pocket.
-      const bool flap = xvc::piece_role(doc, *kept_nodes[k]).role == pattern::Role::pocket_flap;
+      // A pocket is sewn all round but its mouth; a flap by its top edge
+      // only, hanging over its pocket; a placket by its two ends (the
+      // stretches whose middles lie farthest along its long side), each a
+      // seam of its own.
+      const pattern::Role role = xvc::piece_role(doc, *kept_nodes[k]).role;
+      const bool flap = role == pattern::Role::pocket_flap;
       gp.face_gap = flap ? kFlapGap : kPocketGap;
       gp.face_layer = flap ? 2 : 1;
+      if (role == pattern::Role::placket) {
+        const bool lying = hi.x() - lo.x() > hi.y() - lo.y();
+        int lower = 0, upper = 0;
+        double least = std::numeric_limits<double>::infinity(), most = -least;
+        for (int q = 0; q < ns; ++q) {
+          const Vec2 mid = 0.5 * (bd[st[q].first].p + bd[st[(q + 1) % ns].first].p);
+          const double v = lying ? mid.x() : mid.y();
+          if (v < least) least = v, lower = q;
+          if (v > most) most = v, upper = q;
+        }
+        if (upper == lower)
+          throw Error(file, f.id, gp.name + " needs two ends to sew: its outline is one stretch");
+        for (const auto& [q, end] : {std::pair{upper, "top"}, std::pair{lower, "bottom"}}) {
+          Hem hem;
+          hem.id = f.id + "-" + end;
+          hem.piece = pi;
+          hem.a = static_cast<int>(st[q].first);
+          hem.b = static_cast<int>(st[(q + 1) % ns].first);
+          face_seams.push_back({static_cast<int>(hems.size()), host, -1, hem.id,
+                                gp.name + " on " + g.pieces[host].name + " (" + end + ")"});
+          hems.push_back(std::move(hem));
+        }
+        continue;
+      }
       Hem hem;
       hem.id = f.id;
       hem.piece = pi;

@@ -127,6 +127,8 @@ constexpr double kPocketAboveUnderarm = 0.04;
 constexpr double kPocketAcross = 0.4;
 // m: a pocket flap's top edge lies this far above its pocket's.
 constexpr double kFlapAbovePocket = 0.015;
+// m: a placket's top end lies this far below the neckline at centre front.
+constexpr double kPlacketBelowNeck = 0.005;
 
 // Writes each piece's role (by piece name) on every size's PATTERN, as one
 // undoable command named `what`.
@@ -199,6 +201,51 @@ std::optional<xvc::FacePlacement> chest_pocket(const xvc::Document& doc, const x
       return std::nullopt;
     }
   return xvc::FacePlacement{"", std::string(front.id()), c.x(), c.y(), -at.angle_deg};
+}
+
+// Where a placket goes on a whole front when the document does not say:
+// upright along centre front (its long side up, the front turned upright as
+// its arrangement turns it), its top end kPlacketBelowNeck below where the
+// neckline crosses centre front (the highest point of the outline there).
+// Nothing for a flipped arrangement; nothing, with `said`, where it does not fit.
+std::optional<xvc::FacePlacement> centre_front_placket(const xvc::Document& doc, const xvc::Node& placket,
+                                                       const xvc::Node& front, const xvc::Arrangement& at,
+                                                       std::string& said) {
+  if (at.flip) return std::nullopt;
+  const double t = at.angle_deg * std::numbers::pi / 180.0;
+  const auto turn = [](const pattern::Vec2& p, double a) {
+    return pattern::Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(),
+                         std::sin(a) * p.x() + std::cos(a) * p.y());
+  };
+  std::vector<pattern::ContourPoint> up;
+  for (const auto& cp : xvc::to_piece(doc, std::string(front.id())).boundary)
+    up.push_back({turn(cp.p, t), pattern::PointKind::plain});
+  const auto front_box = outline_box(up);
+  const auto box = outline_box(doc, placket);
+  if (!front_box || !box) return std::nullopt;
+  const double cf = 0.5 * (front_box->first.x() + front_box->second.x());
+  double neck = -std::numeric_limits<double>::infinity();  // the outline's highest crossing of centre front
+  for (std::size_t i = 0; i < up.size(); ++i) {
+    const pattern::Vec2 &a = up[i].p, &b = up[(i + 1) % up.size()].p;
+    if ((a.x() - cf) * (b.x() - cf) > 0.0 || a.x() == b.x()) continue;
+    neck = std::max(neck, a.y() + (cf - a.x()) / (b.x() - a.x()) * (b.y() - a.y()));
+  }
+  if (!std::isfinite(neck)) return std::nullopt;
+  // Its long side up: a placket drawn lying down is turned a quarter.
+  const auto [plo, phi] = *box;
+  const bool lying = phi.x() - plo.x() > phi.y() - plo.y();
+  const double quarter = lying ? 90.0 : 0.0, length = lying ? phi.x() - plo.x() : phi.y() - plo.y();
+  const pattern::Vec2 centre(cf, neck - kPlacketBelowNeck - 0.5 * length);
+  said = "upright along centre front, its top " + format_fixed(100 * kPlacketBelowNeck, 1) +
+         " cm below the neckline there";
+  const pattern::Vec2 mid_own = 0.5 * (plo + phi);
+  for (const auto& cp : xvc::to_piece(doc, std::string(placket.id())).boundary)
+    if (!pattern::point_in_outline(up, turn(cp.p - mid_own, quarter * std::numbers::pi / 180.0) + centre)) {
+      said = "it does not fit on " + std::string(front.attribute("piece")) + " " + said;
+      return std::nullopt;
+    }
+  const pattern::Vec2 c = turn(centre, -t);
+  return xvc::FacePlacement{"", std::string(front.id()), c.x(), c.y(), quarter - at.angle_deg};
 }
 
 }  // namespace
@@ -605,6 +652,7 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
       first_pocket = std::string(p->attribute("piece"));
   }
   std::vector<const xvc::Node*> flaps;  // pocket flaps no seam sews, decided after the pockets
+  std::vector<const xvc::Node*> plackets;  // plackets no seam sews, decided after the loop
   std::optional<std::pair<const xvc::Node*, xvc::FacePlacement>> placed_pocket;  // the pocket draped
   const bool has_legs = std::any_of(mine.begin(), mine.end(), [&](const xvc::Node* p) {
     return roles[std::string(p->attribute("piece"))].role == pattern::Role::leg;
@@ -630,6 +678,11 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
     if (role == pattern::Role::pocket_flap && xvc::drape_attribute(*p) != false && !sewn.count(name) &&
         p->attribute("quantity") != "0") {
       flaps.push_back(p);  // decided once the pocket is (below)
+      continue;
+    }
+    if (role == pattern::Role::placket && xvc::drape_attribute(*p) != false && !sewn.count(name) &&
+        p->attribute("quantity") != "0") {
+      plackets.push_back(p);
       continue;
     }
     if (role == pattern::Role::pocket && !first_pocket.empty() && xvc::drape_attribute(*p) != false &&
@@ -777,6 +830,88 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
                               host_name(pk.host) + ", " +
                               format_fixed(100 * kFlapAbovePocket, 1) + " cm above the top of " + pocket +
                               ", over its mouth (POSITION type=\"placement\" written in the document)");
+    }
+  }
+
+  // Plackets: the one the document places, else of those whose name or
+  // category does not say UNDER or LOWER (PLACKETUNDER, a polo's PLACKET
+  // LOWER) the narrowest, upright along centre front of the whole front,
+  // sewn by its two ends; the others lie under it, hidden by it.
+  if (!plackets.empty()) {
+    const xvc::Node* chosen = nullptr;
+    for (const auto* f : plackets)
+      if (!xvc::face_placements_of(*f).empty()) {
+        chosen = f;
+        break;
+      }
+    const auto under = [](const xvc::Node& f) {
+      const std::string text =
+          to_upper(std::string(f.attribute("piece")) + " " + std::string(f.attribute("category")));
+      return text.find("UNDER") != std::string::npos || text.find("LOWER") != std::string::npos;
+    };
+    const bool any_upper =
+        std::any_of(plackets.begin(), plackets.end(), [&](const xvc::Node* f) { return !under(*f); });
+    if (!chosen) {
+      double narrowest = std::numeric_limits<double>::infinity();
+      for (const auto* f : plackets)
+        if (const auto b = outline_box(doc, *f); b && !(any_upper && under(*f))) {
+          const double w = std::min(b->second.x() - b->first.x(), b->second.y() - b->first.y());
+          if (w < narrowest) narrowest = w, chosen = f;
+        }
+    }
+    std::vector<const xvc::Node*> order{chosen};
+    for (const auto* f : plackets)
+      if (f != chosen) order.push_back(f);
+    bool draped = false;
+    for (const auto* f : order) {
+      if (!f) continue;
+      const std::string name(f->attribute("piece"));
+      auto leave = [&](const std::string& why, bool missing) {
+        out.left_out.push_back(name);
+        out.decisions.push_back("piece " + name + " (placket) left out: " + why);
+        if (missing) out.missing.push_back(name + " (placket)");
+      };
+      if (f != chosen) {
+        if (draped)
+          leave("it lies under the placket " + std::string(chosen->attribute("piece")) + ", hidden by it",
+                false);
+        else
+          leave("it lies under a placket, and none is draped", true);
+        continue;
+      }
+      if (const auto stored = xvc::face_placements_of(*f); !stored.empty()) {
+        const auto* host = doc.find(stored.front().host);
+        out.pieces.push_back(name);
+        out.decisions.push_back("piece " + name + " (placket) sewn by its two ends onto the face of " +
+                                (host ? std::string(host->attribute("piece")) : stored.front().host) +
+                                " where the document places it");
+        draped = true;
+        continue;
+      }
+      if (!pocket_host) {
+        leave(
+            "a placket is sewn onto the face of a whole front (one cut once), and this garment has none: "
+            "place "
+            "it with a POSITION type=\"placement\" (docs/xvc.md)",
+            true);
+        continue;
+      }
+      std::string said;
+      const auto at = host_arrangement();
+      const auto placed = at ? centre_front_placket(doc, *f, *pocket_host, *at, said) : std::nullopt;
+      if (!placed) {
+        leave((said.empty() ? "vgd finds no centre front on " + std::string(pocket_host->attribute("piece"))
+                            : said) +
+                  "; place it with a POSITION type=\"placement\" (docs/xvc.md)",
+              true);
+        continue;
+      }
+      pocket_at[std::string(f->id())] = *placed;
+      out.pieces.push_back(name);
+      out.decisions.push_back("piece " + name + " (placket) sewn by its two ends onto the face of " +
+                              std::string(pocket_host->attribute("piece")) + ", " + said +
+                              " (POSITION type=\"placement\" written in the document: move it there)");
+      draped = true;
     }
   }
 

@@ -26,8 +26,9 @@ using nlohmann::json;
 
 // The Gerber polo straight from its DXF, in a graded size: the importer's
 // marks, the suggested seams (at the sample size, carried to 44), its rib
-// collar sewn round the neckline and folded over, the pieces no seam sews
-// left out and said, the men's table chosen from the style's name, both
+// collar sewn round the neckline and folded over, its placket sewn by its
+// two ends onto the front (the under placket left out, hidden), the pieces
+// no seam sews left out and said, the men's table chosen from the style's name, both
 // sleeves on their own armholes, previews written, the document it draped
 // saved beside them.
 TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
@@ -40,15 +41,22 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   EXPECT_NE(r.err.find("seam 'collar seam' suggested at size 50"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("piece SS17_M POLO REG CO (collar) read as rolled over at half its width"), std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("piece SS17_M POLO REG YP (placket) left out: it is sewn onto the face"), std::string::npos)
+  EXPECT_NE(
+      r.err.find(
+          "piece SS17_M POLO REG YP (placket) sewn by its two ends onto the face of SS17_M POLO REG FR"),
+      std::string::npos)
+      << r.err;
+  EXPECT_NE(
+      r.err.find("piece SS17_M POLO REG YL (placket) left out: it lies under the placket SS17_M POLO REG YP"),
+      std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("body: the mannequin of size 44 from en13402-men"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("no SEAM sews this size: the 9 seams of size 50"), std::string::npos) << r.err;
   const json c = read_json(out / "certificate.json");
   EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
-  ASSERT_EQ(c["seams"].size(), 9u);
+  ASSERT_EQ(c["seams"].size(), 11u) << "the 9 SEAMs and the placket's two ends";
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
-  EXPECT_EQ(c["placement"].size(), 5u) << "front, back, two sleeves and the collar";
+  EXPECT_EQ(c["placement"].size(), 6u) << "front, back, two sleeves, the collar and the placket";
   EXPECT_TRUE(std::filesystem::exists(out / "previews" / "front.png"));
   // Read back (as the studio reads a server's), it writes the same text.
   const std::string cert_text = vgd::read_file(out / "certificate.json");
@@ -58,7 +66,7 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   EXPECT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.out.find("left armhole"), std::string::npos) << again.out;
   // With each piece's role and whether it is draped, read back when it runs
-  // on its own document: the plackets stay out, as the document now says.
+  // on its own document: the under placket stays out, as the document now says.
   const std::string saved = vgd::read_file(out / "garment.xvc");
   EXPECT_NE(saved.find("role=\"collar\""), std::string::npos);
   EXPECT_NE(saved.find("folded=\"true\""), std::string::npos);
@@ -66,7 +74,7 @@ TEST(CliDress, APoloFromItsDxfDrapesInOneCommand) {
   const auto rerun = run_vgd({"dress", (out / "garment.xvc").string(), "--size", "44", "-o", out.string(),
                               "--no-previews", "--time-limit", "0.05"});
   EXPECT_TRUE(rerun.code == 0 || rerun.code == 3) << rerun.err;
-  EXPECT_NE(rerun.err.find("piece SS17_M POLO REG YP (placket) left out: the document says drape=\"false\""),
+  EXPECT_NE(rerun.err.find("piece SS17_M POLO REG YL (placket) left out: the document says drape=\"false\""),
             std::string::npos)
       << rerun.err;
   EXPECT_EQ(rerun.err.find("is kept as"), std::string::npos) << "its own input is not moved aside";

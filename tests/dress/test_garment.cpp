@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "vgd/dress/garment.hpp"
 #include "vgd/xvc/arrangement.hpp"
@@ -580,6 +581,41 @@ TEST(Garment, APocketFlapIsSewnOntoItsHostsFaceByItsTopEdge) {
   EXPECT_EQ(g.pieces[1].face_layer, 2);
   EXPECT_NEAR(g.pieces[1].face_gap, 0.010, 1e-15);
   EXPECT_EQ(g.pieces[0].face_layer, 0);
+}
+
+// A 15 × 3 cm PLACKET drawn lying down, turned upright (90°) on a 30 × 50 cm
+// FRONT, is sewn by its two 3 cm ends only, each a seam of its own: its top
+// end (its own right edge) where it lies on the front 7.5 cm above its
+// middle, its bottom end 7.5 cm below; a face out from the front.
+TEST(Garment, APlacketIsSewnOntoItsHostsFaceByItsTwoEnds) {
+  xvc::Node root = xvc::from_style(one_size("polo", {rectangle("FRONT", 0.0, 0.30, 0.50),
+                                                     rectangle("PLACKET", 1.0, 0.15, 0.03)}))
+                       .root();
+  for (auto& c : root.children)
+    if (c.tag == "PATTERNS") {
+      xvc::Node pos = xvc::face_placement_node({"", std::string(c.children[0].id()), 0.15, 0.30, 90.0});
+      pos.set_attribute("id", "pos_placket");
+      c.children[1].children.push_back(pos);
+    }
+  AssemblyOptions opt;
+  opt.spacing = 0.02;
+  Diagnostics diag;
+  const Garment g = assemble_garment(xvc::Document(std::move(root), "polo.xvc"), opt, diag);
+  ASSERT_EQ(g.seams.size(), 2u);
+  for (const auto& [seam, own_x, host_y] : {std::tuple{0, 1.15, 0.375}, std::tuple{1, 1.0, 0.225}}) {
+    const GarmentSeam& s = g.seams[seam];
+    EXPECT_EQ(s.name, std::string("PLACKET on FRONT (") + (seam == 0 ? "top" : "bottom") + ")");
+    EXPECT_NEAR(s.length_a, 0.03, 1e-12) << s.name;
+    ASSERT_EQ(s.pairs.size(), 3u) << s.name;
+    for (const auto& [a, b] : s.pairs) {
+      EXPECT_EQ(a.piece, 1);
+      EXPECT_NEAR(g.pieces[1].mesh.nodes[a.node].x(), own_x, 1e-12) << s.name;
+      EXPECT_EQ(b.piece, 0);
+      EXPECT_NEAR(g.pieces[0].mesh.nodes[b.node].y(), host_y, 1e-9) << s.name;
+    }
+  }
+  EXPECT_EQ(g.pieces[1].face_layer, 1);
+  EXPECT_NEAR(g.pieces[1].face_gap, 0.005, 1e-15);
 }
 
 }  // namespace vgd::dress

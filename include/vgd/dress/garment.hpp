@@ -23,9 +23,9 @@
 // document order one after the other (a sleeve cap to the front and back
 // armholes). A piece sewn onto another's face (POSITION type="placement",
 // xvc::FacePlacement: a patch pocket) is sewn along its outline but its
-// mouth (a pocket flap: along its top edge only) to a line of the host's
-// mesh where that outline lies on it, vertex to vertex (a seam named
-// "POCKET on FRONT"). Units: metres.
+// mouth (a pocket flap: along its top edge only; a placket: by its two ends,
+// a seam each) to a line of the host's mesh where that outline lies on it,
+// vertex to vertex (a seam named "POCKET on FRONT"). Units: metres.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
