@@ -153,6 +153,19 @@ std::optional<std::pair<pattern::Vec2, pattern::Vec2>> outline_box(const xvc::Do
   return outline_box(xvc::to_piece(doc, std::string(p.id())).boundary);
 }
 
+// p turned by a radians counter-clockwise.
+pattern::Vec2 turned(const pattern::Vec2& p, double a) {
+  return pattern::Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(), std::sin(a) * p.x() + std::cos(a) * p.y());
+}
+// A front's outline turned upright as its arrangement turns it (by t radians).
+std::vector<pattern::ContourPoint> upright_outline(const xvc::Document& doc, const xvc::Node& front,
+                                                   double t) {
+  std::vector<pattern::ContourPoint> up;
+  for (const auto& cp : xvc::to_piece(doc, std::string(front.id())).boundary)
+    up.push_back({turned(cp.p, t), pattern::PointKind::plain});
+  return up;
+}
+
 // Where a patch pocket goes on a whole front (cut once, symmetric about
 // centre front) when the document does not say: the front turned upright as
 // its arrangement turns it, the armhole's bottom is the highest point of
@@ -162,21 +175,17 @@ std::optional<xvc::FacePlacement> chest_pocket(const xvc::Document& doc, const x
                                                const xvc::Arrangement& at, std::string& said) {
   if (at.flip) return std::nullopt;
   const double t = at.angle_deg * std::numbers::pi / 180.0;
-  const auto turn = [](const pattern::Vec2& p, double a) {
-    return pattern::Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(), std::sin(a) * p.x() + std::cos(a) * p.y());
-  };
-  std::vector<pattern::Vec2> q;
-  for (const auto& cp : xvc::to_piece(doc, std::string(front.id())).boundary) q.push_back(turn(cp.p, t));
-  if (q.size() < 3) return std::nullopt;
-  pattern::Vec2 lo = q[0], hi = q[0];
-  for (const auto& p : q) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const auto up = upright_outline(doc, front, t);
+  const auto front_box = outline_box(up);
+  if (!front_box) return std::nullopt;
+  const auto [lo, hi] = *front_box;
   const double cf = 0.5 * (lo.x() + hi.x()), mid = 0.5 * (lo.y() + hi.y());
   double reach = -std::numeric_limits<double>::infinity();
-  for (const auto& p : q)
-    if (p.y() > mid) reach = std::max(reach, p.x());
+  for (const auto& cp : up)
+    if (cp.p.y() > mid) reach = std::max(reach, cp.p.x());
   double underarm = -std::numeric_limits<double>::infinity();
-  for (const auto& p : q)
-    if (p.y() > mid && p.x() >= reach - 0.005) underarm = std::max(underarm, p.y());
+  for (const auto& cp : up)
+    if (cp.p.y() > mid && cp.p.x() >= reach - 0.005) underarm = std::max(underarm, cp.p.y());
   if (!(reach > cf) || !std::isfinite(underarm)) return std::nullopt;
   const auto box = outline_box(doc, pocket);
   if (!box) return std::nullopt;
@@ -184,18 +193,13 @@ std::optional<xvc::FacePlacement> chest_pocket(const xvc::Document& doc, const x
   const auto own = xvc::to_piece(doc, std::string(pocket.id())).boundary;
   const double across = kPocketAcross * (reach - cf);
   const pattern::Vec2 centre(cf + across, underarm + kPocketAboveUnderarm - 0.5 * (phi.y() - plo.y()));
-  const pattern::Vec2 c = turn(centre, -t);
+  const pattern::Vec2 c = turned(centre, -t);
   said = "its top " + format_fixed(100 * kPocketAboveUnderarm, 1) + " cm above the bottom of the armhole, its middle " +
          format_fixed(100 * across, 1) + " cm from centre front on the wearer's left";
   // All of it on the front (in the front's upright frame).
-  const auto front_up = [&] {
-    std::vector<pattern::ContourPoint> out;
-    for (const auto& p : q) out.push_back({p, pattern::PointKind::plain});
-    return out;
-  }();
   const pattern::Vec2 mid_own = 0.5 * (plo + phi);
   for (const auto& cp : own)
-    if (!pattern::point_in_outline(front_up, cp.p - mid_own + centre)) {
+    if (!pattern::point_in_outline(up, cp.p - mid_own + centre)) {
       said = "it does not fit on " + std::string(front.attribute("piece")) + " where vgd puts a chest pocket (" + said +
              ")";
       return std::nullopt;
@@ -213,13 +217,7 @@ std::optional<xvc::FacePlacement> centre_front_placket(const xvc::Document& doc,
                                                        std::string& said) {
   if (at.flip) return std::nullopt;
   const double t = at.angle_deg * std::numbers::pi / 180.0;
-  const auto turn = [](const pattern::Vec2& p, double a) {
-    return pattern::Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(),
-                         std::sin(a) * p.x() + std::cos(a) * p.y());
-  };
-  std::vector<pattern::ContourPoint> up;
-  for (const auto& cp : xvc::to_piece(doc, std::string(front.id())).boundary)
-    up.push_back({turn(cp.p, t), pattern::PointKind::plain});
+  const auto up = upright_outline(doc, front, t);
   const auto front_box = outline_box(up);
   const auto box = outline_box(doc, placket);
   if (!front_box || !box) return std::nullopt;
@@ -240,11 +238,11 @@ std::optional<xvc::FacePlacement> centre_front_placket(const xvc::Document& doc,
          " cm below the neckline there";
   const pattern::Vec2 mid_own = 0.5 * (plo + phi);
   for (const auto& cp : xvc::to_piece(doc, std::string(placket.id())).boundary)
-    if (!pattern::point_in_outline(up, turn(cp.p - mid_own, quarter * std::numbers::pi / 180.0) + centre)) {
+    if (!pattern::point_in_outline(up, turned(cp.p - mid_own, quarter * std::numbers::pi / 180.0) + centre)) {
       said = "it does not fit on " + std::string(front.attribute("piece")) + " " + said;
       return std::nullopt;
     }
-  const pattern::Vec2 c = turn(centre, -t);
+  const pattern::Vec2 c = turned(centre, -t);
   return xvc::FacePlacement{"", std::string(front.id()), c.x(), c.y(), quarter - at.angle_deg};
 }
 
@@ -859,18 +857,22 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
           if (w < narrowest) narrowest = w, chosen = f;
         }
     }
-    std::vector<const xvc::Node*> order{chosen};
+    std::vector<const xvc::Node*> order;  // the chosen one first
+    if (chosen) order.push_back(chosen);
     for (const auto* f : plackets)
       if (f != chosen) order.push_back(f);
     bool draped = false;
     for (const auto* f : order) {
-      if (!f) continue;
       const std::string name(f->attribute("piece"));
       auto leave = [&](const std::string& why, bool missing) {
         out.left_out.push_back(name);
         out.decisions.push_back("piece " + name + " (placket) left out: " + why);
         if (missing) out.missing.push_back(name + " (placket)");
       };
+      if (!chosen) {  // every outline of fewer than 3 points
+        leave("its outline has fewer than 3 points", true);
+        continue;
+      }
       if (f != chosen) {
         if (draped)
           leave("it lies under the placket " + std::string(chosen->attribute("piece")) + ", hidden by it",
@@ -889,11 +891,9 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
         continue;
       }
       if (!pocket_host) {
-        leave(
-            "a placket is sewn onto the face of a whole front (one cut once), and this garment has none: "
-            "place "
-            "it with a POSITION type=\"placement\" (docs/xvc.md)",
-            true);
+        leave("a placket is sewn onto the face of a whole front (one cut once), and this garment has none: "
+              "place it with a POSITION type=\"placement\" (docs/xvc.md)",
+              true);
         continue;
       }
       std::string said;

@@ -4,7 +4,6 @@
 #include "vgd/sim/effects/seam.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <functional>
 
 #include "vgd/core/strings.hpp"

@@ -1,7 +1,6 @@
 #include "fixed_step.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "vgd/core/strings.hpp"
 

@@ -74,7 +74,6 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "fixed_step.hpp"
 #include "implicit.hpp"
