@@ -129,6 +129,23 @@ std::optional<std::vector<int>> trim_strip(std::vector<ContourPoint>& bd, int a,
   return index;
 }
 
+// The same at the end where the edge a..b starts: a moves on along the edge.
+std::optional<std::vector<int>> trim_strip_start(std::vector<ContourPoint>& bd, int a, int b, double excess) {
+  const int n = static_cast<int>(bd.size());
+  std::vector<ContourPoint> rev(bd.rbegin(), bd.rend());
+  const auto index = trim_strip(rev, n - 1 - b, n - 1 - a, excess);
+  if (!index) return std::nullopt;
+  const int m = static_cast<int>(rev.size());
+  std::reverse(rev.begin(), rev.end());
+  std::vector<int> out(n);
+  for (int v = 0; v < n; ++v) {
+    const int r = (*index)[n - 1 - v];
+    out[v] = r < 0 ? -1 : m - 1 - r;
+  }
+  bd = std::move(rev);
+  return out;
+}
+
 // Do segments pq and rs cross (touching at an end counts)?
 bool segments_meet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
   const auto side = [](const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -414,33 +431,50 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
                           " time(s); give it one arrangement per copy (vgd place)");
       }
     if (options.place) {
-      // Each copy's boundary vertices placed round the body, once.
+      // Each copy's boundary placed round the body, once, its edges cut into
+      // pieces of at most kDense (a band's straight edge wrapped half round
+      // the body is a curve, not its chord); dense[pat][v]: where boundary
+      // vertex v is among the points placed.
+      constexpr double kDense = 0.01;  // m
       std::map<std::pair<int, int>, std::vector<Vec3>> placed;
+      std::map<int, std::vector<int>> dense;
       auto boundary_3d = [&](int pat, int copy) -> const std::vector<Vec3>& {
         auto it = placed.find({pat, copy});
         if (it != placed.end()) return it->second;
         const GarmentPiece& gp = g.pieces[copies[pat][copy]];
+        const auto& bd = gp.piece.boundary;
+        const int n = static_cast<int>(bd.size());
         std::vector<Vec2> pts;
-        for (const auto& c : gp.piece.boundary) pts.push_back(c.p);
+        std::vector<int>& at = dense[pat];
+        at.assign(n, 0);
+        for (int v = 0; v < n; ++v) {
+          at[v] = static_cast<int>(pts.size());
+          const Vec2 p = bd[v].p, q = bd[(v + 1) % n].p;
+          const int parts = std::max(1, static_cast<int>(std::ceil(dist(p, q) / kDense)));
+          for (int k = 0; k < parts; ++k) pts.push_back(p + (q - p) * (static_cast<double>(k) / parts));
+        }
         std::vector<Vec3> out = options.place(gp.pattern_id, copy, pts);
         if (out.size() != pts.size()) out.clear();
         return placed.emplace(std::pair{pat, copy}, std::move(out)).first->second;
       };
-      // The mean of a hem's boundary vertices, placed; nullopt when unplaced.
+      // The middle of a hem, placed: the centroid of its placed outline by
+      // length; nullopt when unplaced.
       auto middle = [&](const RawHem& h, int copy) -> std::optional<Vec3> {
         const auto& pts = boundary_3d(h.pat, copy);
         if (pts.empty()) return std::nullopt;
         const auto& st = stretches[h.pat];
         const int n = static_cast<int>(pts.size());
-        const int a = static_cast<int>(st[h.from].first), b = static_cast<int>(st[(h.to + 1) % st.size()].first);
+        const int a = dense[h.pat][st[h.from].first], b = dense[h.pat][st[(h.to + 1) % st.size()].first];
         Vec3 sum = Vec3::Zero();
-        int k = 0;
-        for (int v = a;; v = (v + 1) % n) {
-          sum += pts[v];
-          ++k;
-          if (v == b) break;
+        double length = 0;
+        for (int v = a; v != b; v = (v + 1) % n) {
+          const Vec3 &p = pts[v], &q = pts[(v + 1) % n];
+          const double l = (q - p).norm();
+          sum += 0.5 * l * (p + q);
+          length += l;
         }
-        return sum / k;
+        if (!(length > 0)) return pts[a];
+        return sum / length;
       };
       std::map<std::tuple<int, int, int>, std::vector<std::pair<int, int>>> users;  // key -> (seam, hem)
       for (std::size_t si = 0; si < raw.size(); ++si)
@@ -541,13 +575,31 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
   // a binding is longer than its other hems together (on other pieces: not
   // the seam that sews its ends to each other), the strip is cut short,
   // square, at the end where that hem ends (its ends, when a seam sews them
-  // to each other, then meet square).
+  // to each other, then meet square). So is a half waistband of trousers at
+  // centre front, where it runs on past the waist as the fly's overlap or
+  // underlap: at the end of its hem sewn next to a front half (a waist seam
+  // starts or ends there, xvc/seams.hpp); left on, the two runs would start
+  // in one place, crossed.
+  const auto front_half = [&](const Hem& o) {
+    const auto* n = doc.find(g.pieces[o.piece].pattern_id);
+    if (!n) return false;
+    const auto r = xvc::piece_role(doc, *n);
+    return r.role == pattern::Role::leg && r.half == pattern::Half::front;
+  };
   for (const auto& s : seams) {
     if (s.hems.size() < 2) continue;
     Hem& h = hems[s.hems[0]];
     GarmentPiece& gp = g.pieces[h.piece];
     const auto* node = doc.find(gp.pattern_id);
-    if (!node || xvc::piece_role(doc, *node).role != pattern::Role::binding) continue;
+    if (!node) continue;
+    const auto role = xvc::piece_role(doc, *node).role;
+    // For a half waistband: +1 cut where its hem ends, -1 where it starts, 0 not one.
+    int front_end = 0;
+    if (role == pattern::Role::waistband) {
+      const bool at_first = front_half(hems[s.hems[1]]), at_last = front_half(hems[s.hems.back()]);
+      if (at_first != at_last) front_end = (at_last == h.forward) ? 1 : -1;
+    }
+    if (role != pattern::Role::binding && front_end == 0) continue;
     double rest = 0;
     bool ends = false;
     for (std::size_t k = 1; k < s.hems.size(); ++k) {
@@ -560,21 +612,28 @@ Garment assemble_garment(const xvc::Document& document, const AssemblyOptions& o
     const double mine = polyline_length(span_points(bd, h.a, h.b));
     if (mine <= rest + xvc::kSewingSlack) continue;
     auto trimmed = bd;
-    const auto index = trim_strip(trimmed, h.a, h.b, mine - rest);
+    const auto index = front_end < 0 ? trim_strip_start(trimmed, h.a, h.b, mine - rest)
+                                     : trim_strip(trimmed, h.a, h.b, mine - rest);
     bool fits = index.has_value();
     for (int k = 0; fits && k < static_cast<int>(hems.size()); ++k)
       fits = hems[k].piece != h.piece || ((*index)[hems[k].a] >= 0 && (*index)[hems[k].b] >= 0);
+    const std::string what = front_end != 0 ? "half waistband " : "binding ";
     if (!fits) {
       diag.warn(file, gp.pattern_id,
-                "binding " + gp.name + " is " + format_fixed(100 * (mine - rest), 1) +
-                    " cm longer than the opening it binds and is not a straight strip vgd can trim: it is eased in");
+                what + gp.name + " is " + format_fixed(100 * (mine - rest), 1) + " cm longer than the " +
+                    (front_end != 0 ? "waist it is sewn to" : "opening it binds") +
+                    " and is not a straight strip vgd can trim: it is eased in");
       continue;
     }
     renumber(hems, h.piece, gp, *index);
     bd = std::move(trimmed);
-    diag.info(file, gp.pattern_id,
-              "binding " + gp.name + " trimmed by " + format_fixed(100 * (mine - rest), 1) + " cm to the " +
-                  format_fixed(100 * rest, 1) + " cm it binds");
+    diag.info(
+        file, gp.pattern_id,
+        what + gp.name + " trimmed by " + format_fixed(100 * (mine - rest), 1) + " cm to the " +
+            format_fixed(100 * rest, 1) +
+            (front_end != 0
+                 ? " cm of waist it is sewn to, at centre front (the fly's overlap or underlap left off)"
+                 : " cm it binds"));
   }
 
   // Ears cut off (ear_area). Where each hem's ends go is found from the

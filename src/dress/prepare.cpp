@@ -101,9 +101,11 @@ std::string not_sewn_why(pattern::Role role, bool half_legs) {
             "with its opening, is not sewn yet)";
       break;
     case Role::waistband:
-      why = half_legs ? "vgd sews a waistband to a skirt's waist or to the waist of whole legs (leggings), not yet to "
-                        "trousers cut as half legs"
-                      : "no waist vgd found (a skirt's front and back, or whole legs) fits its length";
+      why = half_legs
+                ? "on trousers cut as half legs vgd sews a waistband in two halves, one cut twice or two cut "
+                  "once, each 1 cm shorter to 12 cm longer than its side's waist, and this one is not such a "
+                  "half"
+                : "no waist vgd found (a skirt's front and back, or whole legs) fits its length";
       break;
     case Role::binding:
       why = "vgd sews a binding round a neckline (a front's and a back's, between their shoulder seams), not yet "

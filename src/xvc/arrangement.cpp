@@ -562,6 +562,40 @@ std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangemen
       a.y = ref.y();
     }
   }
+
+  // A half waistband (a SEAM sews its bottom edge to trouser leg halves, of
+  // any size) goes round its side of the hips: the one sewn from a back half
+  // (from centre back, xvc/seams.hpp) on the wearer's right, the one sewn
+  // from a front half on the left; a band cut twice, sewn by both, on each.
+  std::map<std::string, std::vector<std::string>> band_sides;  // band piece -> sides, in seam order
+  for (const auto& seam : list_seams(doc)) {
+    if (seam.hems.size() < 2) continue;
+    const Node* b = doc.find(seam.hems[0].pattern);
+    const Node* q = doc.find(seam.hems[1].pattern);
+    if (!b || !q || piece_role(doc, *b).role != pattern::Role::waistband) continue;
+    const auto rq = piece_role(doc, *q);
+    if (rq.role != pattern::Role::leg || rq.half == pattern::Half::none) continue;
+    auto& sides = band_sides[std::string(b->attribute("piece"))];
+    const std::string side = rq.half == pattern::Half::back ? "right" : "left";
+    if (std::find(sides.begin(), sides.end(), side) == sides.end()) sides.push_back(side);
+  }
+  for (auto& [id, list] : out) {
+    const Node* p = doc.find(id);
+    if (!p || list.empty() || piece_role(doc, *p).role != pattern::Role::waistband) continue;
+    const auto found = band_sides.find(std::string(p->attribute("piece")));
+    if (found == band_sides.end()) continue;
+    std::vector<Arrangement> sided;
+    for (const auto& side : found->second) {
+      Arrangement a = list.front();
+      a.side = side;
+      sided.push_back(a);
+    }
+    std::sort(sided.begin(), sided.end(),
+              [](const Arrangement& x, const Arrangement& y) { return x.side > y.side; });
+    const int copies = std::max(1, to_piece(doc, id).quantity);
+    if (static_cast<int>(sided.size()) > copies) sided.resize(copies);
+    list = std::move(sided);
+  }
   return out;
 }
 

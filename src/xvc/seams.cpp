@@ -324,6 +324,10 @@ constexpr double kStandLonger = 0.15;
 // cut long and trimmed where the binding meets itself (Gerber's tank: 72 cm
 // for a 58.5 cm neckline, 81 cm for a 48 cm armhole).
 constexpr double kBindingLonger = 1.0;
+// How much longer than its side's waist a trouser's half waistband may be cut:
+// past centre front it runs on as the fly's overlap or underlap (Valentina's
+// trousers: 5.1 and 9.1 cm past 46.9 cm of waist).
+constexpr double kWaistbandExtension = 0.12;
 
 SeamSuggestion make(const std::string& name, const std::string& size, const std::vector<Part>& parts, double shape,
                     const std::string& reason, double ease_lo, double ease_hi, double tolerance) {
@@ -385,6 +389,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //    once per copy; their edges take part in no other seam. Suggested for pieces
   //    that other seams sew into the garment (not for an alternative left out).
   std::vector<SeamSuggestion> darts;
+  std::map<const Outline*, std::set<std::size_t>> dart_stretches;  // the legs of every dart found
   for (const auto& p : ps) {
     const auto& o = *p.o;
     const auto& b = o.shape.boundary;
@@ -401,6 +406,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       const double turn = std::acos(std::clamp(in.normalized().dot(outv.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
       const double cross = in.x() * outv.y() - in.y() * outv.x();
       if (turn < 145.0 || (area > 0) == (cross > 0)) continue;  // not sharp, or a spike out of the piece
+      dart_stretches[p.o].insert({k, k2});
       for (const int copy : copies_of(o)) {
         auto d = make(std::string(copy > 0 ? "left " : "right ") + "dart", size, {{p.o, k, k, false}, {p.o, k2, k2, true}},
                       1.0, "dart of " + o.piece + ": a V of " + format_fixed(1000 * (c - a).norm(), 0) + " mm by " +
@@ -942,6 +948,11 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
   //     outseam and inseam fit the back's best.
   struct HalfLeg {
     std::size_t in0, in1, rise0, rise1, out0, out1;  // stretch ranges in contour order
+    // The waist between the rise's top and the outseam's (none when they meet),
+    // in contour order; from centre front or back to the side when
+    // waist_from_centre, else from the side.
+    std::optional<std::pair<std::size_t, std::size_t>> waist;
+    bool waist_from_centre = false;
   };
   const auto half_leg = [&](const PieceInfo& p) -> std::optional<HalfLeg> {
     const auto& o = *p.o;
@@ -992,8 +1003,19 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     std::tie(h.in0, h.in1) = range(crotch, 0, rc.at - 1, crotch_fwd);
     std::tie(h.rise0, h.rise1) = range(crotch, rc.at, crotch.size() - 1, crotch_fwd);
     std::tie(h.out0, h.out1) = range(side, 0, side.size() - 1, !crotch_fwd);
+    // Contour order hem, inseam, rise, waist, outseam when the crotch's run goes
+    // forward from the hem; hem, outseam, waist, rise, inseam otherwise.
+    const std::size_t w0 = crotch_fwd ? (crotch.back() + 1) % ns : (side.back() + 1) % ns;
+    const std::size_t after = crotch_fwd ? side.back() : crotch.back();  // the first stretch past the waist
+    if (w0 != after) h.waist = std::pair{w0, (after + ns - 1) % ns};
+    h.waist_from_centre = crotch_fwd;
     return h;
   };
+  struct Trousers {
+    const PieceInfo *fr, *bk;
+    HalfLeg hf, hb;
+  };
+  std::vector<Trousers> trousers;  // the halves sewn into legs, a left and a right copy each
   for (const auto& bk : ps) {
     if (bk.role != Role::leg || bk.o->role.half != pattern::Half::back) continue;
     const auto hb = half_leg(bk);
@@ -1028,6 +1050,7 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         found.push_back(std::move(c));
       }
     if (bk.o->quantity >= 2 && bk.o->role.side == pattern::Side::none) {
+      trousers.push_back({best->fr, &bk, best->hf, *hb});
       const PieceInfo& fr = *best->fr;
       for (const auto& [which, piece, r0, r1] :
            {std::tuple{"front rise", &fr, best->hf.rise0, best->hf.rise1}, std::tuple{"back rise", &bk, hb->rise0, hb->rise1}}) {
@@ -1036,6 +1059,117 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
         if (s.score >= opts.min_score) found.push_back(s);
       }
     }
+  }
+
+  // 3c. A waistband in two halves on trousers cut as half legs (one band cut
+  //     twice, or two bands cut once: the longer, whose run past centre front
+  //     is the fly's underlap, on the wearer's right): each half sewn by its
+  //     bottom edge to its side's waist, round the body in the sense a whole
+  //     band runs (xvc/arrangement.hpp): the right half from centre back over
+  //     the back's waist and on along the front's to centre front, the left
+  //     from centre front to centre back; the darts' legs left to the darts.
+  //     The halves' ends at centre back are sewn to each other; past centre
+  //     front a half may run on by up to kWaistbandExtension (dress trims it
+  //     there, docs/xvc.md).
+  for (const auto& tr : trousers) {
+    if (!tr.hf.waist || !tr.hb.waist) continue;
+    std::vector<const PieceInfo*> bands;
+    for (const auto& p : ps) {
+      const bool sewn = std::any_of(found.begin(), found.end(), [&](const SeamSuggestion& f) {
+        return std::any_of(f.hems.begin(), f.hems.end(),
+                           [&](const HemRef& h) { return h.pattern == p.o->id; });
+      });
+      if (p.role == Role::waistband && !sewn && p.o->role.side == pattern::Side::none) bands.push_back(&p);
+    }
+    const PieceInfo *right = nullptr, *left = nullptr;
+    const auto band_length = [](const PieceInfo* b) {
+      double l = 0;
+      for (const auto& e : b->edges) l = std::max(l, e.length);
+      return l;
+    };
+    if (bands.size() == 1 && bands[0]->o->quantity >= 2) {
+      right = left = bands[0];
+    } else if (bands.size() == 2 && bands[0]->o->quantity == 1 && bands[1]->o->quantity == 1) {
+      const bool first_longer = band_length(bands[0]) >= band_length(bands[1]);
+      right = bands[first_longer ? 0 : 1];
+      left = bands[first_longer ? 1 : 0];
+    } else {
+      continue;
+    }
+    // Which copies are laid flipped (xvc/arrangement.hpp, legs): turned upright
+    // with the waist up, a half whose centre (front or back) lies on +u has
+    // the right leg's front copy as drawn and its back copy flipped, the left
+    // leg's the other way; a half drawn with its centre on -u the opposite.
+    // A flipped copy's hems are read on the mirrored pattern (docs/xvc.md):
+    // its contour runs the other way.
+    const auto flipped = [&](const PieceInfo& p, const HalfLeg& h, int sigma) {
+      const std::size_t ns = p.o->stretches.size();
+      const auto vertex = [&](std::size_t k) { return p.o->shape.boundary[p.o->stretches[k % ns].first].p; };
+      const Vec2 up = pattern::wider_at_top(p.o->shape.boundary, p.frame.up) ? p.frame.up : Vec2(-p.frame.up);
+      const Vec2 u(up.y(), -up.x());
+      const Vec2 first = vertex(h.waist->first), last = vertex(h.waist->second + 1);
+      const Vec2 centre = h.waist_from_centre ? first : last, side_top = h.waist_from_centre ? last : first;
+      const bool centre_plus = centre.dot(u) > side_top.dot(u);
+      const bool front = p.o->role.half == pattern::Half::front;
+      return sigma < 0 ? centre_plus != front : centre_plus == front;
+    };
+    // A half leg's waist without its darts' legs, as parts from centre front
+    // or back to the side (`outwards`) or back from the side, on the copy
+    // `sigma` (-1 the right leg's, +1 the left's).
+    const auto waist_parts = [&](const PieceInfo& p, const HalfLeg& h, bool outwards, int sigma) {
+      const std::size_t ns = p.o->stretches.size();
+      const auto& darts_here = dart_stretches[p.o];
+      std::vector<std::pair<std::size_t, std::size_t>> runs;  // contour order
+      for (std::size_t k = h.waist->first;; k = (k + 1) % ns) {
+        if (!darts_here.count(k)) {
+          if (!runs.empty() && runs.back().second == (k + ns - 1) % ns)
+            runs.back().second = k;
+          else
+            runs.push_back({k, k});
+        }
+        if (k == h.waist->second) break;
+      }
+      const bool forward = outwards == h.waist_from_centre;  // along the pattern's contour as drawn
+      if (!forward) std::reverse(runs.begin(), runs.end());
+      std::vector<Part> parts;
+      for (const auto& [k0, k1] : runs) parts.push_back({p.o, k0, k1, forward == flipped(p, h, sigma)});
+      return parts;
+    };
+    std::optional<SeamSuggestion> sewn[2];
+    for (const int sigma : {-1, 1}) {
+      const PieceInfo& band = sigma < 0 ? *right : *left;
+      const PieceInfo& first = sigma < 0 ? *tr.bk : *tr.fr;
+      const PieceInfo& second = sigma < 0 ? *tr.fr : *tr.bk;
+      std::vector<Part> parts{{band.o, 0, 0, false}};
+      for (const auto& q : waist_parts(first, sigma < 0 ? tr.hb : tr.hf, true, sigma)) parts.push_back(q);
+      for (const auto& q : waist_parts(second, sigma < 0 ? tr.hf : tr.hb, false, sigma)) parts.push_back(q);
+      const std::string side = sigma < 0 ? "right" : "left";
+      sewn[sigma < 0 ? 0 : 1] =
+          sew_band(band, std::move(parts), side + " waist seam",
+                   "half waistband " + band.o->piece + " to the waist of the " + side + " leg's halves " +
+                       first.o->piece + " and " + second.o->piece + ", centre " +
+                       (sigma < 0 ? "back to centre front" : "front to centre back"),
+                   -0.01, kWaistbandExtension, 0.03);
+    }
+    if (!sewn[0] || !sewn[1]) continue;
+    found.push_back(*sewn[0]);
+    found.push_back(*sewn[1]);
+    // Their ends at centre back: the right half's where its bottom edge starts,
+    // the left half's where it ends, each the edge next to it, top to top.
+    const auto end_edge = [](const PieceInfo& b, std::size_t k, bool before) -> const Edge* {
+      const std::size_t ns = b.o->stretches.size();
+      for (const auto& e : b.edges)
+        if (before ? e.k1 == (k + ns - 1) % ns : e.k0 == (k + 1) % ns) return &e;
+      return nullptr;
+    };
+    const Edge* er = end_edge(*right, stretch_index(*right->o, sewn[0]->hems[0].from), true);
+    const Edge* el = end_edge(*left, stretch_index(*left->o, sewn[1]->hems[0].to), false);
+    if (!er || !el || right == left) continue;  // one band cut twice: a seam cannot name which copy's end
+    auto ends = make(
+        "waistband ends", size, {{right->o, er->k0, er->k1, false}, {left->o, el->k0, el->k1, true}}, 1.0,
+        "the half waistbands' ends at centre back: " + right->o->piece + "'s and " + left->o->piece + "'s", 0,
+        0, 0.02);
+    if (ends.score >= opts.min_score) found.push_back(std::move(ends));
   }
 
   // 4. Fronts to backs: off-centre edges on opposite sides (front +u is the wearer's

@@ -244,7 +244,8 @@ TEST(CliDress, ASeamFileSewsADxfInsteadOfTheSuggestions) {
 // A piece left out because no suggested seam sews it says which seam vgd
 // does not suggest yet, and what the designer can do about it. A shirt's
 // collar drawn two ways: the one sewn to the stand is draped, the other is
-// left out as its alternative.
+// left out as its alternative. Trousers' waistband in two halves is sewn, a
+// half to each side's waist, and not left out.
 TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
   VGD_REQUIRE_SHARED();
   const auto out = scratch_dir("dress-not-sewn");
@@ -262,12 +263,17 @@ TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
     EXPECT_EQ(shirt.err.find(sewn), std::string::npos) << sewn << "\n" << shirt.err;
   const auto trousers = run_vgd({"dress", shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "-o",
                                  (out / "t").string(), "--no-previews", "--time-limit", "0.05"});
-  for (const char* band : {"WAISTBAND1", "WAISTBAND2"}) {
-    const std::string says = std::string("piece ") + band +
-                             " (waistband) left out: no seam sews it: vgd sews a waistband to a skirt's waist or to "
-                             "the waist of whole legs (leggings), not yet to trousers cut as half legs";
+  // Its waistband in two halves, the longer on the wearer's right.
+  for (const char* says : {"seam 'right waist seam' suggested at size base: WAISTBAND2 to BACK + BACK + BACK "
+                           "+ FRONT_NO_POCKET + "
+                           "FRONT_NO_POCKET, ease 90.5 mm",
+                           "seam 'left waist seam' suggested at size base: WAISTBAND1 to FRONT_NO_POCKET + "
+                           "FRONT_NO_POCKET + BACK + BACK + "
+                           "BACK, ease 50.5 mm",
+                           "seam 'waistband ends' suggested at size base: WAISTBAND2 to WAISTBAND1"})
     EXPECT_NE(trousers.err.find(says), std::string::npos) << says << "\n" << trousers.err;
-  }
+  for (const char* band : {"piece WAISTBAND1 (waistband) left out", "piece WAISTBAND2 (waistband) left out"})
+    EXPECT_EQ(trousers.err.find(band), std::string::npos) << band << "\n" << trousers.err;
 }
 
 // A crew neck's rib (GMH1006F18's neck rib, 4 x 42.5 cm, 17 % shorter than

@@ -204,9 +204,10 @@ INSTANTIATE_TEST_SUITE_P(
         // Valentina's trousers: cut as half legs, in place on the men's body
         // its hip fits; cut to the floor, longer than the body's legs, they
         // start 5 cm above the soles instead of held open round the feet, and
-        // fall to their length with every seam closed.
+        // fall to their length with every seam closed; their waistband in two
+        // halves, one round each side of the hips.
         RealGarment{"valentina_trousers", "Valentina_Trousers_ASTM_R12.dxf", "", 0,
-                    "left-leg left-leg right-leg right-leg",
+                    "hips hips left-leg left-leg right-leg right-leg",
                     "cm higher than arranged: it reaches the body's soles (longer than the body is)"}),
     [](const ::testing::TestParamInfo<RealGarment>& p) { return std::string(p.param.name); });
 

@@ -304,5 +304,89 @@ TEST(DressBuild, TrousersLongerThanTheLegsStartAboveTheSoles) {
   std::filesystem::remove_all(dir);
 }
 
+// Trousers cut as half legs with a waistband in two halves, cut once each,
+// 4 cm wide: 47 and 50 cm long for 44.4 cm of waist a side (the test
+// trousers' front 22.0 cm and back 22.4 cm without their darts). The longer
+// goes round the wearer's right (-x) from centre back to centre front, the
+// other round the left from centre front to centre back; each is trimmed at
+// centre front to its side's waist and sewn to it, and their ends meet at
+// centre back. Sewn as placed, every pair of a waist seam starts nearer its
+// partner than with the band's run reversed: the right leg's back half is
+// laid flipped, so its hems are read on the mirrored pattern (docs/xvc.md).
+TEST(DressBuild, AWaistbandInHalvesGoesRoundEachSideOfTrousersCutAsHalfLegs) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("vgd-dress-halfband-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  pattern::Style style = vgd::test::trousers_in_halves();
+  const auto band = [](const std::string& name, double length, double y) {
+    pattern::Piece p;
+    p.name = name;
+    p.block = name + "_M";
+    p.size = "M";
+    p.quantity = 1;
+    p.category = "SELF";
+    for (const auto& v : {pattern::Vec2(1.0, y), pattern::Vec2(1.0 + length, y),
+                          pattern::Vec2(1.0 + length, y + 0.04), pattern::Vec2(1.0, y + 0.04)})
+      p.boundary.push_back({v, pattern::PointKind::turn});
+    return p;
+  };
+  style.pieces.push_back(band("WAISTBAND1", 0.47, 0.0));
+  style.pieces.push_back(band("WAISTBAND2", 0.50, 0.1));
+  xvc::Document doc = xvc::from_style(style);
+  const Preparation prep = prepare_garment(doc);
+  const auto file = dir / "trousers.xvc";
+  xvc::save_file(doc, file);
+  DrapeOptions d;
+  d.garment = file;
+  d.size = prep.size;
+  d.pieces = prep.pieces;
+  d.mannequin_table = prep.body_table;
+  scene::AvatarDef a;
+  a.kind = scene::AvatarDef::Kind::mannequin;
+  a.size = prep.body_size;
+  a.table = prep.body_table;
+  d.avatar = a;
+  const scene::Scene s = dress::build(drape_scene(d));
+  std::string said;
+  for (const auto& m : s.diagnostics.items()) said += m.message + "\n";
+  for (const char* says :
+       {"half waistband WAISTBAND1 trimmed by 2.6 cm to the 44.4 cm of waist it is sewn to, at centre front",
+        "half waistband WAISTBAND2 trimmed by 5.6 cm to the 44.4 cm of waist it is sewn to, at centre front"})
+    EXPECT_NE(said.find(says), std::string::npos) << says << "\n" << said;
+  const sim::Model& m = s.system->model();
+  // Each band on its side of the hips.
+  for (const auto& p : s.pieces) {
+    if (p.name.find("WAISTBAND") == std::string::npos) continue;
+    EXPECT_EQ(p.segment, "hips") << p.name;
+    double x = 0;
+    for (int i = p.first; i < p.first + p.count; ++i) x += sim::at(m.x0, i).x() / p.count;
+    if (p.name.find("WAISTBAND2") != std::string::npos)
+      EXPECT_LT(x, -0.05) << "the longer band on the wearer's right";
+    else
+      EXPECT_GT(x, 0.05) << "the other on the left";
+  }
+  std::map<std::string, const sim::SeamPairs*> by_name;
+  for (const auto& seam : s.seams) by_name[seam.name] = &seam;
+  for (const char* name : {"right waist seam", "left waist seam", "waistband ends"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(by_name.count(name));
+    const auto& pairs = by_name[name]->pairs;
+    ASSERT_GE(pairs.size(), 2u);
+    if (std::string(name) == "waistband ends") continue;
+    // Sewn to its own side's leg halves.
+    const std::string leg = std::string(name).substr(0, std::string(name).find(' ')) + "-leg";
+    for (const auto& pr : pairs)
+      for (const auto& p : s.pieces)
+        if (pr[1] >= p.first && pr[1] < p.first + p.count) EXPECT_EQ(p.segment, leg) << p.name;
+    double as_sewn = 0, reversed = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      as_sewn += (sim::at(m.x0, pairs[k][0]) - sim::at(m.x0, pairs[k][1])).norm();
+      reversed += (sim::at(m.x0, pairs[pairs.size() - 1 - k][0]) - sim::at(m.x0, pairs[k][1])).norm();
+    }
+    EXPECT_LT(as_sewn, 0.5 * reversed);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace vgd::dress
