@@ -377,7 +377,9 @@ TEST(DressBuild, AWaistbandInHalvesGoesRoundEachSideOfTrousersCutAsHalfLegs) {
     const std::string leg = std::string(name).substr(0, std::string(name).find(' ')) + "-leg";
     for (const auto& pr : pairs)
       for (const auto& p : s.pieces)
-        if (pr[1] >= p.first && pr[1] < p.first + p.count) EXPECT_EQ(p.segment, leg) << p.name;
+        if (pr[1] >= p.first && pr[1] < p.first + p.count) {
+          EXPECT_EQ(p.segment, leg) << p.name;
+        }
     double as_sewn = 0, reversed = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       as_sewn += (sim::at(m.x0, pairs[k][0]) - sim::at(m.x0, pairs[k][1])).norm();
