@@ -136,7 +136,9 @@ std::vector<Arrangement> suggest_arrangement(const pattern::Piece& piece, const 
 // suggestions). A garment is lower-body when a piece is a waistband or its name says
 // skirt, or the garment's says skirt, trousers or pants. A cuff goes on at the hem of
 // the sleeve a SEAM sews it to: that sleeve's height down the arm plus its length
-// along its upright; a cuff no seam sews to a sleeve gets none.
+// along its upright; a cuff no seam sews to a sleeve gets none. A half waistband (a
+// SEAM sews it to trouser leg halves) goes round the right of the hips when its seam
+// starts at a back half, the left when at a front half.
 std::vector<std::pair<std::string, std::vector<Arrangement>>> suggest_arrangements(
     const Document& doc, const ArrangementOptions& opts = {});
 

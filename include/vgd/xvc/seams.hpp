@@ -74,7 +74,8 @@ struct SeamOptions {
 
 // Pairs pieces by role (pattern/roles.hpp: front/back: side seams and shoulders; sleeve
 // with front+back: cap to armhole, and the sleeve's underarm seam; waistband to the
-// skirt waist; neckband round the neckline between the shoulders, its ends together;
+// skirt waist, or in two halves to the waists of trousers cut as half legs, each side's
+// from centre back or front; neckband round the neckline between the shoulders, its ends together;
 // a one-piece collar round the neckline from centre front, its ends open; a cuff
 // round each copy's sleeve hem, its ends together) and
 // stretches by length, shape and notches; best first within each size. Patterns with
