@@ -243,6 +243,25 @@ TEST(DressBuild, APocketStartsFiveMillimetresOutsideItsHostsFace) {
   std::filesystem::remove_all(dir);
 }
 
+// A style as vgd dress prepares it (roles, seams, the body its sizes
+// choose), saved to `file` and built into a scene on that body, not run.
+scene::Scene prepared_scene(const pattern::Style& style, const std::filesystem::path& file) {
+  xvc::Document doc = xvc::from_style(style);
+  const Preparation prep = prepare_garment(doc);
+  xvc::save_file(doc, file);
+  DrapeOptions d;
+  d.garment = file;
+  d.size = prep.size;
+  d.pieces = prep.pieces;
+  d.mannequin_table = prep.body_table;
+  scene::AvatarDef a;
+  a.kind = scene::AvatarDef::Kind::mannequin;
+  a.size = prep.body_size;
+  a.table = prep.body_table;
+  d.avatar = a;
+  return dress::build(drape_scene(d));
+}
+
 // Trousers cut longer than the body's legs reach its soles, where their hems
 // would start round the feet and be held open there. The test trousers with
 // their legs drawn to a 76 cm inseam (on the body vgd dress chooses for them,
@@ -265,21 +284,7 @@ TEST(DressBuild, TrousersLongerThanTheLegsStartAboveTheSoles) {
     for (auto& piece : style.pieces)
       for (auto& b : piece.boundary)
         if (b.p.y() < 0.62) b.p.y() = 0.62 - (0.62 - b.p.y()) * k.inseam / 0.62;
-    xvc::Document doc = xvc::from_style(style);
-    const Preparation prep = prepare_garment(doc);
-    const auto file = dir / "trousers.xvc";
-    xvc::save_file(doc, file);
-    DrapeOptions d;
-    d.garment = file;
-    d.size = prep.size;
-    d.pieces = prep.pieces;
-    d.mannequin_table = prep.body_table;
-    scene::AvatarDef a;
-    a.kind = scene::AvatarDef::Kind::mannequin;
-    a.size = prep.body_size;
-    a.table = prep.body_table;
-    d.avatar = a;
-    const scene::Scene s = dress::build(drape_scene(d));
+    const scene::Scene s = prepared_scene(style, dir / "trousers.xvc");
     std::string said;
     for (const auto& m : s.diagnostics.items()) said += m.message + "\n";
     double soles = 1e300, lowest = 1e300;
@@ -332,21 +337,7 @@ TEST(DressBuild, AWaistbandInHalvesGoesRoundEachSideOfTrousersCutAsHalfLegs) {
   };
   style.pieces.push_back(band("WAISTBAND1", 0.47, 0.0));
   style.pieces.push_back(band("WAISTBAND2", 0.50, 0.1));
-  xvc::Document doc = xvc::from_style(style);
-  const Preparation prep = prepare_garment(doc);
-  const auto file = dir / "trousers.xvc";
-  xvc::save_file(doc, file);
-  DrapeOptions d;
-  d.garment = file;
-  d.size = prep.size;
-  d.pieces = prep.pieces;
-  d.mannequin_table = prep.body_table;
-  scene::AvatarDef a;
-  a.kind = scene::AvatarDef::Kind::mannequin;
-  a.size = prep.body_size;
-  a.table = prep.body_table;
-  d.avatar = a;
-  const scene::Scene s = dress::build(drape_scene(d));
+  const scene::Scene s = prepared_scene(style, dir / "trousers.xvc");
   std::string said;
   for (const auto& m : s.diagnostics.items()) said += m.message + "\n";
   for (const char* says :
