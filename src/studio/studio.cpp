@@ -2090,11 +2090,11 @@ struct Studio::Impl {
   }
 
   // The pins as small dark red squares where they hold.
-  void draw_pins(const ImVec2& origin) const {
+  void draw_pins(const ImVec2& view_at) const {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     for (const auto& p : hand->pins())
       if (const auto q = render::project(*preview_camera, preview_w, preview_h, {p.at.x(), p.at.y(), p.at.z()})) {
-        const ImVec2 c{origin.x + static_cast<float>(q->x), origin.y + static_cast<float>(q->y)};
+        const ImVec2 c{view_at.x + static_cast<float>(q->x), view_at.y + static_cast<float>(q->y)};
         dl->AddRectFilled({c.x - 2, c.y - 2}, {c.x + 2, c.y + 2}, rgb(170, 20, 30));
       }
   }
@@ -2229,15 +2229,17 @@ struct Studio::Impl {
     lifting = std::move(l);
   }
 
-  void follow_lift(const ImVec2& mouse, const ImVec2& origin) {
+  void follow_lift(const ImVec2& mouse, const ImVec2& view_at) {
     Lift& l = *lifting;
     l.travel = std::max(l.travel, std::hypot(mouse.x - l.from.x, mouse.y - l.from.y));
     if (l.how == Lift::How::off && l.travel < kClickTravel) return;  // an Alt+click, so far
     const auto& [pattern_id, copy] = arranged_pieces[static_cast<std::size_t>(l.piece)];
     const auto list = current_arrangements(pattern_id);
     if (static_cast<std::size_t>(copy) >= list.size() || !arrange_body) return;
-    const auto p0 = render::unproject(*preview_camera, preview_w, preview_h, l.from.x - origin.x, l.from.y - origin.y, l.depth);
-    const auto p1 = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - origin.x, mouse.y - origin.y, l.depth);
+    const auto p0 = render::unproject(*preview_camera, preview_w, preview_h, l.from.x - view_at.x,
+                                      l.from.y - view_at.y, l.depth);
+    const auto p1 = render::unproject(*preview_camera, preview_w, preview_h, mouse.x - view_at.x,
+                                      mouse.y - view_at.y, l.depth);
     const body::Vec3 delta(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
     const xvc::Arrangement& a = list[static_cast<std::size_t>(copy)];
     if (!arrange_body->segment(a.segment)) return;
@@ -2457,7 +2459,7 @@ struct Studio::Impl {
 
   // The arrangement points over the 3-D view: hovered, named; the one under
   // a piece dragged from the pattern view is where it drops.
-  void arrange_overlay(const ImVec2& origin, const ImVec2& mouse, bool hovered) {
+  void arrange_overlay(const ImVec2& view_at, const ImVec2& mouse, bool view_hovered) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     std::optional<std::size_t> near;
     float best = kDropRadius;
@@ -2465,13 +2467,14 @@ struct Studio::Impl {
     for (std::size_t k = 0; k < arrange_points.size(); ++k) {
       const auto& p = arrange_points[k].at;
       at.push_back(render::project(*preview_camera, preview_w, preview_h, {p.x(), p.y(), p.z()}));
-      if (!at.back() || !hovered) continue;
-      const float d = std::hypot(mouse.x - origin.x - static_cast<float>(at.back()->x), mouse.y - origin.y - static_cast<float>(at.back()->y));
+      if (!at.back() || !view_hovered) continue;
+      const float d = std::hypot(mouse.x - view_at.x - static_cast<float>(at.back()->x),
+                                 mouse.y - view_at.y - static_cast<float>(at.back()->y));
       if (d < best) best = d, near = k;
     }
     for (std::size_t k = 0; k < at.size(); ++k) {
       if (!at[k]) continue;
-      const ImVec2 c{origin.x + static_cast<float>(at[k]->x), origin.y + static_cast<float>(at[k]->y)};
+      const ImVec2 c{view_at.x + static_cast<float>(at[k]->x), view_at.y + static_cast<float>(at[k]->y)};
       const bool hot = near && *near == k;
       dl->AddCircleFilled(c, hot ? 8.0f : 5.0f, hot ? rgb(240, 150, 20) : rgb(30, 160, 150));
       dl->AddCircle(c, hot ? 8.0f : 5.0f, rgb(20, 60, 60), 0, 1.5f);
@@ -2479,7 +2482,7 @@ struct Studio::Impl {
     // The document's pins: dark red squares, as a drape's pins are drawn.
     for (const auto& pin : arranged_pins)
       if (const auto q = particle_screen(pin.particle)) {
-        const ImVec2 c{origin.x + static_cast<float>(q->x), origin.y + static_cast<float>(q->y)};
+        const ImVec2 c{view_at.x + static_cast<float>(q->x), view_at.y + static_cast<float>(q->y)};
         dl->AddRectFilled({c.x - 3, c.y - 3}, {c.x + 3, c.y + 3}, rgb(170, 20, 30));
       }
     if (piece_drag) drop_target = near;
@@ -2489,7 +2492,7 @@ struct Studio::Impl {
                                (dragged ? ": let go to put " + std::string(dragged->attribute("piece")) + " here"
                                         : ": drag a piece from the pattern view here"))
                                   .c_str());
-    } else if (piece_drag && hovered) {
+    } else if (piece_drag && view_hovered) {
       ImGui::SetTooltip("Drop %s on a point of the body", std::string(doc.find(*piece_drag) ? doc.find(*piece_drag)->attribute("piece") : "").c_str());
     }
   }
@@ -2669,8 +2672,9 @@ struct Studio::Impl {
   std::optional<ImVec2> piece_drag_offset(const ImVec2& mouse) const {
     if (!piece_drag) return std::nullopt;
     const ImVec2 d{mouse.x - piece_drag_from.x, mouse.y - piece_drag_from.y};
-    const bool over = mouse.x >= canvas_lo.x && mouse.x < canvas_hi.x && mouse.y >= canvas_lo.y && mouse.y < canvas_hi.y;
-    if (!over || std::hypot(d.x, d.y) <= 3.0f) return std::nullopt;
+    const bool inside =
+        mouse.x >= canvas_lo.x && mouse.x < canvas_hi.x && mouse.y >= canvas_lo.y && mouse.y < canvas_hi.y;
+    if (!inside || std::hypot(d.x, d.y) <= 3.0f) return std::nullopt;
     return d;
   }
 
