@@ -835,10 +835,11 @@ class ContactEffect final : public Effect {
   // A cloth pair whose two primitives hold a particle and its seam partner.
   bool sewn(const Contact4& c) const {
     if (c.body) return false;
-    for (int k = 0; k < c.n; ++k) {
+    const int n = std::min(c.n, 4);  // c.v holds at most four
+    for (int k = 0; k < n; ++k) {
       if (c.side[k] < 0) continue;
       for (int partner : partners_[rep_[c.v[k]]])
-        for (int j = 0; j < c.n; ++j)
+        for (int j = 0; j < n; ++j)
           if (c.side[j] < 0 && rep_[c.v[j]] == partner) return true;
     }
     return false;
