@@ -9,11 +9,12 @@
 #include <set>
 #include <tuple>
 
+#include "edit_helpers.hpp"
 #include "vgd/core/diagnostics.hpp"
 #include "vgd/core/strings.hpp"
 #include "vgd/pattern/contour.hpp"
+#include "vgd/xvc/arrangement.hpp"
 #include "vgd/xvc/style.hpp"
-#include "edit_helpers.hpp"
 
 namespace vgd::xvc {
 
@@ -1096,22 +1097,13 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
     } else {
       continue;
     }
-    // Which copies are laid flipped (xvc/arrangement.hpp, legs): turned upright
-    // with the waist up, a half whose centre (front or back) lies on +u has
-    // the right leg's front copy as drawn and its back copy flipped, the left
-    // leg's the other way; a half drawn with its centre on -u the opposite.
-    // A flipped copy's hems are read on the mirrored pattern (docs/xvc.md):
-    // its contour runs the other way.
-    const auto flipped = [&](const PieceInfo& p, const HalfLeg& h, int sigma) {
-      const std::size_t ns = p.o->stretches.size();
-      const auto vertex = [&](std::size_t k) { return p.o->shape.boundary[p.o->stretches[k % ns].first].p; };
-      const Vec2 up = pattern::wider_at_top(p.o->shape.boundary, p.frame.up) ? p.frame.up : Vec2(-p.frame.up);
-      const Vec2 u(up.y(), -up.x());
-      const Vec2 first = vertex(h.waist->first), last = vertex(h.waist->second + 1);
-      const Vec2 centre = h.waist_from_centre ? first : last, side_top = h.waist_from_centre ? last : first;
-      const bool centre_plus = centre.dot(u) > side_top.dot(u);
-      const bool front = p.o->role.half == pattern::Half::front;
-      return sigma < 0 ? centre_plus != front : centre_plus == front;
+    // Whether the arrangement lays copy `sigma` (-1 the right leg's, +1 the
+    // left's) flipped: a flipped copy's hems are read on the mirrored pattern
+    // (docs/xvc.md), its contour running the other way.
+    const auto flipped = [](const PieceInfo& p, int sigma) {
+      const auto placed = suggest_arrangement(p.o->shape, p.o->role, true);
+      const std::size_t copy = sigma < 0 ? 0 : 1;
+      return copy < placed.size() && placed[copy].flip;
     };
     // A half leg's waist without its darts' legs, as parts from centre front
     // or back to the side (`outwards`) or back from the side, on the copy
@@ -1132,7 +1124,8 @@ void suggest_for_size(const std::vector<Outline>& outs, const std::string& size,
       const bool forward = outwards == h.waist_from_centre;  // along the pattern's contour as drawn
       if (!forward) std::reverse(runs.begin(), runs.end());
       std::vector<Part> parts;
-      for (const auto& [k0, k1] : runs) parts.push_back({p.o, k0, k1, forward == flipped(p, h, sigma)});
+      const bool flip = flipped(p, sigma);
+      for (const auto& [k0, k1] : runs) parts.push_back({p.o, k0, k1, forward == flip});
       return parts;
     };
     std::optional<SeamSuggestion> sewn[2];
