@@ -264,13 +264,12 @@ TEST(CliDress, APieceNoSeamSewsSaysWhichSeamVgdDoesNotSuggestYet) {
   const auto trousers = run_vgd({"dress", shared_dxf("Valentina_Trousers_ASTM_R12.dxf").string(), "-o",
                                  (out / "t").string(), "--no-previews", "--time-limit", "0.05"});
   // Its waistband in two halves, the longer on the wearer's right.
-  for (const char* says : {"seam 'right waist seam' suggested at size base: WAISTBAND2 to BACK + BACK + BACK "
-                           "+ FRONT_NO_POCKET + "
-                           "FRONT_NO_POCKET, ease 90.5 mm",
-                           "seam 'left waist seam' suggested at size base: WAISTBAND1 to FRONT_NO_POCKET + "
-                           "FRONT_NO_POCKET + BACK + BACK + "
-                           "BACK, ease 50.5 mm",
-                           "seam 'waistband ends' suggested at size base: WAISTBAND2 to WAISTBAND1"})
+  for (const char* says :
+       {"seam 'right waist seam' suggested at size base: WAISTBAND2 to BACK + BACK + BACK + FRONT_NO_POCKET + "
+        "FRONT_NO_POCKET, ease 90.5 mm",
+        "seam 'left waist seam' suggested at size base: WAISTBAND1 to FRONT_NO_POCKET + FRONT_NO_POCKET + BACK + "
+        "BACK + BACK, ease 50.5 mm",
+        "seam 'waistband ends' suggested at size base: WAISTBAND2 to WAISTBAND1"})
     EXPECT_NE(trousers.err.find(says), std::string::npos) << says << "\n" << trousers.err;
   for (const char* band : {"piece WAISTBAND1 (waistband) left out", "piece WAISTBAND2 (waistband) left out"})
     EXPECT_EQ(trousers.err.find(band), std::string::npos) << band << "\n" << trousers.err;
