@@ -116,10 +116,13 @@ vgd::cli::Registrar reg{"dress", 64, [](CLI::App& app, vgd::cli::Common& common)
       const auto imported = vgd::dxf::import_file(o->input, io);
       vgd::cli::print_diagnostics(imported.diagnostics, common);
       const auto& s = imported.summary;
-      vgd::cli::say(common, "vgd: " + o->input + ": " + std::to_string(s.pieces) + " pieces, sizes " +
-                                std::to_string(s.sizes.size()) + " (sample " + s.sample_size + "), " + s.producer);
+      vgd::cli::say(common, "vgd: " + o->input + ": " + std::to_string(s.pieces) +
+                                (s.pieces == 1 ? " piece" : " pieces") + ", sizes " +
+                                std::to_string(s.sizes.size()) + " (sample " + s.sample_size + "), " +
+                                s.producer);
       for (const auto& note : vgd::dxf::import_notes(imported)) vgd::cli::say(common, "vgd: " + note);
-      return vgd::xvc::from_style(imported.style);
+      // Named after the file, so that what is said about it names the file.
+      return vgd::xvc::Document(vgd::xvc::Node(vgd::xvc::from_style(imported.style).root()), o->input);
     }();
     vgd::dress::PrepareOptions po;
     po.size = o->size;

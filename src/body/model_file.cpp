@@ -187,6 +187,20 @@ std::string in_words(std::string why) {
   return why;
 }
 
+// The error for a file assimp did not read, from its reason: a file in a
+// format it reads whose model holds nothing (an STL with no facets, an OBJ of
+// points) is said to be empty, not "a format vgd cannot read".
+std::string not_read(const std::string& why) {
+  const std::string validation = "Validation failed: ";
+  if (why.rfind(validation, 0) == 0) {
+    const std::string rest = why.substr(validation.size());
+    for (const char* empty : {"contains no faces", "contains no vertices", "no meshes"})
+      if (rest.find(empty) != std::string::npos) return "the file holds no triangles (assimp: " + rest + ")";
+    return "the model in it is not valid (assimp's check: " + rest + ")";
+  }
+  return "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + in_words(why);
+}
+
 // s: the reading time allowed (ModelReadOptions::time_limit_s).
 double time_limit_s(const fs::path& path, const ModelReadOptions& options) {
   if (options.time_limit_s > 0.0) return options.time_limit_s;
@@ -299,8 +313,7 @@ ModelFile read_model_file(const fs::path& path, const ModelReadOptions& options)
       while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
       }
     }).detach();
-    if (!why.empty())
-      throw Error(file, "", "not a 3-D model vgd can read (OBJ, PLY, STL, glTF/GLB, FBX, Collada): " + in_words(why));
+    if (!why.empty()) throw Error(file, "", not_read(why));
     return out;
   }
   int status = 0;

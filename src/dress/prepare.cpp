@@ -327,7 +327,19 @@ Preparation prepare_garment(xvc::Document& doc, const PrepareOptions& options) {
   out.size = !options.size.empty() ? options.size : sample;
   if (out.size.empty() && !doc.patterns().empty()) out.size = std::string(doc.patterns().front()->attribute("size"));
   const auto mine = patterns_of(out.size);
-  if (mine.empty()) throw Error(file, "size " + out.size, "the document has no pattern of size '" + out.size + "'");
+  if (mine.empty()) {
+    std::vector<std::string> sizes;  // in the document's order
+    for (const auto* p : doc.patterns())
+      if (const std::string z(p->attribute("size")); std::find(sizes.begin(), sizes.end(), z) == sizes.end())
+        sizes.push_back(z);
+    std::string list;
+    for (const auto& z : sizes) list += (list.empty() ? "" : ", ") + z;
+    throw Error(
+        file, "size " + out.size,
+        "the document has no pattern of size '" + out.size + "'" +
+            (sizes.empty() ? std::string(": it has no patterns")
+                           : "; its sizes: " + list + (sample.empty() ? "" : " (sample " + sample + ")")));
+  }
 
   // Quantities: a document where every pattern says 0 states none (a file
   // written with the field left at its default: mirrored.DXF): each piece is

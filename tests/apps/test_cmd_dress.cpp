@@ -134,6 +134,16 @@ TEST(CliDress, ADraftedSkirtDxfDrapesInOneCommand) {
   EXPECT_NE(again.err.find("is kept as"), std::string::npos) << again.err;
   EXPECT_NE(vgd::read_file(out / "d" / "garment.previous.xvc").find("corrected by hand"), std::string::npos);
   EXPECT_EQ(vgd::read_file(out / "d" / "garment.xvc").find("corrected by hand"), std::string::npos);
+
+  // A size the file does not grade: the error names the file and lists its sizes.
+  const auto wrong =
+      run_vgd({"dress", dxf.string(), "--size", "99", "-o", (out / "w").string(), "--no-previews"});
+  EXPECT_EQ(wrong.code, 1) << wrong.err;
+  EXPECT_NE(wrong.err.find("skirt.dxf: size 99: the document has no pattern of size '99'; its sizes: "),
+            std::string::npos)
+      << wrong.err;
+  EXPECT_NE(wrong.err.find(", 38, "), std::string::npos) << wrong.err;
+  EXPECT_NE(wrong.err.find("(sample 38)"), std::string::npos) << wrong.err;
 }
 
 // A T-shirt whose sleeve is cut in two along the arm (a front and a back

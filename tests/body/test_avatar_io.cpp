@@ -117,10 +117,14 @@ TEST(AvatarImport, BadFilesSayWhatIsWrong) {
   const std::string garbage = error_of(dir / "garbage.glb");
   EXPECT_NE(garbage.find("not a 3-D model"), std::string::npos) << garbage;
   EXPECT_NE(garbage.find("garbage.glb"), std::string::npos) << garbage;
+  // A file in a format vgd reads that holds no surface is empty, not unreadable.
   write_file_atomic(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   const std::string points = error_of(dir / "points.obj");
-  EXPECT_TRUE(points.find("no triangles") != std::string::npos || points.find("not a 3-D model") != std::string::npos)
-      << points;
+  EXPECT_NE(points.find("holds no triangles"), std::string::npos) << points;
+  EXPECT_EQ(points.find("not a 3-D model"), std::string::npos) << points;
+  write_file_atomic(dir / "facetless.stl", "solid x\nendsolid x\n");
+  const std::string facetless = error_of(dir / "facetless.stl");
+  EXPECT_NE(facetless.find("facetless.stl: the file holds no triangles"), std::string::npos) << facetless;
   write_file_atomic(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nf 1 2 3\nf 2 4 3\n");
   AvatarImportOptions up_y;
   up_y.up = "y";

@@ -174,9 +174,16 @@ TEST(PrepareGarment, NothingToDrapeIsAnErrorNamingThePieces) {
     EXPECT_NE(std::string(e.what()).find("PART A (role unknown), PART B (role unknown)"), std::string::npos)
         << e.what();
   }
+  // A size the document lacks: the error lists the sizes it has.
   PrepareOptions wrong;
   wrong.size = "XL";
-  EXPECT_THROW(prepare_garment(doc, wrong), Error);
+  try {
+    prepare_garment(doc, wrong);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no pattern of size 'XL'; its sizes: M"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace vgd::dress
