@@ -49,9 +49,12 @@ Avatar build_avatar(const SceneDef& def) {
       }
     }
   } catch (const Error& e) {
-    // Name the scene field; keep the inner message (it names the body's file or size).
+    // Name the scene field; keep the inner message and what it names (the
+    // body's file, the size asked for).
     const auto& d = e.diagnostic();
-    throw Error(file, "avatar", (d.file.empty() || d.file == file ? "" : d.file + ": ") + d.message);
+    throw Error(file, "avatar",
+                (d.file.empty() || d.file == file ? "" : d.file + ": ") + (d.entity.empty() ? "" : d.entity + ": ") +
+                    d.message);
   }
   throw Error(file, "avatar", "unknown kind of body");
 }

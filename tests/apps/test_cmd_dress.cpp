@@ -144,6 +144,11 @@ TEST(CliDress, ADraftedSkirtDxfDrapesInOneCommand) {
       << wrong.err;
   EXPECT_NE(wrong.err.find(", 38, "), std::string::npos) << wrong.err;
   EXPECT_NE(wrong.err.find("(sample 38)"), std::string::npos) << wrong.err;
+  // A body size its table lacks: the size asked for is named with the table's.
+  const auto body = run_vgd({"dress", dxf.string(), "--body-table", "en13402-men", "--body-size", "7", "-o",
+                             (out / "b").string(), "--no-previews"});
+  EXPECT_EQ(body.code, 1) << body.err;
+  EXPECT_NE(body.err.find("size '7': no such size (available: en13402-men: 44 46"), std::string::npos) << body.err;
 }
 
 // A T-shirt whose sleeve is cut in two along the arm (a front and a back
