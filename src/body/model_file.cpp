@@ -194,7 +194,7 @@ std::string not_read(const std::string& why) {
   const std::string validation = "Validation failed: ";
   if (why.rfind(validation, 0) == 0) {
     const std::string rest = why.substr(validation.size());
-    for (const char* empty : {"contains no faces", "contains no vertices", "no meshes"})
+    for (const char* empty : {"contains no faces", "contains no vertices"})
       if (rest.find(empty) != std::string::npos) return "the file holds no triangles (assimp: " + rest + ")";
     return "the model in it is not valid (assimp's check: " + rest + ")";
   }
