@@ -74,7 +74,7 @@ void say(const Common& common, const std::string& line);
 // `vgd bench robustness` (cmd_bench_robustness.cpp): the sweep, or the parts
 // of it the options name.
 struct RobustnessArgs {
-  bool quick = false, json = false, between_particles = true;
+  bool quick = false, json = false, between_particles = true, sleeves_first = false;
   double time_limit = 8.0;
   std::vector<std::string> garments, sizes, fabrics, models;
   std::vector<double> spacings;

@@ -224,6 +224,7 @@ vgd::cli::Registrar reg{"bench", 90, [](CLI::App& app, vgd::cli::Common& common)
       ->capture_default_str();
   robust->add_flag("--between-particles,!--no-between-particles", ra->between_particles,
                    "Drape with vgd drape --between-particles (the default) or --no-between-particles");
+  robust->add_flag("--sleeves-first", ra->sleeves_first, "Drape with vgd drape --sleeves-first");
   robust->add_option("--garments", ra->garments, "Only these garment documents (default: data/garments/t-shirt.xvc and a-line-skirt.xvc)")
       ->delimiter(',');
   robust->add_option("--spacings", ra->spacings, "Only these mesh spacings, m")->delimiter(',')->check(CLI::PositiveNumber);

@@ -49,6 +49,7 @@ int bench_robustness(const RobustnessArgs& a) {
   study::RobustnessOptions o = study::robustness_sweep(a.quick);
   o.time_limit = a.time_limit;
   o.between_particles = a.between_particles;
+  o.sleeves_first = a.sleeves_first;
   if (!a.garments.empty()) o.garments.assign(a.garments.begin(), a.garments.end());
   if (!a.spacings.empty()) o.spacings = a.spacings;
   if (!a.sizes.empty()) o.sizes = a.sizes;
@@ -67,8 +68,9 @@ int bench_robustness(const RobustnessArgs& a) {
   const std::size_t runs = o.garments.size() * o.spacings.size() * o.sizes.size() * o.materials.size() *
                            o.models.size() * static_cast<std::size_t>(o.jitters + 1);
   if (!json) {
-    std::printf("%zu runs, 1 thread, %s s simulated at most%s\n", runs, vgd::format_fixed(time_limit, 1).c_str(),
-                between_particles ? "" : ", --no-between-particles");
+    std::printf("%zu runs, 1 thread, %s s simulated at most%s%s\n", runs,
+                vgd::format_fixed(time_limit, 1).c_str(), between_particles ? "" : ", --no-between-particles",
+                o.sleeves_first ? ", --sleeves-first" : "");
     std::printf("%-13s %6s %5s %-18s %-15s %8s %7s %7s %8s %7s %6s %7s %7s %9s  %s\n", "garment", "mesh", "size",
                 "fabric", "model", "jitter", "rest s", "wall s", "seams", "pen mm", "cross", "strain", "moved",
                 "spread", "outcome");

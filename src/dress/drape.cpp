@@ -313,6 +313,7 @@ DrapeResult run_drape(const scene::SceneDef& def, const std::vector<sim::FrameSi
   if (def.effects.seams) {
     merge_distance = def.effects.seams->effect.merge_distance;
     c.settings.emplace_back("seam_merge_distance", metres(merge_distance));
+    c.settings.emplace_back("sleeves_first", def.effects.seams->sleeves_first ? "on" : "off");
   }
   c.settings.emplace_back("self_collision", def.effects.self_collision ? "on" : "off");
   if (def.effects.self_collision && def.effects.self_collision->damping > 0.0)

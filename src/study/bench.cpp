@@ -345,6 +345,7 @@ scene::SceneDef case_scene(const RobustnessCase& k, const RobustnessOptions& o) 
   d.spacing = k.spacing;
   d.time_limit = o.time_limit;
   d.between_particles = o.between_particles;
+  d.sleeves_first = o.sleeves_first;
   if (!k.material.empty()) d.material_xvc = data_file("materials/" + k.material);
   return dress::drape_scene(d);
 }

@@ -64,5 +64,23 @@ TEST(StudyRobustness, ARunThatDoesNotRestSaysBesideWhichSegmentsItMoves) {
   EXPECT_EQ(r.failure.rfind("no rest (" + near + ")", 0), 0u) << r.failure;
 }
 
+// --sleeves-first reaches every run of the sweep, and its certificate says
+// so (a drape is repeated from what its certificate records).
+TEST(StudyRobustness, SleevesFirstReachesEveryRun) {
+  for (const bool first : {false, true}) {
+    RobustnessOptions o = tshirt(0.025, 1);
+    o.time_limit = 0.04;
+    o.sleeves_first = first;
+    const auto records = robustness_study(o, {});
+    ASSERT_EQ(records.size(), 2u);
+    for (const auto& r : records) {
+      std::string said;
+      for (const auto& [k, v] : r.certificate.settings)
+        if (k == "sleeves_first") said = v;
+      EXPECT_EQ(said, first ? "on" : "off");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vgd::study

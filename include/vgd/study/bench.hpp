@@ -151,6 +151,7 @@ struct RobustnessOptions {
   double jitter = 1e-6;                  // m
   double time_limit = 8.0;               // s simulated
   bool between_particles = true;         // DrapeOptions::between_particles
+  bool sleeves_first = false;            // DrapeOptions::sleeves_first
 };
 
 // The sweep docs/drape.md reports: the project's T-shirt and A-line skirt at
