@@ -1263,22 +1263,20 @@ TEST(Studio, ATopTooSmallForItsBodyIsCutInAKnitOrWarnedWhenTheDrapeStarts) {
   }
 }
 
-// The studio's drape takes vgd dress's steps: the men's tee in size 58,
-// whose first drape fails only where a sleeve is caught in the crease
-// between arm and torso, is draped again holding the touching cloth once
-// sewn, which passes, and the status says so.
-TEST(Studio, ATeesArmpitFailureIsDrapedAgainHeld) {
-  const fs::path shared = fs::path(VGD_SHARED_DIR) / "data" / "dxf" / "MEN_CLASSIC_TEE.DXF";
-  if (!fs::exists(shared)) GTEST_SKIP() << "shared data absent: " << shared;
-  const fs::path dir = temp_dir("tee-held");
-  fs::copy_file(shared, dir / "tee.dxf");
+// The studio's drape takes vgd dress's second try: a drape that failed only
+// where the cloth is caught in the crease between an arm and the torso is
+// draped again holding the touching cloth once sewn, and the status says so.
+// The project's T-shirt stopped at 1.2 s (before it rests, at 1.48 s) still
+// moves only between its right arm and the torso: such a failure, found in
+// seconds. That the second drape then passes, on a real garment that fails
+// there at its time limit, is RealGarmentsHoldContacts.ATeesArmpitFailureIsDrapedAgainHeld
+// (the same library calls: dress::caught_at_armpit, then dress::run_drape held).
+TEST(Studio, ADrapeFailedOnlyAtAnArmpitIsDrapedAgainHeld) {
+  omp_set_num_threads(1);  // the studio drapes with the UI thread's count; ctest runs tests side by side
   TestHarness h;
-  ASSERT_TRUE(h.studio().open(dir / "tee.dxf")) << h.studio().status();
-  h.frames(2);
-  h.click("import:ok");
-  h.frames(2);
-  h.click("imported:ok");
-  h.studio().drape_options().size = "58";
+  ASSERT_TRUE(h.studio().open(kTShirt)) << h.studio().status();
+  h.frame();
+  h.studio().drape_options().time_limit = 1.2;
   h.click("Drape");
   h.studio().wait_for_drape();
   h.frame();
@@ -1287,12 +1285,13 @@ TEST(Studio, ATeesArmpitFailureIsDrapedAgainHeld) {
                          "cloth is caught in the crease between the "),
             std::string::npos)
       << message;
+  EXPECT_NE(message.find("right-arm"), std::string::npos) << message;
   ASSERT_TRUE(h.studio().certificate().has_value()) << message;
   const vgd::dress::Certificate& c = *h.studio().certificate();
-  EXPECT_TRUE(c.passed()) << message;
   bool held = false;
   for (const auto& [k, v] : c.settings) held = held || (k == "hold_contacts" && v == "once sewn");
-  EXPECT_TRUE(held);
+  EXPECT_TRUE(held) << message;
+  EXPECT_EQ(c.stop_reason, "time limit") << message;
 }
 
 // File > Open Recent: the documents opened or saved, newest first, kept in
