@@ -32,6 +32,10 @@ struct RealGarment {
   const char* fails = "";
   const char* spacing = "";  // vgd dress --spacing, m; "" = the default
   const char* damping = "";  // vgd dress --repulsion-damping; "" = none
+  // A fit map (vgd render --map) compared too with its golden,
+  // tests/golden/real-garments/<name>-<map>-map.png; "" = none.
+  const char* map = "";
+  const char* map_says = "";  // what vgd render says of the map
 };
 
 void PrintTo(const RealGarment& g, std::ostream* os) { *os << g.file << " " << g.size; }
@@ -44,6 +48,25 @@ class RealGarments : public ::testing::TestWithParam<RealGarment> {};
 // check that the drape a person looked at is the one made, and a change to
 // the drape means looking at the new previews (tests/golden/regenerate.sh).
 constexpr const char* kGoldenThreshold = "0.99";
+
+// The garment's fit map (vgd render --map) against a golden a person has
+// looked at, and its legend's figures said on the output.
+void expect_fit_map_as_golden(const std::filesystem::path& out, const RealGarment& g) {
+  const auto map = run_vgd({"render", out.string(), "--map", g.map, "--views", "front", "--size", "256x256",
+                            "-o", (out / "map").string()});
+  ASSERT_EQ(map.code, 0) << map.err;
+  EXPECT_NE(map.err.find(g.map_says), std::string::npos) << map.err;
+  const auto golden =
+      source_dir() / "tests" / "golden" / "real-garments" / (std::string(g.name) + "-" + g.map + "-map.png");
+  if (std::getenv("VGD_UPDATE_GOLDENS")) {
+    std::filesystem::copy_file(out / "map" / "front.png", golden,
+                               std::filesystem::copy_options::overwrite_existing);
+    return;
+  }
+  const auto cmp = run_vgd(
+      {"compare", golden.string(), (out / "map" / "front.png").string(), "--threshold", kGoldenThreshold});
+  EXPECT_EQ(cmp.code, 0) << cmp.out << cmp.err;
+}
 
 TEST_P(RealGarments, DressAsListed) {
   VGD_REQUIRE_SHARED();
@@ -76,6 +99,7 @@ TEST_P(RealGarments, DressAsListed) {
   for (const auto& s : segments) got += (got.empty() ? "" : " ") + s;
   EXPECT_EQ(got, g.segments);
   if (g.code != 0) return;
+  if (*g.map) expect_fit_map_as_golden(out, g);
 
   // Its previews against goldens a person has looked at (tests/golden/real-garments/,
   // written by tests/golden/regenerate.sh): framed on the garment, 128 x 128.
@@ -178,10 +202,13 @@ INSTANTIATE_TEST_SUITE_P(
         // Leggings: a waistband closed into a loop and a leg cut twice, 11 cm
         // smaller round the hip than the body: draped in the shipped knit
         // (in shirting, stretched 40 %, they never came to rest).
+        // Its weft-strain fit map too: the strain highest round the calves
+        // and at the crotch, lowest over the seat; its legend 0-40 %.
         RealGarment{
             "leggings_36", "ORILEGWB_AAMA.DXF", "", 0, "hips left-leg right-leg",
             "fabric: the shipped knit cotton-jersey (written in the document): the pattern's hip girth is 81 "
-            "cm, 11 cm less than the body's 92 cm"},
+            "cm, 11 cm less than the body's 92 cm",
+            "", "", "", "weft", "weft strain, % of ORILEG_WB_LL_36: p50 1"},
         // A large size: each leg wrapped once round its leg at every height
         // (on one cylinder as wide as its top it crumpled through the body
         // below the knee, docs/drape.md).
@@ -256,28 +283,6 @@ TEST(RealGarmentsHoldContacts, ATeesArmpitFailureIsDrapedAgainHeld) {
   EXPECT_EQ(c["settings"]["hold_contacts"], "once sewn");
   EXPECT_TRUE(c["passed"].get<bool>()) << c["failures"].dump();
   EXPECT_EQ(c["stop"]["reason"], "rest");
-}
-
-// The leggings' weft-strain fit map (vgd render --map weft) against a golden
-// a person has looked at: the strain highest round the calves and at the
-// crotch, lowest over the seat; its legend 0-40 %.
-TEST(RealGarmentFitMap, TheLeggingsWeftStrain) {
-  VGD_REQUIRE_SHARED();
-  const auto out = scratch_dir("real-leggings-fit-map");
-  const auto r = run_vgd({"dress", shared_dxf("ORILEGWB_AAMA.DXF").string(), "-o", out.string(), "--no-previews"});
-  ASSERT_EQ(r.code, 0) << r.err;
-  const auto map = run_vgd({"render", out.string(), "--map", "weft", "--views", "front", "--size", "256x256", "-o",
-                            (out / "map").string()});
-  ASSERT_EQ(map.code, 0) << map.err;
-  EXPECT_NE(map.err.find("weft strain, % of ORILEG_WB_LL_36: p50 1"), std::string::npos) << map.err;
-  const auto golden = source_dir() / "tests" / "golden" / "real-garments" / "leggings_36-weft-map.png";
-  if (std::getenv("VGD_UPDATE_GOLDENS")) {
-    std::filesystem::copy_file(out / "map" / "front.png", golden, std::filesystem::copy_options::overwrite_existing);
-    return;
-  }
-  const auto cmp = run_vgd({"compare", golden.string(), (out / "map" / "front.png").string(), "--threshold",
-                            kGoldenThreshold});
-  EXPECT_EQ(cmp.code, 0) << cmp.out << cmp.err;
 }
 
 }  // namespace
