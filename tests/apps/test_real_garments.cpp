@@ -135,8 +135,8 @@ INSTANTIATE_TEST_SUITE_P(
             "polo_50", "drill-holes.DXF", "", 0, "left-arm neck right-arm torso torso torso",
             "seam 'collar seam' suggested at size 50: SS17_M POLO REG CO to SS17_M POLO REG FR + SS17_M POLO "
             "REG BK + SS17_M POLO REG FR"},
-        RealGarment{"polo_58", "drill-holes.DXF", "58", 0, "left-arm neck right-arm torso torso torso",
-                    "body: the mannequin of size 58 from en13402-men (the style's name"},
+        RealGarment{"polo_46", "drill-holes.DXF", "46", 0, "left-arm neck right-arm torso torso torso",
+                    "body: the mannequin of size 46 from en13402-men (the style's name"},
         RealGarment{
             "tee_gmh_50", "GMH1006F18_AAMA.DXF", "", 0, "left-arm neck right-arm torso torso",
             "body: the mannequin of size 50 from en13402-men (the style's sizes 42 to 70: 8 of its 15 are "
