@@ -6,6 +6,8 @@
 // the share of clean runs against the 99 % target. Exit 3 when a run is not
 // clean.
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "cli.hpp"
 #include "vgd/core/strings.hpp"
@@ -41,6 +43,31 @@ nlohmann::json to_json(const study::RobustnessRecord& r) {
                    {"message", c.stop_message}};
   if (r.spread >= 0.0) j["spread_m"] = r.spread;
   return j;
+}
+
+// "lo–hi unit" (one figure when they are equal; "–" when there is none).
+std::string range(double lo, double hi, double scale, int digits, const char* unit) {
+  if (lo > hi) return "–";
+  const std::string a = vgd::format_fixed(lo * scale, digits), b = vgd::format_fixed(hi * scale, digits);
+  return (a == b ? a : a + "–" + b) + " " + unit;
+}
+
+// Per garment, mesh, fabric and cloth model, as a Markdown table (docs/drape.md, "Robustness").
+void print_summary(const std::vector<study::RobustnessRow>& rows) {
+  std::printf(
+      "\n| garment | mesh | fabric | model | clean runs | failures (runs) | rest after (clean) | wall | "
+      "jittered run from its case's |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& w : rows) {
+    std::string failures;
+    for (const auto& [kind, n] : w.failures)
+      failures += (failures.empty() ? "" : ", ") + kind + " " + std::to_string(n);
+    std::printf("| %s | %scm | %s | %s | %d of %d | %s | %s | %s | %s |\n", w.garment.c_str(),
+                vgd::format_fixed(w.spacing * 100, 1).c_str(),
+                w.material.empty() ? "own" : w.material.c_str(), scene::to_string(w.model), w.clean, w.runs,
+                failures.empty() ? "–" : failures.c_str(), range(w.rest_lo, w.rest_hi, 1, 2, "s").c_str(),
+                range(w.wall_lo, w.wall_hi, 1, 1, "s").c_str(),
+                range(w.spread_lo, w.spread_hi, 1000, 0, "mm").c_str());
+  }
 }
 
 }  // namespace
@@ -105,6 +132,7 @@ int bench_robustness(const RobustnessArgs& a) {
     std::printf("clean: %d of %d runs (%s %%; target %s %%); jittered runs ended within %s mm of their case's run\n",
                 clean, done, vgd::format_fixed(done ? 100.0 * clean / done : 0.0, 1).c_str(),
                 vgd::format_fixed(100 * kTargetClean, 0).c_str(), vgd::format_fixed(widest * 1000, 2).c_str());
+    print_summary(study::summarise_robustness(records));
   }
   return clean == done ? kOk : kCheckFailed;
 }

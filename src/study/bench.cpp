@@ -419,4 +419,40 @@ std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& o,
   return records;
 }
 
+std::vector<RobustnessRow> summarise_robustness(const std::vector<RobustnessRecord>& records) {
+  std::vector<RobustnessRow> rows;
+  auto widen = [](double& lo, double& hi, double v) {
+    if (lo > hi) lo = hi = v;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  };
+  for (const auto& r : records) {
+    const std::string garment = r.run.garment.stem().string();
+    auto row = std::find_if(rows.begin(), rows.end(), [&](const RobustnessRow& w) {
+      return w.garment == garment && w.spacing == r.run.spacing && w.material == r.run.material &&
+             w.model == r.run.model;
+    });
+    if (row == rows.end()) {
+      rows.push_back({garment, r.run.spacing, r.run.material, r.run.model});
+      row = rows.end() - 1;
+    }
+    ++row->runs;
+    row->clean += r.clean ? 1 : 0;
+    std::vector<std::string> classes;
+    for (const auto& f : r.certificate.failures())
+      if (std::find(classes.begin(), classes.end(), f.kind) == classes.end()) classes.push_back(f.kind);
+    for (const auto& k : classes) {
+      auto it = std::find_if(row->failures.begin(), row->failures.end(),
+                             [&](const auto& p) { return p.first == k; });
+      if (it == row->failures.end())
+        row->failures.emplace_back(k, 1);
+      else
+        ++it->second;
+    }
+    if (r.clean) widen(row->rest_lo, row->rest_hi, r.certificate.simulated_s);
+    widen(row->wall_lo, row->wall_hi, r.certificate.wall_s);
+    if (r.spread >= 0.0) widen(row->spread_lo, row->spread_hi, r.spread);
+  }
+  return rows;
+}
+
 }  // namespace vgd::study

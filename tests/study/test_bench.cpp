@@ -82,5 +82,60 @@ TEST(StudyRobustness, SleevesFirstReachesEveryRun) {
   }
 }
 
+// The sweep's summary: one row per garment, mesh, fabric and model, the
+// sizes and starts together; a failure class counted once per run however
+// often the run fails it; rest times over clean runs only, spreads over the
+// jittered runs only.
+TEST(StudyRobustness, TheSummaryCountsRunsAndClassesPerGarmentAndMesh) {
+  auto record = [](const char* garment, double spacing, const char* size, double jitter, const char* stop,
+                   int open_seams, double rest_s, double wall_s, double spread) {
+    RobustnessRecord r;
+    r.run.garment = std::string("data/garments/") + garment + ".xvc";
+    r.run.spacing = spacing, r.run.size = size, r.run.jitter = jitter;
+    r.certificate.stop_reason = stop;
+    r.certificate.simulated_s = rest_s, r.certificate.wall_s = wall_s;
+    for (int i = 0; i < open_seams; ++i) {
+      dress::SeamState s;
+      s.name = "seam " + std::to_string(i), s.pairs = 10, s.closed = 7;
+      r.certificate.seams.push_back(s);
+    }
+    r.clean = r.certificate.failures().empty();
+    r.spread = spread;
+    return r;
+  };
+  const std::vector<RobustnessRecord> records = {
+      record("t-shirt", 0.015, "36", 0.0, "rest", 0, 1.5, 9.0, -1.0),
+      record("t-shirt", 0.015, "36", 1e-6, "rest", 0, 2.5, 12.0, 0.04),
+      record("t-shirt", 0.015, "38", 0.0, "time limit", 2, 8.0, 40.0, -1.0),
+      record("t-shirt", 0.019, "38", 0.0, "rest", 1, 3.0, 5.0, -1.0),
+      record("a-line-skirt", 0.015, "38", 1e-6, "rest", 0, 2.0, 8.0, 0.1),
+  };
+  ASSERT_TRUE(records[0].clean);
+  ASSERT_FALSE(records[3].clean);
+  const auto rows = summarise_robustness(records);
+  ASSERT_EQ(rows.size(), 3u);
+  const RobustnessRow& t = rows[0];
+  EXPECT_EQ(t.garment, "t-shirt");
+  EXPECT_EQ(t.spacing, 0.015);
+  EXPECT_EQ(t.runs, 3);
+  EXPECT_EQ(t.clean, 2);
+  ASSERT_EQ(t.failures.size(), 2u);
+  EXPECT_EQ(t.failures[0], std::make_pair(std::string("no rest"), 1));
+  EXPECT_EQ(t.failures[1], std::make_pair(std::string("seams open"), 1));  // two seams, one run
+  EXPECT_EQ(t.rest_lo, 1.5);
+  EXPECT_EQ(t.rest_hi, 2.5);
+  EXPECT_EQ(t.wall_lo, 9.0);
+  EXPECT_EQ(t.wall_hi, 40.0);
+  EXPECT_EQ(t.spread_lo, 0.04);
+  EXPECT_EQ(t.spread_hi, 0.04);
+  const RobustnessRow& coarse = rows[1];
+  EXPECT_EQ(coarse.spacing, 0.019);
+  EXPECT_EQ(coarse.clean, 0);
+  EXPECT_GT(coarse.rest_lo, coarse.rest_hi) << "no clean run: no rest range";
+  EXPECT_GT(coarse.spread_lo, coarse.spread_hi) << "no jittered run: no spread";
+  EXPECT_EQ(rows[2].garment, "a-line-skirt");
+  EXPECT_EQ(rows[2].clean, 1);
+}
+
 }  // namespace
 }  // namespace vgd::study

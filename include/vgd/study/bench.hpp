@@ -170,4 +170,22 @@ void check_robustness(const RobustnessOptions& options);
 std::vector<RobustnessRecord> robustness_study(const RobustnessOptions& options,
                                                const std::function<void(const RobustnessRecord&)>& on_record = {});
 
+// The sweep summed up per garment, mesh spacing, fabric and cloth model (the
+// sizes and starts of each together), in the order the records come: the
+// table docs/drape.md gives under "Robustness".
+struct RobustnessRow {
+  std::string garment;   // the document's file name without extension
+  double spacing = 0.0;  // m
+  std::string material;  // "" = the garment's own
+  scene::ClothModel model = scene::ClothModel::mass_spring;
+  int runs = 0, clean = 0;
+  // Each failure class (Failure::kind) and how many runs failed it, in the
+  // order first met.
+  std::vector<std::pair<std::string, int>> failures;
+  // Ranges over the clean runs (rest: simulated s), over every run (wall: s)
+  // and over the jittered runs (spread: m); lo > hi when there is none.
+  double rest_lo = 1.0, rest_hi = 0.0, wall_lo = 1.0, wall_hi = 0.0, spread_lo = 1.0, spread_hi = 0.0;
+};
+std::vector<RobustnessRow> summarise_robustness(const std::vector<RobustnessRecord>& records);
+
 }  // namespace vgd::study
