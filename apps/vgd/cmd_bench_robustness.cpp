@@ -3,8 +3,9 @@
 // moved by 1 µm (study::robustness_study), one thread. Prints per run whether
 // it came to rest clean and, if not, the failure classes of its certificate;
 // per jittered run how far its particles ended from the run as placed; then
-// the share of clean runs against the 99 % target. Exit 3 when a run is not
-// clean.
+// the share of clean runs against the 99 % target and a Markdown table per
+// garment, mesh, fabric and model (study::summarise_robustness); --json: the
+// records only. Exit 3 when a run is not clean.
 #include <cstdio>
 #include <string>
 #include <vector>
